@@ -1,0 +1,157 @@
+# houghloc - sonar localization and map-making daemon.
+#
+#   make            build everything into build/
+#   make test       install missing packages, build, run all tests (unit tests under
+#                   AddressSanitizer + UndefinedBehaviorSanitizer)
+#   make bench      localization benchmark at -O2
+#   make demo       run the system on the built-in simulated robot
+#   make clean
+#
+# Sub-makefiles tools/*/*.mk add their programs to BINS and their tests to TEST_BINS.
+
+BUILD    ?= build
+CC       ?= cc
+CXX      ?= c++
+V        ?= 0
+Q        := $(if $(filter 1,$(V)),,@)
+
+PKGS_C   := lcm
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS_C) 2>/dev/null)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS_C) 2>/dev/null)
+CMOCKA_LIBS := $(shell pkg-config --libs cmocka 2>/dev/null)
+EIGEN_CFLAGS := $(shell pkg-config --cflags eigen3 2>/dev/null)
+CAIRO_CFLAGS := $(shell pkg-config --cflags cairo 2>/dev/null)
+CAIRO_LIBS   := $(shell pkg-config --libs cairo 2>/dev/null)
+
+WARN     := -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2
+CWARN    := $(WARN) -Wmissing-prototypes -Wstrict-prototypes
+OPT      ?= -O2 -g
+SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+CPPFLAGS := -Iinclude -I$(BUILD)/lcmtypes -D_POSIX_C_SOURCE=200809L -MMD -MP
+CFLAGS   := -std=c11 $(CWARN) $(OPT)
+CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(EIGEN_CFLAGS)
+
+# ---- core library (pure C11, no I/O) -------------------------------------------------
+CORE_SRCS := src/core/fixed.c src/core/status.c src/core/rng.c src/core/scan.c \
+             src/core/map.c src/core/localize.c src/core/blur.c src/core/peak.c \
+             src/core/slam.c src/core/calib.c
+TRIG_SRC  := $(BUILD)/gen/trig_table.c
+
+# ---- test kit: synthetic scenes and the floating-point reference localizer ------------
+TESTKIT_SRCS := tools/testkit/synthroom.c tools/testkit/ref_localize.c
+
+# ---- LCM types, generated at build time (never committed) -----------------------------
+LCM_DEFS   := $(wildcard lcmtypes/*.lcm)
+LCM_NAMES  := $(patsubst lcmtypes/houghloc_%.lcm,%,$(LCM_DEFS))
+LCM_C_SRCS := $(patsubst %,$(BUILD)/lcmtypes/houghloc_%.c,$(LCM_NAMES))
+LCM_STAMP  := $(BUILD)/lcmtypes/.stamp
+
+obj     = $(patsubst %.c,$(BUILD)/obj/%.o,$(patsubst %.cpp,$(BUILD)/obj/%.o,$(1)))
+asanobj = $(patsubst %.c,$(BUILD)/asan/%.o,$(1))
+
+CORE_OBJS      := $(call obj,$(CORE_SRCS)) $(BUILD)/obj/gen/trig_table.o
+CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(BUILD)/asan/gen/trig_table.o
+TESTKIT_OBJS      := $(call obj,$(TESTKIT_SRCS))
+TESTKIT_ASAN_OBJS := $(call asanobj,$(TESTKIT_SRCS))
+LCM_OBJS       := $(call obj,$(LCM_C_SRCS:$(BUILD)/%=%))
+
+CORE_LIB      := $(BUILD)/lib/libhoughloc_core.a
+CORE_ASAN_LIB := $(BUILD)/lib/libhoughloc_core_asan.a
+TESTKIT_LIB      := $(BUILD)/lib/libhoughloc_testkit.a
+TESTKIT_ASAN_LIB := $(BUILD)/lib/libhoughloc_testkit_asan.a
+LCM_LIB       := $(BUILD)/lib/libhoughloc_lcmtypes.a
+
+# ---- unit tests (cmocka, under ASan + UBSan) ------------------------------------------
+CORE_TESTS := $(patsubst tests/core/%.c,$(BUILD)/tests/core/%,$(wildcard tests/core/test_*.c))
+TEST_BINS  := $(CORE_TESTS)
+BINS       := $(BUILD)/bin/hl-bench
+INTEGRATION_TESTS :=
+
+.PHONY: all deps test unit-test bench demo clean lcmtypes
+.DEFAULT_GOAL := all
+
+-include $(sort $(wildcard tools/*/*.mk src/*/*.mk tests/*/*.mk))
+
+all: $(BINS) $(TEST_BINS)
+
+deps:
+	$(Q)sh tools/build/install-deps.sh
+
+# ---- generated sources ----------------------------------------------------------------
+$(BUILD)/bin/gen_trig_table: tools/build/gen_trig_table.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) -std=c11 -O1 -o $@ $< -lm
+
+$(TRIG_SRC): $(BUILD)/bin/gen_trig_table
+	@mkdir -p $(@D)
+	$(Q)$< > $@.tmp && mv $@.tmp $@
+
+# lcm-gen fails unless the output folder exists (DESIGN.md).
+$(LCM_STAMP): $(LCM_DEFS)
+	@mkdir -p $(BUILD)/lcmtypes
+	$(Q)lcm-gen -c --c-cpath $(BUILD)/lcmtypes --c-hpath $(BUILD)/lcmtypes $(LCM_DEFS)
+	$(Q)lcm-gen -x --cpp-hpath $(BUILD)/lcmtypes $(LCM_DEFS)
+	$(Q)touch $@
+$(LCM_C_SRCS): $(LCM_STAMP)
+lcmtypes: $(LCM_STAMP)
+
+# ---- compile rules --------------------------------------------------------------------
+$(BUILD)/obj/gen/%.o: $(BUILD)/gen/%.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+$(BUILD)/asan/gen/%.o: $(BUILD)/gen/%.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+# Generated LCM code is not ours to fix: compile it without -Werror extras.
+$(BUILD)/obj/lcmtypes/%.o: $(BUILD)/lcmtypes/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(CPPFLAGS) -std=c11 $(OPT) -c -o $@ $<
+$(BUILD)/obj/%.o: %.c | $(LCM_STAMP)
+	@mkdir -p $(@D)
+	@echo "  CC      $<"
+	$(Q)$(CC) $(CPPFLAGS) $(PKG_CFLAGS) $(CAIRO_CFLAGS) $(CFLAGS) -c -o $@ $<
+$(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
+	@mkdir -p $(@D)
+	@echo "  CXX     $<"
+	$(Q)$(CXX) $(CPPFLAGS) $(PKG_CFLAGS) $(CAIRO_CFLAGS) $(CXXFLAGS) -c -o $@ $<
+$(BUILD)/asan/%.o: %.c | $(LCM_STAMP)
+	@mkdir -p $(@D)
+	@echo "  CC-SAN  $<"
+	$(Q)$(CC) $(CPPFLAGS) $(PKG_CFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+
+$(BUILD)/lib/%.a:
+	@mkdir -p $(@D)
+	$(Q)rm -f $@ && ar rcs $@ $^
+$(CORE_LIB): $(CORE_OBJS)
+$(CORE_ASAN_LIB): $(CORE_ASAN_OBJS)
+$(TESTKIT_LIB): $(TESTKIT_OBJS)
+$(TESTKIT_ASAN_LIB): $(TESTKIT_ASAN_OBJS)
+$(LCM_LIB): $(LCM_OBJS)
+
+# ---- unit tests -----------------------------------------------------------------------
+$(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TESTKIT_ASAN_LIB) $(CORE_ASAN_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD-SAN  $@"
+	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) -lm
+
+unit-test: $(TEST_BINS)
+	$(Q)sh tests/run-unit.sh $(TEST_BINS)
+
+test: deps
+	$(Q)$(MAKE) --no-print-directory all
+	$(Q)$(MAKE) --no-print-directory unit-test
+	$(Q)sh tests/run-integration.sh $(INTEGRATION_TESTS)
+
+# ---- benchmark ------------------------------------------------------------------------
+$(BUILD)/bin/hl-bench: $(call obj,tools/bench/bench_localize.c) $(TESTKIT_LIB) $(CORE_LIB)
+	@mkdir -p $(@D)
+	$(Q)$(CC) -o $@ $^ -lm
+
+bench: deps
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-bench OPT="-O2 -g"
+	$(Q)$(BUILD)/bin/hl-bench
+
+clean:
+	rm -rf $(BUILD)
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

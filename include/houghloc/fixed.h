@@ -1,0 +1,79 @@
+/*
+ * fixed.h - the fixed-point formats of houghloc, with their ranges and overflow bounds.
+ *
+ * Every number on the localization hot path is an integer in one of these formats.
+ *
+ *   length / coordinate   int32_t millimetres (hl_mm_t).
+ *       World coordinates:  |x|, |y| <= HL_COORD_MAX_MM  (2^22 mm = 4194 m).
+ *       Ranges:             0 <= r <= HL_RANGE_MAX_MM    (32767 mm, fits int16).
+ *       A difference of two coordinates is < 2^23 in magnitude: no overflow.
+ *
+ *   angle                 uint16_t binary angle units, BAM (hl_bam_t): 65536 per turn,
+ *       counter-clockwise, 0 = +x.  Wrap-around is free: uint16 arithmetic is modulo
+ *       one turn.  A signed difference is (int16_t)(a - b), in [-32768, 32767].
+ *       1 degree = 182.04 BAM; 1 BAM = 0.0055 degrees.
+ *
+ *   sine / cosine         int16_t Q14 (HL_TRIG_ONE = 16384 means 1.0), from a table of
+ *       the first quadrant (16385 entries, generated at build time).  Table error
+ *       <= 0.5 / 16384.
+ *
+ *   polar -> cartesian    x = (r * cos + 2^13) >> 14.
+ *       |r * cos| <= 32767 * 16384 < 2^29: fits int32 with 2 bits to spare.
+ *       Rounding error <= 0.5 mm + r * 0.5/16384 <= 1.5 mm at the longest range.
+ *
+ *   vote cell             uint16_t vote count, saturating at 65535 (HL_VOTE_MAX).
+ *
+ *   blurred vote          uint32_t, votes x 256 (Q8).  The blur is separable with integer
+ *       kernels whose taps sum to at most 256 per axis, and each pass after the first
+ *       shifts right by 8 with rounding, so every intermediate stays below
+ *       65535 * 256 * 256 < 2^32 and a final value below 65535 * 256 < 2^24.
+ */
+#ifndef HOUGHLOC_FIXED_H
+#define HOUGHLOC_FIXED_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef int32_t hl_mm_t;
+typedef uint16_t hl_bam_t;
+
+#define HL_COORD_MAX_MM (1 << 22)
+#define HL_RANGE_MAX_MM 32767
+#define HL_BAM_PER_TURN 65536
+#define HL_BAM_HALF_TURN 32768u
+#define HL_TRIG_SHIFT 14
+#define HL_TRIG_ONE (1 << HL_TRIG_SHIFT)
+#define HL_VOTE_MAX UINT16_MAX
+
+/** Sine of a binary angle, Q14. */
+int16_t hl_sin(hl_bam_t a);
+/** Cosine of a binary angle, Q14. */
+int16_t hl_cos(hl_bam_t a);
+
+/** Signed shortest difference a - b, in BAM: [-32768, 32767]. */
+static inline int32_t hl_bam_diff(hl_bam_t a, hl_bam_t b)
+{
+    return (int16_t)(uint16_t)(a - b);
+}
+
+/**
+ * Cartesian offset of a point at @p range_mm along @p angle, rounded to the millimetre.
+ * @param[in] range_mm  0..HL_RANGE_MAX_MM (larger values are clamped).
+ */
+void hl_polar_to_xy(int32_t range_mm, hl_bam_t angle, int32_t *x_mm, int32_t *y_mm);
+
+/** Conversions for configuration and tools (not the hot path). Rounds to nearest. */
+hl_bam_t hl_bam_from_deg(double deg);
+hl_bam_t hl_bam_from_rad(double rad);
+double hl_bam_to_deg(hl_bam_t a);   /* in [0, 360) */
+double hl_bam_to_rad(hl_bam_t a);   /* in [0, 2 pi) */
+/** Signed angle in degrees, [-180, 180). */
+double hl_bam_to_sdeg(hl_bam_t a);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,82 @@
+/*
+ * map.h - the map of tangent vectors (paper, sections 2 and 4).
+ *
+ * A tangent vector is a surface point seen by sonar with the surface normal pointing
+ * back toward the sensor that saw it; the sensor stood range_mm away along the normal.
+ * The map holds at most `capacity` vectors (the paper used 1500). When a new vector
+ * arrives at a full map, one vector chosen uniformly at random among the old ones and
+ * the new one is dropped, so old information "ages" out at random, as in the paper.
+ * The random choice comes from a PCG32 held in the map, seeded at creation.
+ *
+ * Ownership: hl_map_create allocates everything; nothing else allocates.
+ */
+#ifndef HOUGHLOC_MAP_H
+#define HOUGHLOC_MAP_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "houghloc/scan.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define HL_MAP_DEFAULT_CAPACITY 1500u
+#define HL_MAP_MAX_CAPACITY (1u << 20)
+
+typedef struct hl_vector {
+    hl_mm_t x_mm;       /* surface point, |x| <= HL_COORD_MAX_MM */
+    hl_mm_t y_mm;
+    hl_bam_t normal;    /* points from the surface back to the sensor */
+    uint16_t range_mm;  /* sensing distance, 0..HL_RANGE_MAX_MM */
+} hl_vector_t;
+
+typedef struct hl_map hl_map_t;
+
+/**
+ * @param capacity 1..HL_MAP_MAX_CAPACITY vectors.
+ * @param seed     seeds the culling generator.
+ * @return the map, or NULL on a bad capacity or out of memory.
+ */
+hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed);
+/** Frees the map. Accepts NULL. */
+void hl_map_destroy(hl_map_t *map);
+
+/** Removes every vector; the culling generator keeps its state. */
+void hl_map_clear(hl_map_t *map);
+
+/**
+ * Adds one vector, culling at random when full.
+ * @return HL_OK, HL_ERR_RANGE when the vector's fields are out of range (not added).
+ */
+hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v);
+
+/**
+ * Transforms the valid readings of @p scan, taken at @p pose, into world tangent
+ * vectors and adds them (paper, section 6: shifted to the computed position and rotated
+ * by the computed orientation). Readings whose surface point falls outside
+ * HL_COORD_MAX_MM are skipped.
+ * @param[out] added  number of vectors added; may be NULL.
+ */
+hl_status_t hl_map_add_scan(hl_map_t *map, const hl_scan_t *scan, hl_pose_t pose,
+                            uint32_t *added);
+
+/** The tangent vector for one reading at a pose. @return false if out of range. */
+bool hl_vector_from_reading(hl_pose_t pose, const hl_reading_t *r, hl_vector_t *out);
+/** The sensor position a vector was seen from (surface point + range along normal). */
+void hl_vector_origin(const hl_vector_t *v, hl_mm_t *x_mm, hl_mm_t *y_mm);
+
+uint32_t hl_map_count(const hl_map_t *map);
+uint32_t hl_map_capacity(const hl_map_t *map);
+/** Increments on every change. */
+uint32_t hl_map_version(const hl_map_t *map);
+/** The vectors, valid until the next change to the map. */
+const hl_vector_t *hl_map_vectors(const hl_map_t *map);
+/** Bytes allocated by the map. */
+size_t hl_map_mem_bytes(const hl_map_t *map);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

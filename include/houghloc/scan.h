@@ -1,0 +1,68 @@
+/*
+ * scan.h - one sonar sounding in the robot frame, and poses.
+ *
+ * A scan is a fixed-size value (no allocation): up to HL_SCAN_MAX_READINGS readings,
+ * each a bearing in the robot frame and a calibrated range. Invalid readings (cable
+ * echoes, the no-echo sentinel) stay in the scan, flagged, so that a scan keeps the
+ * shape of the transducer ring.
+ */
+#ifndef HOUGHLOC_SCAN_H
+#define HOUGHLOC_SCAN_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "houghloc/fixed.h"
+#include "houghloc/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define HL_SCAN_MAX_READINGS 1024
+
+typedef struct hl_pose {
+    hl_mm_t x_mm;       /* |x| <= HL_COORD_MAX_MM */
+    hl_mm_t y_mm;
+    hl_bam_t theta;     /* heading */
+} hl_pose_t;
+
+typedef struct hl_reading {
+    int32_t range_mm;   /* 0..HL_RANGE_MAX_MM when valid */
+    hl_bam_t bearing;   /* robot frame */
+    int8_t transducer;  /* 0..127, -1 when not from a ring transducer */
+    bool valid;
+} hl_reading_t;
+
+typedef struct hl_scan {
+    uint32_t count;     /* 0..HL_SCAN_MAX_READINGS */
+    hl_reading_t readings[HL_SCAN_MAX_READINGS];
+} hl_scan_t;
+
+/** Empties @p scan. */
+void hl_scan_clear(hl_scan_t *scan);
+
+/**
+ * Appends one reading. A range outside 0..HL_RANGE_MAX_MM is stored as invalid.
+ * @return HL_OK, HL_ERR_CAPACITY when the scan is full, HL_ERR_ARG on NULL.
+ */
+hl_status_t hl_scan_add(hl_scan_t *scan, hl_bam_t bearing, int32_t range_mm,
+                        int8_t transducer, bool valid);
+
+/** Number of valid readings. */
+uint32_t hl_scan_valid_count(const hl_scan_t *scan);
+
+/** Checks count and every valid reading's range. @return HL_OK or HL_ERR_RANGE. */
+hl_status_t hl_scan_check(const hl_scan_t *scan);
+
+/** Composes poses: the pose @p rel, given in the frame of @p base, in the world frame. */
+hl_pose_t hl_pose_compose(hl_pose_t base, hl_pose_t rel);
+/** The pose of @p to in the frame of @p from (inverse of hl_pose_compose). */
+hl_pose_t hl_pose_between(hl_pose_t from, hl_pose_t to);
+/** Checks |x|, |y| <= HL_COORD_MAX_MM. */
+bool hl_pose_in_range(hl_pose_t p);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,80 @@
+/*
+ * slam.h - the online cycle of the paper (sections 2 and 7): localize each new scan
+ * against the map, then add it to the map at the computed pose.
+ *
+ * Two modes:
+ *  - paper:    every localization is accepted and extends the map (the paper's method);
+ *  - guarded:  the search is centred on the odometry prediction, and a pose that lands
+ *              farther than wild_mm from it, or whose peak is not distinct, is rejected:
+ *              the pose falls back to the prediction and the scan does not extend the
+ *              map (section 9's proposal for eliminating wild errors).
+ */
+#ifndef HOUGHLOC_SLAM_H
+#define HOUGHLOC_SLAM_H
+
+#include <stdbool.h>
+
+#include "houghloc/localize.h"
+#include "houghloc/map.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum hl_slam_status {
+    HL_SLAM_ACCEPTED = 0,
+    HL_SLAM_REJECTED_WILD = 1,
+    HL_SLAM_ODOMETRY_ONLY = 2,
+} hl_slam_status_t;
+
+typedef struct hl_slam_params {
+    hl_loc_params_t loc;
+    uint32_t map_capacity;      /* default 1500 (paper) */
+    uint64_t seed;              /* map culling seed; default 1 */
+    bool guarded;               /* false = paper mode; default true */
+    bool interpolate;           /* sub-cell interpolation; default true */
+    bool use_prior;             /* odometry prior attenuation; default true */
+    hl_mm_t window_mm;          /* local search half-width; 0 = global; default 1000 */
+    bool search_theta;          /* default true */
+    hl_mm_t wild_mm;            /* guarded: reject farther than this from the
+                                   prediction; default 500 (the paper's wild error) */
+    double min_confidence;      /* guarded: reject a peak less distinct; default 0.05 */
+    uint32_t min_votes;         /* guarded: reject a peak with fewer raw votes in the
+                                   whole raster; default 20 */
+} hl_slam_params_t;
+
+void hl_slam_params_default(hl_slam_params_t *p);
+/** A one-line description of what is wrong, or NULL. */
+const char *hl_slam_params_error(const hl_slam_params_t *p);
+
+typedef struct hl_slam_step {
+    hl_pose_t pose;             /* the estimate after this scan */
+    hl_pose_t predicted;        /* last estimate moved by the odometry difference */
+    hl_slam_status_t status;
+    hl_loc_result_t loc;        /* valid unless status is ODOMETRY_ONLY */
+    uint32_t added;             /* vectors added to the map */
+} hl_slam_step_t;
+
+typedef struct hl_slam hl_slam_t;
+
+/** @return NULL on invalid parameters or no memory. */
+hl_slam_t *hl_slam_create(const hl_slam_params_t *p);
+void hl_slam_destroy(hl_slam_t *s);   /* accepts NULL */
+
+/** Starts over: empty map, the next scan is at @p start. */
+void hl_slam_reset(hl_slam_t *s, hl_pose_t start);
+
+/**
+ * One cycle: predict from @p odometry (the base's dead-reckoned pose when the scan was
+ * taken), localize, accept or reject, extend the map.
+ */
+hl_status_t hl_slam_step(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
+                         hl_slam_step_t *out);
+
+hl_map_t *hl_slam_map(hl_slam_t *s);
+hl_localizer_t *hl_slam_localizer(hl_slam_t *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

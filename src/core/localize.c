@@ -1,0 +1,436 @@
+/*
+ * localize.c - the Hough vote (paper, sections 5-6): pairs of <test reading, map vector>
+ * whose normals agree vote for the robot position map point - R(theta) * reading, into
+ * an (x, y, theta) raster; blur; peak. Formats: houghloc/fixed.h. Allocation: create only.
+ */
+#include "houghloc/localize.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "blur.h"
+#include "peak.h"
+
+#define NORMAL_BINS 256     /* map vectors bucketed by the top 8 bits of the normal */
+#define MAX_HALF_STEPS 256
+#define MAX_SIDE_MM (1 << 21)   /* keeps the reciprocal cell division exact */
+#define MAX_CELL_MM 1000
+
+struct hl_localizer {
+    hl_loc_params_t p;
+    hl_kernel_t kx, kt;
+    size_t mem_bytes;
+
+    /* the raster, [nt][ny][nx], max_cells each */
+    uint16_t *votes;
+    uint32_t *buf_a, *buf_b;
+    const uint32_t *blurred;    /* buf_a or buf_b after the last run */
+    uint32_t *wx, *wy, *wt;     /* prior weights, Q8 */
+    int32_t wlen;               /* length of wx and wy */
+
+    /* the map, bucketed by normal, as structure-of-arrays for the vote loop */
+    int32_t *mx, *my;
+    hl_bam_t *mn;
+    uint32_t bin_start[NORMAL_BINS + 1];
+
+    /* the valid readings of the scan */
+    int32_t *range;
+    hl_bam_t *bearing;
+
+    hl_loc_surface_t surface;   /* geometry of the last run */
+};
+
+void hl_loc_params_default(hl_loc_params_t *p)
+{
+    memset(p, 0, sizeof *p);
+    p->cell_mm = 24;
+    p->theta_step = hl_bam_from_deg(1.1);
+    p->theta_half_steps = 8;
+    p->normal_gate = hl_bam_from_deg(30.0);
+    p->blur_sigma_mm = 36;
+    p->blur_sigma_theta = hl_bam_from_deg(0.75);
+    p->peak_separation_mm = 500;
+    p->prior_sigma_mm = 300;
+    p->prior_sigma_theta = hl_bam_from_deg(4.0);
+    p->max_cells = 1u << 20;
+    p->max_map_vectors = 16384;
+}
+
+const char *hl_loc_params_error(const hl_loc_params_t *p)
+{
+    if (!p)
+        return "no localizer parameters";
+    if (p->cell_mm < 1 || p->cell_mm > MAX_CELL_MM)
+        return "cell_mm must be in 1..1000";
+    if (p->theta_step == 0 && p->theta_half_steps > 0)
+        return "theta_step must be positive when theta_half_steps > 0";
+    if (p->theta_half_steps > MAX_HALF_STEPS)
+        return "theta_half_steps must be at most 256";
+    if ((uint32_t)p->theta_step * (2u * p->theta_half_steps + 1u) > 32768u)
+        return "the heading slice must span less than half a turn";
+    if (p->normal_gate > HL_BAM_HALF_TURN)
+        return "normal_gate must be at most 180 degrees";
+    if (p->blur_sigma_mm < 0 || p->blur_sigma_mm > 10 * p->cell_mm)
+        return "blur_sigma_mm must be in 0..10 cells";
+    if (p->peak_separation_mm < 0 || p->peak_separation_mm > HL_RANGE_MAX_MM)
+        return "peak_separation_mm must be in 0..32767";
+    if (p->prior_sigma_mm < 1 || p->prior_sigma_mm > HL_COORD_MAX_MM)
+        return "prior_sigma_mm must be positive";
+    if (p->prior_sigma_theta == 0)
+        return "prior_sigma_theta must be positive";
+    if (p->max_cells < 1 || p->max_cells > (1u << 26))
+        return "max_cells must be in 1..2^26";
+    if (p->max_map_vectors < 1 || p->max_map_vectors > HL_MAP_MAX_CAPACITY)
+        return "max_map_vectors must be in 1..2^20";
+    return NULL;
+}
+
+static int32_t slice_count(const hl_loc_params_t *p, bool search_theta)
+{
+    return search_theta ? 2 * p->theta_half_steps + 1 : 1;
+}
+
+static int32_t window_cells(const hl_loc_params_t *p, hl_mm_t window_mm)
+{
+    return (int32_t)((2 * (int64_t)window_mm + p->cell_mm - 1) / p->cell_mm);
+}
+
+uint32_t hl_loc_cells_for_window(const hl_loc_params_t *p, hl_mm_t window_mm,
+                                 bool search_theta)
+{
+    int64_t n = window_cells(p, window_mm);
+    int64_t cells = n * n * slice_count(p, search_theta);
+    return cells > UINT32_MAX ? UINT32_MAX : (uint32_t)cells;
+}
+
+void hl_loc_destroy(hl_localizer_t *loc)
+{
+    if (!loc)
+        return;
+    free(loc->votes);
+    free(loc->buf_a);
+    free(loc->buf_b);
+    free(loc->wx);
+    free(loc->wy);
+    free(loc->wt);
+    free(loc->mx);
+    free(loc->my);
+    free(loc->mn);
+    free(loc->range);
+    free(loc->bearing);
+    free(loc);
+}
+
+static void *alloc_counted(hl_localizer_t *loc, size_t n, size_t size)
+{
+    loc->mem_bytes += n * size;
+    return calloc(n, size);
+}
+
+hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
+{
+    if (hl_loc_params_error(params))
+        return NULL;
+    hl_localizer_t *loc = calloc(1, sizeof *loc);
+    if (!loc)
+        return NULL;
+    loc->p = *params;
+    loc->mem_bytes = sizeof *loc;
+    const hl_loc_params_t *p = &loc->p;
+    /* A raster side cannot exceed max_cells cells, nor MAX_SIDE_MM. */
+    int64_t side = MAX_SIDE_MM / p->cell_mm + 2;
+    loc->wlen = (int32_t)(side < p->max_cells ? side : p->max_cells);
+    int32_t max_nt = slice_count(p, true);
+
+    loc->votes = alloc_counted(loc, p->max_cells, sizeof *loc->votes);
+    loc->buf_a = alloc_counted(loc, p->max_cells, sizeof *loc->buf_a);
+    loc->buf_b = alloc_counted(loc, p->max_cells, sizeof *loc->buf_b);
+    loc->wx = alloc_counted(loc, (size_t)loc->wlen, sizeof *loc->wx);
+    loc->wy = alloc_counted(loc, (size_t)loc->wlen, sizeof *loc->wy);
+    loc->wt = alloc_counted(loc, (size_t)max_nt, sizeof *loc->wt);
+    loc->mx = alloc_counted(loc, p->max_map_vectors, sizeof *loc->mx);
+    loc->my = alloc_counted(loc, p->max_map_vectors, sizeof *loc->my);
+    loc->mn = alloc_counted(loc, p->max_map_vectors, sizeof *loc->mn);
+    loc->range = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->range);
+    loc->bearing = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->bearing);
+    if (!loc->votes || !loc->buf_a || !loc->buf_b || !loc->wx || !loc->wy || !loc->wt ||
+        !loc->mx || !loc->my || !loc->mn || !loc->range || !loc->bearing) {
+        hl_loc_destroy(loc);
+        return NULL;
+    }
+    hl_kernel_gaussian(&loc->kx, (double)p->blur_sigma_mm / p->cell_mm);
+    hl_kernel_gaussian(&loc->kt, p->theta_step ? (double)p->blur_sigma_theta / p->theta_step : 0);
+    return loc;
+}
+
+const hl_loc_params_t *hl_loc_params(const hl_localizer_t *loc)
+{
+    return &loc->p;
+}
+
+size_t hl_loc_mem_bytes(const hl_localizer_t *loc)
+{
+    return loc->mem_bytes;
+}
+
+double hl_loc_confidence(const hl_loc_result_t *r)
+{
+    if (!r || r->peak == 0)
+        return 0.0;
+    double c = 1.0 - (double)r->second / (double)r->peak;
+    return c < 0 ? 0 : c;
+}
+
+/* Copies the valid readings out of the scan; returns their count and longest range. */
+static uint32_t gather_readings(hl_localizer_t *loc, const hl_scan_t *scan,
+                                int32_t *max_range)
+{
+    uint32_t n = 0;
+    *max_range = 0;
+    for (uint32_t i = 0; i < scan->count; i++) {
+        const hl_reading_t *r = &scan->readings[i];
+        if (!r->valid)
+            continue;
+        loc->range[n] = r->range_mm;
+        loc->bearing[n] = r->bearing;
+        if (r->range_mm > *max_range)
+            *max_range = r->range_mm;
+        n++;
+    }
+    return n;
+}
+
+/* The xy raster: a window centred on the prediction, or the map's bounding box. */
+static hl_status_t place_raster(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
+                                const hl_loc_query_t *q, hl_loc_surface_t *s)
+{
+    int32_t cell = loc->p.cell_mm;
+    if (q->window_mm > 0) {
+        s->nx = s->ny = window_cells(&loc->p, q->window_mm);
+        s->x0_mm = q->predicted.x_mm - s->nx * cell / 2;
+        s->y0_mm = q->predicted.y_mm - s->ny * cell / 2;
+    } else {
+        int32_t x0 = map[0].x_mm, x1 = x0, y0 = map[0].y_mm, y1 = y0;
+        for (uint32_t i = 1; i < n; i++) {
+            x0 = map[i].x_mm < x0 ? map[i].x_mm : x0;
+            x1 = map[i].x_mm > x1 ? map[i].x_mm : x1;
+            y0 = map[i].y_mm < y0 ? map[i].y_mm : y0;
+            y1 = map[i].y_mm > y1 ? map[i].y_mm : y1;
+        }
+        s->nx = (x1 - x0) / cell + 1;
+        s->ny = (y1 - y0) / cell + 1;
+        s->x0_mm = x0;
+        s->y0_mm = y0;
+    }
+    s->nt = slice_count(&loc->p, q->search_theta);
+    s->cell_mm = cell;
+    s->theta_step = q->search_theta ? loc->p.theta_step : 0;
+    int32_t half = q->search_theta ? loc->p.theta_half_steps : 0;
+    s->theta0 = (hl_bam_t)(q->predicted.theta - half * loc->p.theta_step);
+    if ((int64_t)s->nx * cell >= MAX_SIDE_MM || (int64_t)s->ny * cell >= MAX_SIDE_MM ||
+        (int64_t)s->nx * s->ny * s->nt > loc->p.max_cells)
+        return HL_ERR_CAPACITY;
+    return HL_OK;
+}
+
+/* Buckets the map vectors that can vote inside the raster by normal (counting sort). */
+static uint32_t bucket_map(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
+                           const hl_loc_surface_t *s, int32_t max_range)
+{
+    /* A vote lands at map point - reading, so only vectors within the longest range of
+     * the raster can land in it. */
+    int64_t xlo = (int64_t)s->x0_mm - max_range - 1;
+    int64_t xhi = (int64_t)s->x0_mm + (int64_t)s->nx * s->cell_mm + max_range + 1;
+    int64_t ylo = (int64_t)s->y0_mm - max_range - 1;
+    int64_t yhi = (int64_t)s->y0_mm + (int64_t)s->ny * s->cell_mm + max_range + 1;
+    uint32_t count[NORMAL_BINS] = { 0 };
+    for (uint32_t i = 0; i < n; i++) {
+        const hl_vector_t *v = &map[i];
+        if (v->x_mm >= xlo && v->x_mm <= xhi && v->y_mm >= ylo && v->y_mm <= yhi)
+            count[v->normal >> 8]++;
+    }
+    uint32_t total = 0;
+    for (int b = 0; b < NORMAL_BINS; b++) {
+        loc->bin_start[b] = total;
+        total += count[b];
+        count[b] = loc->bin_start[b];
+    }
+    loc->bin_start[NORMAL_BINS] = total;
+    for (uint32_t i = 0; i < n; i++) {
+        const hl_vector_t *v = &map[i];
+        if (!(v->x_mm >= xlo && v->x_mm <= xhi && v->y_mm >= ylo && v->y_mm <= yhi))
+            continue;
+        uint32_t k = count[v->normal >> 8]++;
+        loc->mx[k] = v->x_mm;
+        loc->my[k] = v->y_mm;
+        loc->mn[k] = v->normal;
+    }
+    return total;
+}
+
+typedef struct vote_ctx {
+    uint16_t *slice;        /* votes of one heading */
+    int32_t nx;
+    uint32_t width_mm, height_mm;
+    uint64_t recip;         /* floor(2^32 / cell) + 1: exact division below 2^21 mm */
+    uint32_t votes, pairs;
+} vote_ctx_t;
+
+/* Votes of one test reading (world offset tx, ty; test normal tn) against the map
+ * vectors in bins [b0, b1]; the hot loop. */
+static void vote_bins(const hl_localizer_t *loc, vote_ctx_t *c, uint32_t b0, uint32_t b1,
+                      int32_t ox, int32_t oy, hl_bam_t tn, int32_t gate)
+{
+    uint32_t lo = loc->bin_start[b0], hi = loc->bin_start[b1 + 1];
+    const int32_t *mx = loc->mx, *my = loc->my;
+    const hl_bam_t *mn = loc->mn;
+    for (uint32_t k = lo; k < hi; k++) {
+        int32_t d = (int16_t)(uint16_t)(mn[k] - tn);
+        if (d > gate || d < -gate)
+            continue;
+        c->pairs++;
+        uint32_t vx = (uint32_t)(mx[k] - ox), vy = (uint32_t)(my[k] - oy);
+        if (vx >= c->width_mm || vy >= c->height_mm)
+            continue;
+        uint32_t ix = (uint32_t)((vx * c->recip) >> 32);
+        uint32_t iy = (uint32_t)((vy * c->recip) >> 32);
+        uint16_t *cell = &c->slice[iy * (uint32_t)c->nx + ix];
+        *cell += (*cell != HL_VOTE_MAX);
+        c->votes++;
+    }
+}
+
+static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface_t *s,
+                       vote_ctx_t *c)
+{
+    int32_t gate = loc->p.normal_gate;
+    for (int32_t it = 0; it < s->nt; it++) {
+        hl_bam_t heading = (hl_bam_t)(s->theta0 + it * s->theta_step);
+        c->slice = loc->votes + (size_t)it * s->nx * s->ny;
+        for (uint32_t i = 0; i < nread; i++) {
+            hl_bam_t a = (hl_bam_t)(heading + loc->bearing[i]);
+            int32_t tx, ty;
+            hl_polar_to_xy(loc->range[i], a, &tx, &ty);
+            /* The test vector's normal points back at the robot, like the map's. */
+            hl_bam_t tn = (hl_bam_t)(a + HL_BAM_HALF_TURN);
+            /* vote - origin = map - test - origin: fold the subtraction into one offset */
+            int32_t ox = tx + s->x0_mm, oy = ty + s->y0_mm;
+            if (gate >= 32768) {
+                vote_bins(loc, c, 0, NORMAL_BINS - 1, ox, oy, tn, gate);
+                continue;
+            }
+            uint32_t b0 = (uint16_t)(tn - gate) >> 8, b1 = (uint16_t)(tn + gate) >> 8;
+            if (b0 <= b1) {
+                vote_bins(loc, c, b0, b1, ox, oy, tn, gate);
+            } else {    /* the gate wraps through 0 */
+                vote_bins(loc, c, b0, NORMAL_BINS - 1, ox, oy, tn, gate);
+                vote_bins(loc, c, 0, b1, ox, oy, tn, gate);
+            }
+        }
+    }
+}
+
+/* Gaussian weights in Q8 of the distance of each cell centre from the prediction. */
+static void fill_prior(hl_localizer_t *loc, const hl_loc_query_t *q, const hl_loc_surface_t *s)
+{
+    double sx = loc->p.prior_sigma_mm;
+    for (int32_t i = 0; i < s->nx; i++) {
+        double d = s->x0_mm + (i + 0.5) * s->cell_mm - q->predicted.x_mm;
+        loc->wx[i] = (uint32_t)lround(256.0 * exp(-0.5 * d * d / (sx * sx)));
+    }
+    for (int32_t i = 0; i < s->ny; i++) {
+        double d = s->y0_mm + (i + 0.5) * s->cell_mm - q->predicted.y_mm;
+        loc->wy[i] = (uint32_t)lround(256.0 * exp(-0.5 * d * d / (sx * sx)));
+    }
+    double st = loc->p.prior_sigma_theta;
+    for (int32_t i = 0; i < s->nt; i++) {
+        double d = hl_bam_diff((hl_bam_t)(s->theta0 + i * s->theta_step), q->predicted.theta);
+        loc->wt[i] = (uint32_t)lround(256.0 * exp(-0.5 * d * d / (st * st)));
+    }
+}
+
+/* Interpolated offset along one axis of the grid, in units of `step`. */
+static int32_t axis_offset(const hl_grid_t *g, const hl_peak_t *pk, int axis, int32_t step)
+{
+    int32_t i[3] = { pk->ix, pk->iy, pk->it };
+    int32_t n[3] = { g->nx, g->ny, g->nt };
+    if (step == 0 || i[axis] == 0 || i[axis] == n[axis] - 1)
+        return 0;
+    int32_t lo[3] = { i[0], i[1], i[2] }, hi[3] = { i[0], i[1], i[2] };
+    lo[axis]--;
+    hi[axis]++;
+    return hl_peak_offset(hl_grid_score(g, lo[0], lo[1], lo[2]), pk->score,
+                          hl_grid_score(g, hi[0], hi[1], hi[2]), step);
+}
+
+hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
+                       const hl_scan_t *scan, const hl_loc_query_t *query,
+                       hl_loc_result_t *result)
+{
+    if (!loc || (!map && n > 0) || !scan || !query || !result)
+        return HL_ERR_ARG;
+    memset(result, 0, sizeof *result);
+    if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(query->predicted) ||
+        query->window_mm < 0 || query->window_mm > MAX_SIDE_MM / 2)
+        return HL_ERR_RANGE;
+    if (n > loc->p.max_map_vectors)
+        return HL_ERR_CAPACITY;
+    int32_t max_range;
+    uint32_t nread = gather_readings(loc, scan, &max_range);
+    if (n == 0 || nread == 0)
+        return HL_ERR_EMPTY;
+
+    hl_loc_surface_t s;
+    hl_status_t st = place_raster(loc, map, n, query, &s);
+    if (st != HL_OK)
+        return st;
+    size_t cells = (size_t)s.nx * s.ny * s.nt;
+    memset(loc->votes, 0, cells * sizeof *loc->votes);
+    bucket_map(loc, map, n, &s, max_range);
+
+    vote_ctx_t c = { .nx = s.nx,
+                     .width_mm = (uint32_t)(s.nx * s.cell_mm),
+                     .height_mm = (uint32_t)(s.ny * s.cell_mm),
+                     .recip = (1ull << 32) / (uint32_t)s.cell_mm + 1 };
+    cast_votes(loc, nread, &s, &c);
+    result->votes = c.votes;
+    result->pairs = c.pairs;
+    if (c.votes == 0)
+        return HL_ERR_EMPTY;
+
+    loc->blurred = hl_blur3(loc->votes, s.nx, s.ny, s.nt, &loc->kx, &loc->kx, &loc->kt,
+                            loc->buf_a, loc->buf_b);
+    s.cells = loc->blurred;
+    s.votes = loc->votes;
+    loc->surface = s;
+
+    hl_grid_t g = { .cells = loc->blurred, .nx = s.nx, .ny = s.ny, .nt = s.nt };
+    if (query->use_prior) {
+        fill_prior(loc, query, &s);
+        g.wx = loc->wx;
+        g.wy = loc->wy;
+        g.wt = loc->wt;
+    }
+    hl_peak_t pk;
+    if (!hl_peak_find(&g, s.cell_mm, loc->p.peak_separation_mm, &pk))
+        return HL_ERR_EMPTY;
+    result->ix = pk.ix;
+    result->iy = pk.iy;
+    result->it = pk.it;
+    result->peak = pk.score;
+    result->second = pk.second;
+    result->cell_pose.x_mm = s.x0_mm + pk.ix * s.cell_mm + s.cell_mm / 2;
+    result->cell_pose.y_mm = s.y0_mm + pk.iy * s.cell_mm + s.cell_mm / 2;
+    result->cell_pose.theta = (hl_bam_t)(s.theta0 + pk.it * s.theta_step);
+    result->pose.x_mm = result->cell_pose.x_mm + axis_offset(&g, &pk, 0, s.cell_mm);
+    result->pose.y_mm = result->cell_pose.y_mm + axis_offset(&g, &pk, 1, s.cell_mm);
+    result->pose.theta = (hl_bam_t)(result->cell_pose.theta +
+                                    axis_offset(&g, &pk, 2, s.theta_step));
+    return HL_OK;
+}
+
+void hl_loc_surface(const hl_localizer_t *loc, hl_loc_surface_t *out)
+{
+    *out = loc->surface;
+}

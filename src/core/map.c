@@ -1,0 +1,143 @@
+/* map.c - the fixed-capacity map of tangent vectors with random culling. */
+#include "houghloc/map.h"
+
+#include <stdlib.h>
+
+#include "houghloc/rng.h"
+
+struct hl_map {
+    uint32_t capacity;
+    uint32_t count;
+    uint32_t version;
+    hl_rng_t rng;
+    hl_vector_t *vectors;   /* [capacity] */
+};
+
+hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed)
+{
+    if (capacity < 1 || capacity > HL_MAP_MAX_CAPACITY)
+        return NULL;
+    hl_map_t *map = calloc(1, sizeof *map);
+    if (!map)
+        return NULL;
+    map->vectors = calloc(capacity, sizeof *map->vectors);
+    if (!map->vectors) {
+        free(map);
+        return NULL;
+    }
+    map->capacity = capacity;
+    hl_rng_seed(&map->rng, seed);
+    return map;
+}
+
+void hl_map_destroy(hl_map_t *map)
+{
+    if (!map)
+        return;
+    free(map->vectors);
+    free(map);
+}
+
+void hl_map_clear(hl_map_t *map)
+{
+    map->count = 0;
+    map->version++;
+}
+
+static bool vector_in_range(const hl_vector_t *v)
+{
+    return v->x_mm >= -HL_COORD_MAX_MM && v->x_mm <= HL_COORD_MAX_MM &&
+           v->y_mm >= -HL_COORD_MAX_MM && v->y_mm <= HL_COORD_MAX_MM &&
+           v->range_mm <= HL_RANGE_MAX_MM;
+}
+
+hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
+{
+    if (!map || !v)
+        return HL_ERR_ARG;
+    if (!vector_in_range(v))
+        return HL_ERR_RANGE;
+    map->version++;
+    if (map->count < map->capacity) {
+        map->vectors[map->count++] = *v;
+        return HL_OK;
+    }
+    /* Full: drop one of the capacity + 1 candidates uniformly at random (the paper's
+     * culling). Index == capacity means the new vector itself is dropped. */
+    uint32_t victim = hl_rng_below(&map->rng, map->capacity + 1);
+    if (victim < map->capacity)
+        map->vectors[victim] = *v;
+    return HL_OK;
+}
+
+bool hl_vector_from_reading(hl_pose_t pose, const hl_reading_t *r, hl_vector_t *out)
+{
+    if (!r->valid || r->range_mm < 0 || r->range_mm > HL_RANGE_MAX_MM)
+        return false;
+    hl_bam_t world_bearing = (hl_bam_t)(pose.theta + r->bearing);
+    int32_t dx, dy;
+    hl_polar_to_xy(r->range_mm, world_bearing, &dx, &dy);
+    int64_t x = (int64_t)pose.x_mm + dx, y = (int64_t)pose.y_mm + dy;
+    if (x < -HL_COORD_MAX_MM || x > HL_COORD_MAX_MM || y < -HL_COORD_MAX_MM ||
+        y > HL_COORD_MAX_MM)
+        return false;
+    out->x_mm = (hl_mm_t)x;
+    out->y_mm = (hl_mm_t)y;
+    out->normal = (hl_bam_t)(world_bearing + HL_BAM_HALF_TURN);
+    out->range_mm = (uint16_t)r->range_mm;
+    return true;
+}
+
+void hl_vector_origin(const hl_vector_t *v, hl_mm_t *x_mm, hl_mm_t *y_mm)
+{
+    int32_t dx, dy;
+    hl_polar_to_xy(v->range_mm, v->normal, &dx, &dy);
+    *x_mm = v->x_mm + dx;
+    *y_mm = v->y_mm + dy;
+}
+
+hl_status_t hl_map_add_scan(hl_map_t *map, const hl_scan_t *scan, hl_pose_t pose,
+                            uint32_t *added)
+{
+    if (added)
+        *added = 0;
+    if (!map || !scan)
+        return HL_ERR_ARG;
+    if (!hl_pose_in_range(pose) || scan->count > HL_SCAN_MAX_READINGS)
+        return HL_ERR_RANGE;
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < scan->count; i++) {
+        hl_vector_t v;
+        if (hl_vector_from_reading(pose, &scan->readings[i], &v) &&
+            hl_map_add(map, &v) == HL_OK)
+            n++;
+    }
+    if (added)
+        *added = n;
+    return HL_OK;
+}
+
+uint32_t hl_map_count(const hl_map_t *map)
+{
+    return map->count;
+}
+
+uint32_t hl_map_capacity(const hl_map_t *map)
+{
+    return map->capacity;
+}
+
+uint32_t hl_map_version(const hl_map_t *map)
+{
+    return map->version;
+}
+
+const hl_vector_t *hl_map_vectors(const hl_map_t *map)
+{
+    return map->vectors;
+}
+
+size_t hl_map_mem_bytes(const hl_map_t *map)
+{
+    return sizeof *map + (size_t)map->capacity * sizeof *map->vectors;
+}

@@ -1,0 +1,149 @@
+/* slam.c - the online localize-then-extend cycle (paper, sections 2 and 7). */
+#include "houghloc/slam.h"
+
+#include <stdlib.h>
+
+struct hl_slam {
+    hl_slam_params_t p;
+    hl_map_t *map;
+    hl_localizer_t *loc;
+    bool started;       /* a scan has been seen since the last reset */
+    hl_pose_t pose;     /* the last estimate (or the start pose) */
+    hl_pose_t odom;     /* the odometry that went with it */
+};
+
+void hl_slam_params_default(hl_slam_params_t *p)
+{
+    hl_loc_params_default(&p->loc);
+    p->map_capacity = HL_MAP_DEFAULT_CAPACITY;
+    p->seed = 1;
+    p->guarded = true;
+    p->interpolate = true;
+    p->use_prior = true;
+    p->window_mm = 1000;
+    p->search_theta = true;
+    p->wild_mm = 500;
+    p->min_confidence = 0.05;
+    p->min_votes = 20;
+}
+
+const char *hl_slam_params_error(const hl_slam_params_t *p)
+{
+    const char *e = hl_loc_params_error(&p->loc);
+    if (e)
+        return e;
+    if (p->map_capacity < 1 || p->map_capacity > p->loc.max_map_vectors)
+        return "map capacity must be in 1..max_map_vectors";
+    if (p->window_mm < 0 || p->window_mm > 1000000)
+        return "window_mm must be in 0..1000000";
+    if (p->window_mm > 0 &&
+        hl_loc_cells_for_window(&p->loc, p->window_mm, p->search_theta) > p->loc.max_cells)
+        return "the search window needs more raster cells than max_cells";
+    if (p->wild_mm < 1)
+        return "wild_mm must be positive";
+    if (!(p->min_confidence >= 0.0 && p->min_confidence <= 1.0))
+        return "min_confidence must be in 0..1";
+    return NULL;
+}
+
+hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
+{
+    if (hl_slam_params_error(p))
+        return NULL;
+    hl_slam_t *s = calloc(1, sizeof *s);
+    if (!s)
+        return NULL;
+    s->p = *p;
+    s->map = hl_map_create(p->map_capacity, p->seed);
+    s->loc = hl_loc_create(&p->loc);
+    if (!s->map || !s->loc) {
+        hl_slam_destroy(s);
+        return NULL;
+    }
+    return s;
+}
+
+void hl_slam_destroy(hl_slam_t *s)
+{
+    if (!s)
+        return;
+    hl_map_destroy(s->map);
+    hl_loc_destroy(s->loc);
+    free(s);
+}
+
+void hl_slam_reset(hl_slam_t *s, hl_pose_t start)
+{
+    hl_map_clear(s->map);
+    s->started = false;
+    s->pose = start;
+}
+
+static int64_t dist2(hl_pose_t a, hl_pose_t b)
+{
+    int64_t dx = (int64_t)a.x_mm - b.x_mm, dy = (int64_t)a.y_mm - b.y_mm;
+    return dx * dx + dy * dy;
+}
+
+/* Guarded mode: is this localization believable? */
+static bool plausible(const hl_slam_t *s, hl_pose_t pose, hl_pose_t predicted,
+                      const hl_loc_result_t *r)
+{
+    return dist2(pose, predicted) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
+           hl_loc_confidence(r) >= s->p.min_confidence && r->votes >= s->p.min_votes;
+}
+
+hl_status_t hl_slam_step(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
+                         hl_slam_step_t *out)
+{
+    if (!s || !scan || !out)
+        return HL_ERR_ARG;
+    if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(odometry))
+        return HL_ERR_RANGE;
+    hl_pose_t predicted = s->pose;
+    if (s->started)
+        predicted = hl_pose_compose(s->pose, hl_pose_between(s->odom, odometry));
+    if (!hl_pose_in_range(predicted))
+        return HL_ERR_RANGE;
+    *out = (hl_slam_step_t){ .pose = predicted, .predicted = predicted,
+                             .status = HL_SLAM_ODOMETRY_ONLY };
+    s->started = true;
+    s->odom = odometry;
+    s->pose = predicted;
+
+    hl_loc_query_t q = { .predicted = predicted, .window_mm = s->p.window_mm,
+                         .search_theta = s->p.search_theta, .use_prior = s->p.use_prior };
+    hl_status_t st = hl_loc_run(s->loc, hl_map_vectors(s->map), hl_map_count(s->map), scan,
+                                &q, &out->loc);
+    bool extend = true;
+    if (st == HL_OK) {
+        hl_pose_t found = s->p.interpolate ? out->loc.pose : out->loc.cell_pose;
+        if (!s->p.guarded || plausible(s, found, predicted, &out->loc)) {
+            out->status = HL_SLAM_ACCEPTED;
+            out->pose = s->pose = found;
+        } else {
+            out->status = HL_SLAM_REJECTED_WILD;
+            extend = false;
+        }
+    } else if (st == HL_ERR_EMPTY) {
+        /* Nothing to vote against: the first scan, or a scan that overlaps nothing.
+         * The paper's robot starts its map this way; a guarded run adds such a scan only
+         * while the map is still empty. */
+        extend = !s->p.guarded || hl_map_count(s->map) == 0;
+    } else {
+        return st;
+    }
+    if (extend)
+        return hl_map_add_scan(s->map, scan, out->pose, &out->added);
+    return HL_OK;
+}
+
+hl_map_t *hl_slam_map(hl_slam_t *s)
+{
+    return s->map;
+}
+
+hl_localizer_t *hl_slam_localizer(hl_slam_t *s)
+{
+    return s->loc;
+}
