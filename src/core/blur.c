@@ -1,5 +1,6 @@
 /* blur.c - separable integer Gaussian (formats and bounds: blur.h). */
 #include "blur.h"
+#include "simd.h"
 
 #include <math.h>
 #include <string.h>
@@ -33,7 +34,8 @@ void hl_kernel_gaussian(hl_kernel_t *k, double sigma_cells)
 
 /* out[i] = sum_j k[j] * in[i + j - r], zero outside [0, n). Loops over taps outside
  * so the inner loop is a plain multiply-add over a contiguous run (vectorizable). */
-static void row_u16(const uint16_t *in, uint32_t *out, int32_t n, const hl_kernel_t *k)
+HL_VECTOR_KERNEL
+static void row_u16(const uint16_t *restrict in, uint32_t *restrict out, int32_t n, const hl_kernel_t *k)
 {
     int32_t r = k->radius;
     memset(out, 0, (size_t)n * sizeof *out);
@@ -48,7 +50,8 @@ static void row_u16(const uint16_t *in, uint32_t *out, int32_t n, const hl_kerne
 
 /* Blurs `count` planes of `len` cells spaced `stride` apart along one axis:
  * out[p] = (sum_j k[j] * in[p + (j)*stride] + 128) >> 8 for p in plane q. */
-static void axis_u32(const uint32_t *in, uint32_t *out, int32_t n, int64_t stride,
+HL_VECTOR_KERNEL
+static void axis_u32(const uint32_t *restrict in, uint32_t *restrict out, int32_t n, int64_t stride,
                      int64_t outer, int64_t outer_stride, const hl_kernel_t *k)
 {
     int32_t r = k->radius;

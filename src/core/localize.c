@@ -33,6 +33,9 @@ struct hl_localizer {
     int32_t *mx, *my;
     hl_bam_t *mn;
     uint32_t bin_start[NORMAL_BINS + 1];
+    /* the candidates of one reading (gather_candidates) */
+    int32_t *cx, *cy;
+    hl_bam_t *cn;
 
     /* the valid readings of the scan */
     int32_t *range;
@@ -117,6 +120,9 @@ void hl_loc_destroy(hl_localizer_t *loc)
     free(loc->mx);
     free(loc->my);
     free(loc->mn);
+    free(loc->cx);
+    free(loc->cy);
+    free(loc->cn);
     free(loc->range);
     free(loc->bearing);
     free(loc);
@@ -152,10 +158,13 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
     loc->mx = alloc_counted(loc, p->max_map_vectors, sizeof *loc->mx);
     loc->my = alloc_counted(loc, p->max_map_vectors, sizeof *loc->my);
     loc->mn = alloc_counted(loc, p->max_map_vectors, sizeof *loc->mn);
+    loc->cx = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cx);
+    loc->cy = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cy);
+    loc->cn = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cn);
     loc->range = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->range);
     loc->bearing = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->bearing);
     if (!loc->votes || !loc->buf_a || !loc->buf_b || !loc->wx || !loc->wy || !loc->wt ||
-        !loc->mx || !loc->my || !loc->mn || !loc->range || !loc->bearing) {
+        !loc->mx || !loc->my || !loc->mn || !loc->cx || !loc->cy || !loc->cn || !loc->range || !loc->bearing) {
         hl_loc_destroy(loc);
         return NULL;
     }
@@ -270,34 +279,88 @@ static uint32_t bucket_map(hl_localizer_t *loc, const hl_vector_t *map, uint32_t
 }
 
 typedef struct vote_ctx {
-    uint16_t *slice;        /* votes of one heading */
-    int32_t nx;
+    int32_t nx, ny, nt;
     uint32_t width_mm, height_mm;
     uint64_t recip;         /* floor(2^32 / cell) + 1: exact division below 2^21 mm */
+    int32_t tx[2 * MAX_HALF_STEPS + 1], ty[2 * MAX_HALF_STEPS + 1];
     uint32_t votes, pairs;
 } vote_ctx_t;
 
-/* Votes of one test reading (world offset tx, ty; test normal tn) against the map
- * vectors in bins [b0, b1]; the hot loop. */
-static void vote_bins(const hl_localizer_t *loc, vote_ctx_t *c, uint32_t b0, uint32_t b1,
-                      int32_t ox, int32_t oy, hl_bam_t tn, int32_t gate)
+/*
+ * Map vectors that can pair with one reading under some heading of the slice: the
+ * normal within the gate of the reading's normal at the first or last heading (or in
+ * between), and the point close enough that map - reading lands in the raster for some
+ * heading. Returns how many were copied to the candidate arrays.
+ */
+static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
+                                  const hl_loc_surface_t *s, hl_bam_t tn0, int32_t gate)
 {
-    uint32_t lo = loc->bin_start[b0], hi = loc->bin_start[b1 + 1];
-    const int32_t *mx = loc->mx, *my = loc->my;
-    const hl_bam_t *mn = loc->mn;
-    for (uint32_t k = lo; k < hi; k++) {
-        int32_t d = (int16_t)(uint16_t)(mn[k] - tn);
-        if (d > gate || d < -gate)
+    int32_t xmin = c->tx[0], xmax = xmin, ymin = c->ty[0], ymax = ymin;
+    for (int32_t it = 1; it < c->nt; it++) {
+        xmin = c->tx[it] < xmin ? c->tx[it] : xmin;
+        xmax = c->tx[it] > xmax ? c->tx[it] : xmax;
+        ymin = c->ty[it] < ymin ? c->ty[it] : ymin;
+        ymax = c->ty[it] > ymax ? c->ty[it] : ymax;
+    }
+    /* Candidates are kept relative to the raster origin; a vote lands in the raster
+     * when map - origin - test is in [0, width) for some heading. */
+    int32_t bx0 = xmin, bx1 = xmax + (int32_t)c->width_mm;
+    int32_t by0 = ymin, by1 = ymax + (int32_t)c->height_mm;
+    uint32_t span = (uint32_t)(c->nt - 1) * s->theta_step + 2u * (uint32_t)gate;
+    uint32_t b0 = 0, b1 = NORMAL_BINS - 1;
+    if (span < 65536u - 512u) {
+        b0 = (uint16_t)(tn0 - gate) >> 8;
+        b1 = (uint16_t)(tn0 - gate + span) >> 8;
+    }
+    uint32_t n = 0;
+    for (uint32_t b = b0;; b = (b + 1) % NORMAL_BINS) {
+        for (uint32_t k = loc->bin_start[b]; k < loc->bin_start[b + 1]; k++) {
+            int32_t x = loc->mx[k] - s->x0_mm, y = loc->my[k] - s->y0_mm;
+            if (x < bx0 || x >= bx1 || y < by0 || y >= by1)
+                continue;
+            loc->cx[n] = x;
+            loc->cy[n] = y;
+            loc->cn[n] = loc->mn[k];
+            n++;
+        }
+        if (b == b1)
+            break;
+    }
+    return n;
+}
+
+/* The hot loop: every candidate votes under each heading whose normal gate it passes.
+ * Those headings are a contiguous run of slices, found by division instead of a test
+ * per slice. */
+static void vote_candidates(const hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
+                            hl_bam_t tn0, int32_t gate, int32_t step, uint16_t *votes)
+{
+    size_t plane = (size_t)c->nx * c->ny;
+    for (uint32_t k = 0; k < ncand; k++) {
+        int32_t d0 = (int16_t)(uint16_t)(loc->cn[k] - tn0);  /* normal - test normal, slice 0 */
+        int32_t lo = 0, hi = c->nt - 1;
+        if (step > 0) {
+            /* |d0 - it * step| <= gate  <=>  (d0 - gate) / step <= it <= (d0 + gate) / step */
+            int32_t a = d0 - gate, b = d0 + gate;
+            int32_t ceil_a = a >= 0 ? (a + step - 1) / step : -((-a) / step);
+            int32_t floor_b = b >= 0 ? b / step : -((-b + step - 1) / step);
+            lo = ceil_a > lo ? ceil_a : lo;
+            hi = floor_b < hi ? floor_b : hi;
+        } else if (d0 > gate || d0 < -gate) {
             continue;
-        c->pairs++;
-        uint32_t vx = (uint32_t)(mx[k] - ox), vy = (uint32_t)(my[k] - oy);
-        if (vx >= c->width_mm || vy >= c->height_mm)
-            continue;
-        uint32_t ix = (uint32_t)((vx * c->recip) >> 32);
-        uint32_t iy = (uint32_t)((vy * c->recip) >> 32);
-        uint16_t *cell = &c->slice[iy * (uint32_t)c->nx + ix];
-        *cell += (*cell != HL_VOTE_MAX);
-        c->votes++;
+        }
+        for (int32_t it = lo; it <= hi; it++) {
+            c->pairs++;
+            uint32_t vx = (uint32_t)(loc->cx[k] - c->tx[it]);
+            uint32_t vy = (uint32_t)(loc->cy[k] - c->ty[it]);
+            if (vx >= c->width_mm || vy >= c->height_mm)
+                continue;
+            uint32_t ix = (uint32_t)((vx * c->recip) >> 32);
+            uint32_t iy = (uint32_t)((vy * c->recip) >> 32);
+            uint16_t *cell = &votes[it * plane + iy * (uint32_t)c->nx + ix];
+            *cell += (*cell != HL_VOTE_MAX);
+            c->votes++;
+        }
     }
 }
 
@@ -305,29 +368,18 @@ static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface
                        vote_ctx_t *c)
 {
     int32_t gate = loc->p.normal_gate;
-    for (int32_t it = 0; it < s->nt; it++) {
-        hl_bam_t heading = (hl_bam_t)(s->theta0 + it * s->theta_step);
-        c->slice = loc->votes + (size_t)it * s->nx * s->ny;
-        for (uint32_t i = 0; i < nread; i++) {
-            hl_bam_t a = (hl_bam_t)(heading + loc->bearing[i]);
+    for (uint32_t i = 0; i < nread; i++) {
+        hl_bam_t a0 = (hl_bam_t)(s->theta0 + loc->bearing[i]);
+        for (int32_t it = 0; it < c->nt; it++) {
             int32_t tx, ty;
-            hl_polar_to_xy(loc->range[i], a, &tx, &ty);
-            /* The test vector's normal points back at the robot, like the map's. */
-            hl_bam_t tn = (hl_bam_t)(a + HL_BAM_HALF_TURN);
-            /* vote - origin = map - test - origin: fold the subtraction into one offset */
-            int32_t ox = tx + s->x0_mm, oy = ty + s->y0_mm;
-            if (gate >= 32768) {
-                vote_bins(loc, c, 0, NORMAL_BINS - 1, ox, oy, tn, gate);
-                continue;
-            }
-            uint32_t b0 = (uint16_t)(tn - gate) >> 8, b1 = (uint16_t)(tn + gate) >> 8;
-            if (b0 <= b1) {
-                vote_bins(loc, c, b0, b1, ox, oy, tn, gate);
-            } else {    /* the gate wraps through 0 */
-                vote_bins(loc, c, b0, NORMAL_BINS - 1, ox, oy, tn, gate);
-                vote_bins(loc, c, 0, b1, ox, oy, tn, gate);
-            }
+            hl_polar_to_xy(loc->range[i], (hl_bam_t)(a0 + it * s->theta_step), &tx, &ty);
+            c->tx[it] = tx;
+            c->ty[it] = ty;
         }
+        /* The test vector's normal points back at the robot, like the map's. */
+        hl_bam_t tn0 = (hl_bam_t)(a0 + HL_BAM_HALF_TURN);
+        uint32_t ncand = gather_candidates(loc, c, s, tn0, gate);
+        vote_candidates(loc, c, ncand, tn0, gate, s->theta_step, loc->votes);
     }
 }
 
@@ -389,7 +441,7 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
     memset(loc->votes, 0, cells * sizeof *loc->votes);
     bucket_map(loc, map, n, &s, max_range);
 
-    vote_ctx_t c = { .nx = s.nx,
+    vote_ctx_t c = { .nx = s.nx, .ny = s.ny, .nt = s.nt,
                      .width_mm = (uint32_t)(s.nx * s.cell_mm),
                      .height_mm = (uint32_t)(s.ny * s.cell_mm),
                      .recip = (1ull << 32) / (uint32_t)s.cell_mm + 1 };

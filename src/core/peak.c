@@ -1,5 +1,6 @@
 /* peak.c - peak finding and sub-cell interpolation (see peak.h). */
 #include "peak.h"
+#include "simd.h"
 
 #include <stddef.h>
 
@@ -12,41 +13,76 @@ uint32_t hl_grid_score(const hl_grid_t *g, int32_t ix, int32_t iy, int32_t it)
     return (uint32_t)(((uint64_t)c * w) >> 24);
 }
 
-/* Highest score over the raster, skipping cells closer than the separation to
- * (cx, cy) when sep2 > 0. */
-static void scan_best(const hl_grid_t *g, int64_t cell2, int64_t sep2, int32_t cx,
-                      int32_t cy, hl_peak_t *best)
+/* Highest score over the raster. A plain max over a flat array when there is no prior
+ * (the common case), so the compiler can vectorize it. */
+HL_VECTOR_KERNEL
+static void find_best(const hl_grid_t *g, hl_peak_t *best)
 {
     best->score = 0;
     best->ix = best->iy = best->it = 0;
-    for (int32_t it = 0; it < g->nt; it++) {
+    size_t plane = (size_t)g->nx * g->ny, n = plane * (size_t)g->nt, at = 0;
+    if (!g->wx) {
+        uint32_t m = 0;
+        for (size_t i = 0; i < n; i++)
+            m = g->cells[i] > m ? g->cells[i] : m;
+        if (m == 0)
+            return;
+        while (g->cells[at] != m)
+            at++;
+        best->score = m;
+    } else {
+        for (int32_t it = 0; it < g->nt; it++)
+            for (int32_t iy = 0; iy < g->ny; iy++)
+                for (int32_t ix = 0; ix < g->nx; ix++) {
+                    uint32_t v = hl_grid_score(g, ix, iy, it);
+                    if (v > best->score) {
+                        best->score = v;
+                        at = (size_t)it * plane + (size_t)iy * g->nx + (size_t)ix;
+                    }
+                }
+    }
+    best->it = (int32_t)(at / plane);
+    best->iy = (int32_t)(at % plane / (size_t)g->nx);
+    best->ix = (int32_t)(at % (size_t)g->nx);
+}
+
+/* Highest score among cells at least sqrt(sep2) mm from (cx, cy) in xy; each row skips
+ * the run of cells inside the circle. */
+static uint32_t find_second(const hl_grid_t *g, int64_t cell2, int64_t sep2, int32_t cx,
+                            int32_t cy)
+{
+    uint32_t best = 0;
+    for (int32_t it = 0; it < g->nt; it++)
         for (int32_t iy = 0; iy < g->ny; iy++) {
             int64_t dy2 = (int64_t)(iy - cy) * (iy - cy) * cell2;
-            for (int32_t ix = 0; ix < g->nx; ix++) {
-                if (sep2 > 0 && dy2 + (int64_t)(ix - cx) * (ix - cx) * cell2 < sep2)
-                    continue;
-                uint32_t s = hl_grid_score(g, ix, iy, it);
-                if (s > best->score) {
-                    best->score = s;
-                    best->ix = ix;
-                    best->iy = iy;
-                    best->it = it;
-                }
+            /* cells with (ix - cx)^2 * cell2 < sep2 - dy2 are too close: skip [lo, hi) */
+            int32_t lo = g->nx, hi = g->nx;
+            if (dy2 < sep2) {
+                int32_t r = 0;
+                while ((int64_t)(r + 1) * (r + 1) * cell2 < sep2 - dy2)
+                    r++;
+                lo = cx - r < 0 ? 0 : cx - r;
+                hi = cx + r + 1 > g->nx ? g->nx : cx + r + 1;
+            }
+            for (int32_t ix = 0; ix < lo; ix++) {
+                uint32_t v = hl_grid_score(g, ix, iy, it);
+                best = v > best ? v : best;
+            }
+            for (int32_t ix = hi; ix < g->nx; ix++) {
+                uint32_t v = hl_grid_score(g, ix, iy, it);
+                best = v > best ? v : best;
             }
         }
-    }
+    return best;
 }
 
 int hl_peak_find(const hl_grid_t *g, int32_t cell_mm, int32_t sep_mm, hl_peak_t *out)
 {
-    int64_t cell2 = (int64_t)cell_mm * cell_mm;
-    scan_best(g, cell2, 0, 0, 0, out);
+    find_best(g, out);
     if (out->score == 0)
         return 0;
-    hl_peak_t other;
     int64_t sep2 = sep_mm > 0 ? (int64_t)sep_mm * sep_mm : 1;
-    scan_best(g, cell2, sep2, out->ix, out->iy, &other);
-    out->second = other.score;
+    out->second = find_second(g, (int64_t)cell_mm * cell_mm, sep2, out->ix, out->iy);
     return 1;
 }
 

@@ -1,0 +1,142 @@
+/*
+ * bench_localize - times the fixed-point localizer and the floating-point reference on
+ * a synthetic cluttered room (128 readings per scan), one line per workload:
+ *
+ *   bench <workload> median_us=<n> p90_us=<n> ref_median_us=<n> votes=<n> mem_bytes=<n>
+ *
+ * Workloads: w1_global_xy (heading known, global x, y over a 10 m x 10 m map, 24 mm
+ * cells, 1500 vectors), w2_local_xyt (+-1 m window, +-8.8 deg at 1.1 deg, 1500 vectors),
+ * w3_map15k (as w2 with 15,000 vectors). Scans cycle over POSES free poses so the
+ * timing is not one input's luck. Single-threaded: the figures are for one core.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "houghloc/localize.h"
+#include "../testkit/ref_localize.h"
+#include "../testkit/synthroom.h"
+
+#define POSES 8
+
+typedef struct workload {
+    const char *name;
+    uint32_t map_size;
+    hl_mm_t window_mm;
+    bool search_theta;
+} workload_t;
+
+static double now_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e6 + ts.tv_nsec / 1e3;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double quantile(double *v, int n, double q)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return v[(int)(q * (n - 1) + 0.5)];
+}
+
+static int run_workload(const workload_t *w, int runs, int ref_runs)
+{
+    static sr_room_t room;
+    sr_room_make(&room, 0, 0, 10000, 10000, 30, 42);
+    hl_vector_t *map = malloc(w->map_size * sizeof *map);
+    hl_scan_t *scans = malloc(POSES * sizeof *scans);
+    hl_pose_t truth[POSES];
+    double *t = malloc((size_t)runs * sizeof *t), *tr = malloc((size_t)ref_runs * sizeof *tr);
+    if (!map || !scans || !t || !tr)
+        return 1;
+    uint32_t n = sr_make_map(&room, w->map_size, 128, 8000, 10, map);
+    for (int i = 0; i < POSES; i++) {
+        truth[i] = sr_free_pose(&room, 500);
+        sr_sound(&room, truth[i], 128, 8000, 10, &scans[i]);
+    }
+
+    hl_loc_params_t p;
+    hl_loc_params_default(&p);
+    p.max_map_vectors = n;
+    p.max_cells = w->window_mm > 0 ? hl_loc_cells_for_window(&p, w->window_mm, w->search_theta)
+                                   : (10200 / p.cell_mm + 2) * (10200 / p.cell_mm + 2);
+    hl_localizer_t *loc = hl_loc_create(&p);
+    ref_localizer_t *ref = ref_create(&p);
+    if (!loc || !ref) {
+        fprintf(stderr, "bench: cannot create the localizers\n");
+        return 1;
+    }
+    hl_loc_query_t q[POSES];
+    for (int i = 0; i < POSES; i++) {
+        /* local searches start from a prediction off by a typical odometry error */
+        hl_pose_t pred = truth[i];
+        if (w->window_mm > 0) {
+            pred.x_mm += 150;
+            pred.y_mm -= 100;
+            pred.theta = (hl_bam_t)(pred.theta + hl_bam_from_deg(3.0));
+        }
+        q[i] = (hl_loc_query_t){ .predicted = pred, .window_mm = w->window_mm,
+                                 .search_theta = w->search_theta };
+    }
+    hl_loc_result_t res;
+    uint32_t votes0 = 0;
+    for (int i = 0; i < runs; i++) {
+        double t0 = now_us();
+        hl_status_t st = hl_loc_run(loc, map, n, &scans[i % POSES], &q[i % POSES], &res);
+        t[i] = now_us() - t0;
+        if (st != HL_OK) {
+            fprintf(stderr, "bench: %s: %s\n", w->name, hl_status_str(st));
+            return 1;
+        }
+        if (i == 0)
+            votes0 = res.votes;
+    }
+    ref_result_t rr;
+    for (int i = 0; i < ref_runs; i++) {
+        double t0 = now_us();
+        ref_run(ref, map, n, &scans[i % POSES], &q[i % POSES], &rr);
+        tr[i] = now_us() - t0;
+    }
+    printf("bench %s median_us=%.0f p90_us=%.0f ref_median_us=%.0f votes=%u mem_bytes=%zu\n",
+           w->name, quantile(t, runs, 0.5), quantile(t, runs, 0.9),
+           quantile(tr, ref_runs, 0.5), votes0, hl_loc_mem_bytes(loc));
+    fflush(stdout);
+    hl_loc_destroy(loc);
+    ref_destroy(ref);
+    free(map);
+    free(scans);
+    free(t);
+    free(tr);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    int runs = 200;
+    if (argc > 1) {
+        char *end;
+        long v = strtol(argv[1], &end, 10);
+        if (*end || v < 1 || v > 100000) {
+            fprintf(stderr, "usage: hl-bench [RUNS]   (RUNS 1..100000, default 200)\n");
+            return 2;
+        }
+        runs = (int)v;
+    }
+    const workload_t w[] = {
+        { "w1_global_xy", 1500, 0, false },
+        { "w2_local_xyt", 1500, 1000, true },
+        { "w3_map15k", 15000, 1000, true },
+    };
+    for (size_t i = 0; i < sizeof w / sizeof w[0]; i++)
+        if (run_workload(&w[i], runs, runs))
+            return 1;
+    return 0;
+}
