@@ -13,13 +13,16 @@
  *       one turn.  A signed difference is (int16_t)(a - b), in [-32768, 32767].
  *       1 degree = 182.04 BAM; 1 BAM = 0.0055 degrees.
  *
- *   sine / cosine         int16_t Q14 (HL_TRIG_ONE = 16384 means 1.0), from a table of
- *       the first quadrant (16385 entries, generated at build time).  Table error
- *       <= 0.5 / 16384.
+ *   sine / cosine         a first-quadrant table of sin in Q30 (int32, 16385 entries,
+ *       generated at build time; error <= 2^-31). The public hl_sin / hl_cos round it
+ *       to int16_t Q14 (HL_TRIG_ONE = 16384 means 1.0), error <= 0.5 / 16384.
  *
- *   polar -> cartesian    x = (r * cos + 2^13) >> 14.
- *       |r * cos| <= 32767 * 16384 < 2^29: fits int32 with 2 bits to spare.
- *       Rounding error <= 0.5 mm + r * 0.5/16384 <= 1.5 mm at the longest range.
+ *   polar -> cartesian    hl_polar_to_xy: x = (r * cos_q14 + 2^13) >> 14, in mm.
+ *       |r * cos| <= 32767 * 16384 < 2^29.  Error <= 0.5 mm + r * 0.5/16384 <= 1.5 mm.
+ *       hl_polar_to_xy_q8 (the vote loop): x = (r * cos_q30 + 2^21) >> 22, in 1/256 mm.
+ *       |r * cos_q30| <= 2^15 * 2^30 = 2^45, computed in int64; the result is below
+ *       2^23 and its error below 1/256 mm, so a vote lands in the same cell as with
+ *       exact trigonometry unless it is within 1/256 mm of a cell border.
  *
  *   vote cell             uint16_t vote count, saturating at 65535 (HL_VOTE_MAX).
  *
@@ -52,6 +55,9 @@ typedef uint16_t hl_bam_t;
 int16_t hl_sin(hl_bam_t a);
 /** Cosine of a binary angle, Q14. */
 int16_t hl_cos(hl_bam_t a);
+
+/** As hl_polar_to_xy, in Q8 millimetres (1/256 mm), from the Q30 table. */
+void hl_polar_to_xy_q8(int32_t range_mm, hl_bam_t angle, int32_t *x_q8, int32_t *y_q8);
 
 /** Signed shortest difference a - b, in BAM: [-32768, 32767]. */
 static inline int32_t hl_bam_diff(hl_bam_t a, hl_bam_t b)

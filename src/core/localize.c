@@ -280,8 +280,9 @@ static uint32_t bucket_map(hl_localizer_t *loc, const hl_vector_t *map, uint32_t
 
 typedef struct vote_ctx {
     int32_t nx, ny, nt;
-    uint32_t width_mm, height_mm;
+    uint32_t width_q8, height_q8;   /* raster size in 1/256 mm, < 2^29 */
     uint64_t recip;         /* floor(2^32 / cell) + 1: exact division below 2^21 mm */
+    /* the reading's offset under each heading, 1/256 mm (hl_polar_to_xy_q8) */
     int32_t tx[2 * MAX_HALF_STEPS + 1], ty[2 * MAX_HALF_STEPS + 1];
     uint32_t votes, pairs;
 } vote_ctx_t;
@@ -302,10 +303,10 @@ static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
         ymin = c->ty[it] < ymin ? c->ty[it] : ymin;
         ymax = c->ty[it] > ymax ? c->ty[it] : ymax;
     }
-    /* Candidates are kept relative to the raster origin; a vote lands in the raster
-     * when map - origin - test is in [0, width) for some heading. */
-    int32_t bx0 = xmin, bx1 = xmax + (int32_t)c->width_mm;
-    int32_t by0 = ymin, by1 = ymax + (int32_t)c->height_mm;
+    /* Candidates are kept relative to the raster origin in 1/256 mm; a vote lands in
+     * the raster when map - origin - test is in [0, width) for some heading. */
+    int64_t bx0 = xmin, bx1 = (int64_t)xmax + c->width_q8;
+    int64_t by0 = ymin, by1 = (int64_t)ymax + c->height_q8;
     uint32_t span = (uint32_t)(c->nt - 1) * s->theta_step + 2u * (uint32_t)gate;
     uint32_t b0 = 0, b1 = NORMAL_BINS - 1;
     if (span < 65536u - 512u) {
@@ -315,11 +316,12 @@ static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
     uint32_t n = 0;
     for (uint32_t b = b0;; b = (b + 1) % NORMAL_BINS) {
         for (uint32_t k = loc->bin_start[b]; k < loc->bin_start[b + 1]; k++) {
-            int32_t x = loc->mx[k] - s->x0_mm, y = loc->my[k] - s->y0_mm;
+            int64_t x = (int64_t)(loc->mx[k] - s->x0_mm) * 256;
+            int64_t y = (int64_t)(loc->my[k] - s->y0_mm) * 256;
             if (x < bx0 || x >= bx1 || y < by0 || y >= by1)
                 continue;
-            loc->cx[n] = x;
-            loc->cy[n] = y;
+            loc->cx[n] = (int32_t)x;    /* |x| < 2^21 mm + range: fits in Q8 */
+            loc->cy[n] = (int32_t)y;
             loc->cn[n] = loc->mn[k];
             n++;
         }
@@ -353,10 +355,11 @@ static void vote_candidates(const hl_localizer_t *loc, vote_ctx_t *c, uint32_t n
             c->pairs++;
             uint32_t vx = (uint32_t)(loc->cx[k] - c->tx[it]);
             uint32_t vy = (uint32_t)(loc->cy[k] - c->ty[it]);
-            if (vx >= c->width_mm || vy >= c->height_mm)
+            if (vx >= c->width_q8 || vy >= c->height_q8)
                 continue;
-            uint32_t ix = (uint32_t)((vx * c->recip) >> 32);
-            uint32_t iy = (uint32_t)((vy * c->recip) >> 32);
+            /* floor(v / (256 cell)) == floor(floor(v / 256) / cell) */
+            uint32_t ix = (uint32_t)(((uint64_t)(vx >> 8) * c->recip) >> 32);
+            uint32_t iy = (uint32_t)(((uint64_t)(vy >> 8) * c->recip) >> 32);
             uint16_t *cell = &votes[it * plane + iy * (uint32_t)c->nx + ix];
             *cell += (*cell != HL_VOTE_MAX);
             c->votes++;
@@ -372,7 +375,7 @@ static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface
         hl_bam_t a0 = (hl_bam_t)(s->theta0 + loc->bearing[i]);
         for (int32_t it = 0; it < c->nt; it++) {
             int32_t tx, ty;
-            hl_polar_to_xy(loc->range[i], (hl_bam_t)(a0 + it * s->theta_step), &tx, &ty);
+            hl_polar_to_xy_q8(loc->range[i], (hl_bam_t)(a0 + it * s->theta_step), &tx, &ty);
             c->tx[it] = tx;
             c->ty[it] = ty;
         }
@@ -442,8 +445,8 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
     bucket_map(loc, map, n, &s, max_range);
 
     vote_ctx_t c = { .nx = s.nx, .ny = s.ny, .nt = s.nt,
-                     .width_mm = (uint32_t)(s.nx * s.cell_mm),
-                     .height_mm = (uint32_t)(s.ny * s.cell_mm),
+                     .width_q8 = (uint32_t)(s.nx * s.cell_mm) * 256u,
+                     .height_q8 = (uint32_t)(s.ny * s.cell_mm) * 256u,
                      .recip = (1ull << 32) / (uint32_t)s.cell_mm + 1 };
     cast_votes(loc, nread, &s, &c);
     result->votes = c.votes;

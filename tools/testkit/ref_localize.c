@@ -48,6 +48,9 @@ static double wrap(double a)
     return a - 2 * PI * floor((a + PI) / (2 * PI));
 }
 
+/* The localizer's blur is defined as an integer Gaussian whose taps sum to 256
+ * (src/core/blur.c); the reference uses the same weights in double, so the two differ
+ * only by fixed-point arithmetic, not by kernel design. */
 static int kernel(double sigma, double *k)
 {
     if (!(sigma > 0.05)) {
@@ -57,11 +60,14 @@ static int kernel(double sigma, double *k)
     int r = (int)ceil(2.5 * sigma);
     if (r > 24)
         r = 24;
-    double total = 0;
+    double w[49], total = 0, sum = 0;
     for (int i = -r; i <= r; i++)
-        total += k[i + r] = exp(-0.5 * i * i / (sigma * sigma));
+        total += w[i + r] = exp(-0.5 * i * i / (sigma * sigma));
     for (int i = 0; i <= 2 * r; i++)
-        k[i] /= total;
+        sum += k[i] = round(256.0 * w[i] / total);
+    k[r] += 256.0 - sum;
+    for (int i = 0; i <= 2 * r; i++)
+        k[i] /= 256.0;
     return r;
 }
 

@@ -1,0 +1,269 @@
+/* Tests for src/core/localize.c (with blur.c and peak.c): recovery in synthetic rooms,
+ * empty inputs, heading wrap, extreme coordinates, vote saturation, capacity limits,
+ * the odometry prior. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "houghloc/localize.h"
+#include "../../tools/testkit/synthroom.h"
+
+typedef struct fixture {
+    sr_room_t room;
+    hl_vector_t map[1500];
+    uint32_t n;
+    hl_scan_t scan;
+    hl_pose_t truth;
+    hl_loc_params_t p;
+    hl_localizer_t *loc;
+} fixture_t;
+
+/* A 10 m cluttered room with its corner at (x0, y0), a 1500-vector map, and a scan. */
+static fixture_t *make_fixture(double x0, double y0, uint64_t seed)
+{
+    fixture_t *f = calloc(1, sizeof *f);
+    sr_room_make(&f->room, x0, y0, 10000, 10000, 25, seed);
+    f->n = sr_make_map(&f->room, 1500, 128, 8000, 10, f->map);
+    f->truth = sr_free_pose(&f->room, 600);
+    sr_sound(&f->room, f->truth, 128, 8000, 10, &f->scan);
+    hl_loc_params_default(&f->p);
+    f->p.max_cells = 1u << 19;
+    f->loc = hl_loc_create(&f->p);
+    assert_non_null(f->loc);
+    return f;
+}
+
+static void free_fixture(fixture_t *f)
+{
+    hl_loc_destroy(f->loc);
+    free(f);
+}
+
+static void assert_within(int64_t got, int64_t want, int64_t tol)
+{
+    if (got < want - tol || got > want + tol)
+        fail_msg("got %lld, want %lld +- %lld", (long long)got, (long long)want, (long long)tol);
+}
+
+static hl_loc_query_t local_query(hl_pose_t truth)
+{
+    hl_pose_t pred = { truth.x_mm + 150, truth.y_mm - 100,
+                       (hl_bam_t)(truth.theta + hl_bam_from_deg(3.0)) };
+    return (hl_loc_query_t){ .predicted = pred, .window_mm = 1000, .search_theta = true };
+}
+
+static void test_empty_map_and_scan(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(0, 0, 1);
+    hl_loc_query_t q = local_query(f->truth);
+    hl_loc_result_t r;
+    assert_int_equal(hl_loc_run(f->loc, f->map, 0, &f->scan, &q, &r), HL_ERR_EMPTY);
+    assert_int_equal(r.votes, 0);
+
+    hl_scan_t *empty = calloc(1, sizeof *empty);
+    assert_int_equal(hl_loc_run(f->loc, f->map, f->n, empty, &q, &r), HL_ERR_EMPTY);
+    free(empty);
+
+    hl_scan_t *invalid = calloc(1, sizeof *invalid);
+    *invalid = f->scan;
+    for (uint32_t i = 0; i < invalid->count; i++)
+        invalid->readings[i].valid = false;
+    assert_int_equal(hl_loc_run(f->loc, f->map, f->n, invalid, &q, &r), HL_ERR_EMPTY);
+    free(invalid);
+
+    assert_int_equal(hl_loc_run(NULL, f->map, f->n, &f->scan, &q, &r), HL_ERR_ARG);
+    assert_int_equal(hl_loc_run(f->loc, NULL, 5, &f->scan, &q, &r), HL_ERR_ARG);
+    free_fixture(f);
+}
+
+static void test_global_xy_recovers_true_pose(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 4; seed++) {
+        fixture_t *f = make_fixture(0, 0, seed);
+        hl_loc_query_t q = { .predicted = f->truth, .window_mm = 0, .search_theta = false };
+        hl_loc_result_t r;
+        assert_int_equal(hl_loc_run(f->loc, f->map, f->n, &f->scan, &q, &r), HL_OK);
+        assert_within(r.pose.x_mm, f->truth.x_mm, f->p.cell_mm);
+        assert_within(r.pose.y_mm, f->truth.y_mm, f->p.cell_mm);
+        assert_int_equal(r.pose.theta, f->truth.theta);
+        assert_true(r.peak > r.second);
+        assert_true(r.votes > 1000 && r.pairs >= r.votes);
+        free_fixture(f);
+    }
+}
+
+static void test_local_xyt_recovers_true_pose(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 11; seed <= 14; seed++) {
+        fixture_t *f = make_fixture(0, 0, seed);
+        hl_loc_query_t q = local_query(f->truth);
+        hl_loc_result_t r;
+        assert_int_equal(hl_loc_run(f->loc, f->map, f->n, &f->scan, &q, &r), HL_OK);
+        assert_within(r.pose.x_mm, f->truth.x_mm, f->p.cell_mm);
+        assert_within(r.pose.y_mm, f->truth.y_mm, f->p.cell_mm);
+        assert_within(hl_bam_diff(r.pose.theta, f->truth.theta), 0, f->p.theta_step);
+        assert_true(hl_loc_confidence(&r) > 0.2);
+        free_fixture(f);
+    }
+}
+
+static void test_heading_wraps_through_180(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(0, 0, 22);
+    /* the slice of +-8.8 degrees around each prediction straddles +-180 */
+    const double headings[] = { 174.0, 179.0, 180.0, 181.5, 186.0 };
+    for (size_t i = 0; i < sizeof headings / sizeof headings[0]; i++) {
+        f->truth.theta = hl_bam_from_deg(headings[i]);
+        sr_sound(&f->room, f->truth, 128, 8000, 10, &f->scan);
+        hl_loc_query_t q = local_query(f->truth);
+        hl_loc_result_t r;
+        assert_int_equal(hl_loc_run(f->loc, f->map, f->n, &f->scan, &q, &r), HL_OK);
+        assert_within(hl_bam_diff(r.pose.theta, f->truth.theta), 0, f->p.theta_step);
+        assert_within(r.pose.x_mm, f->truth.x_mm, f->p.cell_mm);
+        assert_within(r.pose.y_mm, f->truth.y_mm, f->p.cell_mm);
+    }
+    free_fixture(f);
+}
+
+static void test_extreme_coordinates(void **state)
+{
+    (void)state;
+    /* A room in the far corner of the coordinate range. */
+    fixture_t *f = make_fixture(HL_COORD_MAX_MM - 10001, -HL_COORD_MAX_MM + 1, 31);
+    hl_loc_query_t q = local_query(f->truth);
+    hl_loc_result_t r;
+    assert_int_equal(hl_loc_run(f->loc, f->map, f->n, &f->scan, &q, &r), HL_OK);
+    assert_within(r.pose.x_mm, f->truth.x_mm, f->p.cell_mm);
+    assert_within(r.pose.y_mm, f->truth.y_mm, f->p.cell_mm);
+    q.predicted.x_mm = HL_COORD_MAX_MM + 1;
+    assert_int_equal(hl_loc_run(f->loc, f->map, f->n, &f->scan, &q, &r), HL_ERR_RANGE);
+    free_fixture(f);
+}
+
+/* 16384 identical map vectors and 1024 identical readings: 16.7 million votes into one
+ * cell, which must saturate at 65535 rather than wrap, and blur without overflow. */
+static void test_vote_saturation(void **state)
+{
+    (void)state;
+    hl_loc_params_t p;
+    hl_loc_params_default(&p);
+    p.max_cells = 1u << 16;
+    hl_localizer_t *loc = hl_loc_create(&p);
+    hl_vector_t *map = calloc(16384, sizeof *map);
+    for (int i = 0; i < 16384; i++)
+        map[i] = (hl_vector_t){ 5000, 0, 32768, 5000 };
+    hl_scan_t *scan = calloc(1, sizeof *scan);
+    for (int i = 0; i < HL_SCAN_MAX_READINGS; i++)
+        hl_scan_add(scan, 0, 5000, 0, true);
+    hl_loc_query_t q = { .predicted = { 0, 0, 0 }, .window_mm = 500, .search_theta = false };
+    hl_loc_result_t r;
+    assert_int_equal(hl_loc_run(loc, map, 16384, scan, &q, &r), HL_OK);
+    assert_int_equal(r.votes, 16384u * 1024u);
+    hl_loc_surface_t s;
+    hl_loc_surface(loc, &s);
+    assert_int_equal(s.votes[r.iy * s.nx + r.ix], HL_VOTE_MAX);
+    /* the blur spreads the saturated cell: peak below 65535 x 256, nothing wrapped */
+    assert_true(r.peak > 0 && r.peak < 65535u * 256u);
+    assert_within(r.pose.x_mm, 0, p.cell_mm);
+    assert_within(r.pose.y_mm, 0, p.cell_mm);
+    free(map);
+    free(scan);
+    hl_loc_destroy(loc);
+}
+
+static void test_capacity_limits(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(0, 0, 41);
+    hl_loc_params_t p = f->p;
+    p.max_map_vectors = 100;
+    p.max_cells = 1000;
+    hl_localizer_t *small = hl_loc_create(&p);
+    hl_loc_query_t q = local_query(f->truth);
+    hl_loc_result_t r;
+    assert_int_equal(hl_loc_run(small, f->map, f->n, &f->scan, &q, &r), HL_ERR_CAPACITY);
+    assert_int_equal(hl_loc_run(small, f->map, 100, &f->scan, &q, &r), HL_ERR_CAPACITY);
+    q.window_mm = 300;  /* 25 x 25 x 17 cells > 1000 */
+    assert_int_equal(hl_loc_run(small, f->map, 100, &f->scan, &q, &r), HL_ERR_CAPACITY);
+    q.search_theta = false;     /* 625 cells fit */
+    assert_int_equal(hl_loc_run(small, f->map, 100, &f->scan, &q, &r), HL_OK);
+    hl_loc_destroy(small);
+    free_fixture(f);
+}
+
+static void test_params_validated(void **state)
+{
+    (void)state;
+    hl_loc_params_t p;
+    hl_loc_params_default(&p);
+    assert_null(hl_loc_params_error(&p));
+    p.cell_mm = 0;
+    assert_string_equal(hl_loc_params_error(&p), "cell_mm must be in 1..1000");
+    assert_null(hl_loc_create(&p));
+    hl_loc_params_default(&p);
+    p.theta_half_steps = 300;
+    assert_non_null(hl_loc_params_error(&p));
+    hl_loc_params_default(&p);
+    p.theta_step = hl_bam_from_deg(20);
+    assert_string_equal(hl_loc_params_error(&p),
+                        "the heading slice must span less than half a turn");
+    assert_non_null(hl_loc_params_error(NULL));
+    hl_loc_destroy(NULL);
+}
+
+/* Two copies of the same room side by side: without a prior the copies tie and the
+ * first in raster order wins; with the prior centred near the second copy, it wins. */
+static void test_prior_breaks_ambiguity(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(0, 0, 51);
+    const int32_t shift = 12000;
+    hl_vector_t *twin = calloc(3000, sizeof *twin);
+    memcpy(twin, f->map, f->n * sizeof *twin);
+    for (uint32_t i = 0; i < f->n; i++) {
+        twin[f->n + i] = f->map[i];
+        twin[f->n + i].x_mm += shift;
+    }
+    hl_loc_params_t p = f->p;
+    p.max_cells = 1u << 20;
+    hl_localizer_t *loc = hl_loc_create(&p);
+    hl_pose_t pred = { f->truth.x_mm + shift + 200, f->truth.y_mm - 100, f->truth.theta };
+    hl_loc_query_t q = { .predicted = pred, .window_mm = 0 };
+    hl_loc_result_t r;
+    assert_int_equal(hl_loc_run(loc, twin, 2 * f->n, &f->scan, &q, &r), HL_OK);
+    assert_within(r.pose.x_mm, f->truth.x_mm, p.cell_mm);
+    assert_true(r.second * 10 >= r.peak * 9);   /* the twin peak is as high */
+    q.use_prior = true;
+    assert_int_equal(hl_loc_run(loc, twin, 2 * f->n, &f->scan, &q, &r), HL_OK);
+    assert_within(r.pose.x_mm, f->truth.x_mm + shift, p.cell_mm);
+    assert_within(r.pose.y_mm, f->truth.y_mm, p.cell_mm);
+    assert_true(r.second * 2 < r.peak);         /* the prior suppressed the first copy */
+    hl_loc_destroy(loc);
+    free(twin);
+    free_fixture(f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_empty_map_and_scan),
+        cmocka_unit_test(test_global_xy_recovers_true_pose),
+        cmocka_unit_test(test_local_xyt_recovers_true_pose),
+        cmocka_unit_test(test_heading_wraps_through_180),
+        cmocka_unit_test(test_extreme_coordinates),
+        cmocka_unit_test(test_vote_saturation),
+        cmocka_unit_test(test_capacity_limits),
+        cmocka_unit_test(test_params_validated),
+        cmocka_unit_test(test_prior_breaks_ambiguity),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
