@@ -4,10 +4,15 @@
  *
  * Two modes:
  *  - paper:    every localization is accepted and extends the map (the paper's method);
- *  - guarded:  the search is centred on the odometry prediction, and a pose that lands
- *              farther than wild_mm from it, or whose peak is not distinct, is rejected:
- *              the pose falls back to the prediction and the scan does not extend the
- *              map (section 9's proposal for eliminating wild errors).
+ *  - guarded:  the search is centred on the odometry prediction, and a pose is rejected
+ *              when it lands farther than wild_mm from it, when its peak is not distinct
+ *              from the best separate peak, or when its peak is far lower than the
+ *              recent ones (the scan matches the map much worse than scans usually do:
+ *              a sign that the odometry misled the search window). A rejected scan
+ *              falls back to the prediction and does not extend the map (section 9's
+ *              proposal for eliminating wild errors). The recent-peak average follows
+ *              every localization, accepted or not, so entering poorly mapped space
+ *              only rejects the first scan or two there.
  */
 #ifndef HOUGHLOC_SLAM_H
 #define HOUGHLOC_SLAM_H
@@ -41,6 +46,8 @@ typedef struct hl_slam_params {
     double min_confidence;      /* guarded: reject a peak less distinct; default 0.05 */
     uint32_t min_votes;         /* guarded: reject a peak with fewer raw votes in the
                                    whole raster; default 20 */
+    double min_peak_ratio;      /* guarded: reject a peak lower than this fraction of the
+                                   recent average; default 0.25; 0 = off */
 } hl_slam_params_t;
 
 void hl_slam_params_default(hl_slam_params_t *p);

@@ -10,6 +10,7 @@ struct hl_slam {
     bool started;       /* a scan has been seen since the last reset */
     hl_pose_t pose;     /* the last estimate (or the start pose) */
     hl_pose_t odom;     /* the odometry that went with it */
+    uint32_t peak_avg;  /* moving average of recent peaks (votes x 256), 0 = none yet */
 };
 
 void hl_slam_params_default(hl_slam_params_t *p)
@@ -25,6 +26,7 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->wild_mm = 500;
     p->min_confidence = 0.05;
     p->min_votes = 20;
+    p->min_peak_ratio = 0.25;
 }
 
 const char *hl_slam_params_error(const hl_slam_params_t *p)
@@ -43,6 +45,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "wild_mm must be positive";
     if (!(p->min_confidence >= 0.0 && p->min_confidence <= 1.0))
         return "min_confidence must be in 0..1";
+    if (!(p->min_peak_ratio >= 0.0 && p->min_peak_ratio <= 1.0))
+        return "min_peak_ratio must be in 0..1";
     return NULL;
 }
 
@@ -77,6 +81,7 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start)
     hl_map_clear(s->map);
     s->started = false;
     s->pose = start;
+    s->peak_avg = 0;
 }
 
 static int64_t dist2(hl_pose_t a, hl_pose_t b)
@@ -89,8 +94,19 @@ static int64_t dist2(hl_pose_t a, hl_pose_t b)
 static bool plausible(const hl_slam_t *s, hl_pose_t pose, hl_pose_t predicted,
                       const hl_loc_result_t *r)
 {
+    bool high_enough = s->peak_avg == 0 || r->peak >= s->p.min_peak_ratio * s->peak_avg;
     return dist2(pose, predicted) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
-           hl_loc_confidence(r) >= s->p.min_confidence && r->votes >= s->p.min_votes;
+           hl_loc_confidence(r) >= s->p.min_confidence && r->votes >= s->p.min_votes &&
+           high_enough;
+}
+
+/* Exponential moving average over about four localizations. */
+static void track_peak(hl_slam_t *s, uint32_t peak)
+{
+    if (s->peak_avg == 0)
+        s->peak_avg = peak;
+    else
+        s->peak_avg = (uint32_t)((int64_t)s->peak_avg + ((int64_t)peak - s->peak_avg) / 4);
 }
 
 hl_status_t hl_slam_step(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
@@ -118,7 +134,9 @@ hl_status_t hl_slam_step(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry
     bool extend = true;
     if (st == HL_OK) {
         hl_pose_t found = s->p.interpolate ? out->loc.pose : out->loc.cell_pose;
-        if (!s->p.guarded || plausible(s, found, predicted, &out->loc)) {
+        bool accept = !s->p.guarded || plausible(s, found, predicted, &out->loc);
+        track_peak(s, out->loc.peak);
+        if (accept) {
             out->status = HL_SLAM_ACCEPTED;
             out->pose = s->pose = found;
         } else {

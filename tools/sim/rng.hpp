@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <random>
 
+#include "geom.hpp"
+
 namespace hlsim {
 
 class Rng {

@@ -80,7 +80,7 @@ double sr_cast(const sr_room_t *room, double x, double y, double angle)
     return best;
 }
 
-static double clearance(const sr_room_t *room, double x, double y)
+double sr_clearance(const sr_room_t *room, double x, double y)
 {
     double best = 1e30;
     for (int i = 0; i < room->nseg; i++) {
@@ -97,7 +97,7 @@ static double clearance(const sr_room_t *room, double x, double y)
 
 /* Inside the walls and not inside a box: a ray in any direction hits something, and
  * an odd number of crossings of a ray means inside a closed box. */
-static int inside_box(const sr_room_t *room, double x, double y)
+int sr_inside_box(const sr_room_t *room, double x, double y)
 {
     int crossings = 0;
     for (int i = 4; i < room->nseg; i++) {
@@ -115,7 +115,7 @@ hl_pose_t sr_free_pose(sr_room_t *room, double clear_mm)
     for (int tries = 0; tries < 100000; tries++) {
         double x = room->x0_mm + room->width_mm * uniform(room);
         double y = room->y0_mm + room->height_mm * uniform(room);
-        if (clearance(room, x, y) >= clear_mm && !inside_box(room, x, y)) {
+        if (sr_clearance(room, x, y) >= clear_mm && !sr_inside_box(room, x, y)) {
             hl_pose_t p = { (hl_mm_t)lround(x), (hl_mm_t)lround(y),
                             (hl_bam_t)(hl_rng_next(&room->rng) & 0xFFFF) };
             return p;
@@ -124,6 +124,27 @@ hl_pose_t sr_free_pose(sr_room_t *room, double clear_mm)
     hl_pose_t centre = { (hl_mm_t)(room->x0_mm + room->width_mm / 2),
                          (hl_mm_t)(room->y0_mm + room->height_mm / 2), 0 };
     return centre;
+}
+
+hl_pose_t sr_walk(sr_room_t *room, hl_pose_t from, double step_mm, double clear_mm)
+{
+    double a0 = hl_bam_to_rad(from.theta);
+    for (int tries = 0; tries < 200; tries++) {
+        /* widen the turn as tries fail, so a walk never gets stuck in a corner */
+        double a = a0 + (uniform(room) - 0.5) * (0.6 + tries * 0.05);
+        double x = from.x_mm + step_mm * cos(a), y = from.y_mm + step_mm * sin(a);
+        if (sr_clearance(room, x, y) < clear_mm || sr_inside_box(room, x, y))
+            continue;
+        /* the straight path must be clear too */
+        double mx = (from.x_mm + x) / 2, my = (from.y_mm + y) / 2;
+        if (sr_clearance(room, mx, my) < clear_mm / 2)
+            continue;
+        hl_pose_t p = { (hl_mm_t)lround(x), (hl_mm_t)lround(y), hl_bam_from_rad(a) };
+        return p;
+    }
+    hl_pose_t turned = from;
+    turned.theta = (hl_bam_t)(turned.theta + 32768u);
+    return turned;
 }
 
 void sr_sound(sr_room_t *room, hl_pose_t pose, int n, double max_range_mm,

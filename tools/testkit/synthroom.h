@@ -38,6 +38,17 @@ void sr_room_make(sr_room_t *room, double x0_mm, double y0_mm, double width_mm,
 /** Distance along a ray to the nearest segment, or a negative number if none. */
 double sr_cast(const sr_room_t *room, double x, double y, double angle_rad);
 
+/** Distance from (x, y) to the nearest segment. */
+double sr_clearance(const sr_room_t *room, double x, double y);
+/** True if (x, y) is inside one of the boxes. */
+int sr_inside_box(const sr_room_t *room, double x, double y);
+
+/**
+ * The next stop of a random walk: a step of @p step_mm from @p from in a direction
+ * near its heading, keeping @p clearance_mm from everything. Heading = direction.
+ */
+hl_pose_t sr_walk(sr_room_t *room, hl_pose_t from, double step_mm, double clearance_mm);
+
 /** A random pose at least @p clearance_mm from every segment. */
 hl_pose_t sr_free_pose(sr_room_t *room, double clearance_mm);
 

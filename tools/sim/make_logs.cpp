@@ -1,0 +1,237 @@
+// make_logs.cpp - hl-sim-logs: writes the simulated data sets of the paper's three
+// experiments as LCM event logs (docs/simulator.md describes them).
+//
+// Everything is a function of --seed: each data set draws from its own generator,
+// seeded with (seed, data-set number), and timestamps are simulated time from a fixed
+// base, so the same seed rewrites byte-identical files.
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <sys/stat.h>
+
+#include "logwriter.hpp"
+#include "robot.hpp"
+#include "tour.hpp"
+#include "world.hpp"
+
+using namespace hlsim;
+
+namespace {
+
+constexpr int64_t kBaseUtime = 1000000000000000LL;  // 1e15 us; any fixed base will do
+constexpr double kMinClearance = 500.0;             // sounding positions vs obstacles
+
+struct Options {
+    uint64_t seed = 1;
+    std::string out_dir = "logs";
+    std::string world;  // empty: built-in lab
+    int tour_min_stops = 100;
+};
+
+void usage(FILE *f)
+{
+    std::fprintf(f,
+                 "usage: hl-sim-logs [--seed N] [--out-dir DIR] [--world FILE]\n"
+                 "Writes DIR/lab28.lcmlog, DIR/orientation.lcmlog and DIR/tour.lcmlog:\n"
+                 "simulated sonar soundings (SONAR, SONAR_TEST), odometry (ODOMETRY) and\n"
+                 "true poses (GROUND_TRUTH) in the default lab world or FILE.\n"
+                 "Same seed, same bytes. Defaults: --seed 1 --out-dir logs.\n");
+}
+
+// One data set's generator: the seed and the data-set number, mixed (splitmix64).
+uint64_t mix(uint64_t seed, uint64_t set)
+{
+    uint64_t z = seed * 0x9E3779B97F4A7C15ULL + set;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+void report(const char *path, const LogStats &s)
+{
+    struct stat st;
+    long size = stat(path, &st) == 0 ? static_cast<long>(st.st_size) : -1;
+    double n = s.readings > 0 ? s.readings : 1;
+    std::printf("%-28s %7ld bytes  %3d scans  %5d odometry  valid %.1f%%  cable %.1f%%  "
+                "sentinel %.1f%%  multipath %.1f%%\n",
+                path, size, s.scans, s.odometry, 100.0 * s.valid / n, 100.0 * s.cable / n,
+                100.0 * s.sentinel / n, 100.0 * s.multipath / n);
+}
+
+bool finish(LogWriter &log, const std::string &path)
+{
+    if (!log.close()) {
+        std::fprintf(stderr, "hl-sim-logs: %s: write failed\n", path.c_str());
+        return false;
+    }
+    report(path.c_str(), log.stats());
+    return true;
+}
+
+// Experiment 1: the robot set down by hand at each named position. The operator's
+// measurement (the nominal tile intersection and heading) is what the ODOMETRY and
+// scan odometry carry; the true pose differs by the placement error.
+bool lab28(const World &w, const Options &o, const std::string &path)
+{
+    Rng rng(mix(o.seed, 1));
+    SonarParams sp;
+    RobotParams rp;
+    Robot robot(w, sp, rp, rng, kBaseUtime);
+    LogWriter log;
+    std::string err;
+    if (!log.open(path, &err)) {
+        std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
+        return false;
+    }
+    const double place_sigma_mm = 5.0, place_sigma_deg = 1.0;
+    int32_t seq = 0;
+    for (const Position &p : w.positions) {
+        Pose truth = p.pose;
+        truth.x += rng.normal(0.0, place_sigma_mm);
+        truth.y += rng.normal(0.0, place_sigma_mm);
+        truth.theta = wrap_pi(truth.theta + deg2rad(rng.normal(0.0, place_sigma_deg)));
+        robot.wait(60.0);  // carrying the robot to the next tile
+        robot.place(truth, p.pose);
+        log.odometry({OdoSample{robot.utime(), p.pose, 0.0, true}});
+        log.sounding(robot.sound(), seq++, sp.calib);
+    }
+    return finish(log, path);
+}
+
+// Experiment 2: a baseline map from six positions in a 1.5 m square, driven with
+// odometry; then soundings at 14 headings over 17 degrees at the square's centre.
+bool orientation(const World &w, const Options &o, const std::string &path)
+{
+    Rng rng(mix(o.seed, 2));
+    SonarParams sp;
+    RobotParams rp;
+    Robot robot(w, sp, rp, rng, kBaseUtime);
+    LogWriter log;
+    std::string err;
+    if (!log.open(path, &err)) {
+        std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
+        return false;
+    }
+    // The square's south-west corner: tile intersection (8, 0), where the west part
+    // opens into the leg; all seven positions have 0.5 m clearance there.
+    const Vec2 c0{8 * kTileMm, 0.0};
+    const Vec2 base[6] = {{0, 0}, {750, 0}, {1500, 0}, {1500, 1500}, {750, 1500}, {0, 1500}};
+    const Vec2 centre = c0 + Vec2{750, 750};
+    for (Vec2 b : base)
+        for (Vec2 q : {c0 + b, centre})
+            if (w.clearance(q) < kMinClearance) {
+                std::fprintf(stderr, "hl-sim-logs: orientation position (%.0f, %.0f) is "
+                                     "within %.0f mm of an obstacle\n", q.x, q.y, kMinClearance);
+                return false;
+            }
+    Pose start{c0.x, c0.y, 0.0};
+    robot.place(start, start);  // odometry frame = world frame at power-on
+    int32_t seq = 0;
+    for (Vec2 b : base) {
+        robot.steer_to(c0 + b);
+        robot.turn_to(0.0);
+        log.odometry(robot.take_odometry());
+        log.sounding(robot.sound(), seq++, sp.calib, "SONAR");
+    }
+    robot.steer_to(centre);
+    const int n = 14;
+    const double range_deg = 17.0;
+    for (int k = 0; k < n; k++) {
+        robot.turn_to(deg2rad(-range_deg / 2 + range_deg * k / (n - 1)));
+        log.odometry(robot.take_odometry());
+        log.sounding(robot.sound(), seq++, sp.calib, "SONAR_TEST");
+    }
+    return finish(log, path);
+}
+
+// Experiment 3: one sounding at every stop of a space-filling tour of the lab.
+bool tour(const World &w, const Options &o, const std::string &path)
+{
+    Rng rng(mix(o.seed, 3));
+    SonarParams sp;
+    RobotParams rp;
+    Robot robot(w, sp, rp, rng, kBaseUtime);
+    // Start in the dense north-west corner and grow outward through the whole L.
+    std::vector<TourStop> stops = tour_order(w, lab_tour_start(), kTileMm, kTourClearanceMm);
+    if (static_cast<int>(stops.size()) < o.tour_min_stops) {
+        std::fprintf(stderr, "hl-sim-logs: the tour has %zu stops, want at least %d\n",
+                     stops.size(), o.tour_min_stops);
+        return false;
+    }
+    LogWriter log;
+    std::string err;
+    if (!log.open(path, &err)) {
+        std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
+        return false;
+    }
+    Pose p0{stops[0].at.x, stops[0].at.y, 0.0};
+    robot.place(p0, p0);
+    int32_t seq = 0;
+    for (const TourStop &s : stops) {
+        for (Vec2 v : s.via)
+            robot.steer_to(v);
+        robot.steer_to(s.at);
+        std::vector<OdoSample> odo = robot.take_odometry();
+        if (odo.empty())  // the first stop: report where the robot stands
+            odo.push_back({robot.utime(), robot.odom(), 0.0, true});
+        log.odometry(odo);
+        log.sounding(robot.sound(), seq++, sp.calib);
+    }
+    return finish(log, path);
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    Options o;
+    for (int i = 1; i < argc; i++) {
+        std::string a = argv[i];
+        bool has_value = i + 1 < argc;
+        if (a == "--help" || a == "-h") {
+            usage(stdout);
+            return 0;
+        } else if (a == "--seed" && has_value) {
+            char *end = nullptr;
+            const char *v = argv[++i];
+            unsigned long long s = std::strtoull(v, &end, 10);
+            if (*v == '\0' || *v == '-' || *end != '\0') {
+                std::fprintf(stderr, "hl-sim-logs: --seed wants a non-negative integer, got '%s'\n", v);
+                return 2;
+            }
+            o.seed = s;
+        } else if (a == "--out-dir" && has_value) {
+            o.out_dir = argv[++i];
+        } else if (a == "--world" && has_value) {
+            o.world = argv[++i];
+        } else {
+            std::fprintf(stderr, "hl-sim-logs: unknown or incomplete option '%s'\n", a.c_str());
+            usage(stderr);
+            return 2;
+        }
+    }
+    World w;
+    std::string err;
+    if (o.world.empty())
+        w = World::lab();
+    else if (!w.load(o.world, &err)) {
+        std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
+        return 1;
+    }
+    if (w.positions.empty()) {
+        std::fprintf(stderr, "hl-sim-logs: the world has no 'position' lines\n");
+        return 1;
+    }
+    for (const Position &p : w.positions)
+        if (w.clearance(p.pose.pos()) < kMinClearance) {
+            std::fprintf(stderr, "hl-sim-logs: position %s is within %.0f mm of an obstacle\n",
+                         p.name.c_str(), kMinClearance);
+            return 1;
+        }
+    bool ok = lab28(w, o, o.out_dir + "/lab28.lcmlog") &&
+              orientation(w, o, o.out_dir + "/orientation.lcmlog") &&
+              tour(w, o, o.out_dir + "/tour.lcmlog");
+    return ok ? 0 : 1;
+}

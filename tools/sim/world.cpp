@@ -1,0 +1,335 @@
+// world.cpp - world file parser and ray casting.
+#include "world.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace hlsim {
+
+namespace {
+
+// Rays start at the sensor; ignore hits closer than this so a ray cast from a surface
+// point (as a bounce would) does not hit its own surface again.
+constexpr double kEps = 1e-6;
+
+std::vector<std::string> split_words(const std::string &s)
+{
+    std::vector<std::string> words;
+    std::istringstream in(s);
+    std::string w;
+    while (in >> w)
+        words.push_back(w);
+    return words;
+}
+
+bool parse_number(const std::string &tok, double *out, std::string *what)
+{
+    errno = 0;
+    char *end = nullptr;
+    double v = std::strtod(tok.c_str(), &end);
+    if (end == tok.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
+        *what = "'" + tok + "' is not a finite number";
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+bool valid_name(const std::string &n)
+{
+    if (n.empty() || n.size() > 32)
+        return false;
+    return std::all_of(n.begin(), n.end(), [](char ch) {
+        return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') ||
+               (ch >= '0' && ch <= '9') || ch == '_' || ch == '-';
+    });
+}
+
+Vec2 facing(Vec2 n, Vec2 dir)
+{
+    return n.dot(dir) > 0.0 ? n * -1.0 : n;
+}
+
+double point_segment_dist(Vec2 p, const Segment &s)
+{
+    Vec2 e = s.b - s.a;
+    double len2 = e.dot(e);
+    double t = len2 > 0.0 ? std::clamp((p - s.a).dot(e) / len2, 0.0, 1.0) : 0.0;
+    return (p - (s.a + e * t)).norm();
+}
+
+}  // namespace
+
+void World::add_box(Vec2 c, double w, double h, double angle)
+{
+    Vec2 u = Vec2::polar(angle) * (w / 2.0);
+    Vec2 v = Vec2::polar(angle + kPi / 2.0) * (h / 2.0);
+    Vec2 p[4] = {c - u - v, c + u - v, c + u + v, c - u + v};
+    for (int i = 0; i < 4; i++)
+        segments.push_back({p[i], p[(i + 1) % 4]});
+}
+
+// Parses one comment-stripped line; on error sets *what (without file:line).
+bool World::parse_line(const std::string &line, std::string *what)
+{
+    std::vector<std::string> w = split_words(line);
+    if (w.empty())
+        return true;
+    const std::string &kw = w[0];
+
+    // position NAME x y heading_deg: the name is not a number, handle it first.
+    if (kw == "position") {
+        if (w.size() != 5) {
+            *what = "position needs NAME x y heading_deg";
+            return false;
+        }
+        if (!valid_name(w[1])) {
+            *what = "position name '" + w[1] + "' must be 1-32 of A-Z a-z 0-9 _ -";
+            return false;
+        }
+        if (find(w[1])) {
+            *what = "duplicate position name '" + w[1] + "'";
+            return false;
+        }
+        if (positions.size() >= kWorldMaxPositions) {
+            *what = "too many positions (limit " + std::to_string(kWorldMaxPositions) + ")";
+            return false;
+        }
+        double v[3];
+        for (int i = 0; i < 3; i++)
+            if (!parse_number(w[2 + i], &v[i], what))
+                return false;
+        if (std::fabs(v[0]) > kWorldCoordMax || std::fabs(v[1]) > kWorldCoordMax) {
+            *what = "position coordinate beyond +-4000000 mm";
+            return false;
+        }
+        if (std::fabs(v[2]) > 360.0) {
+            *what = "heading must be within +-360 degrees";
+            return false;
+        }
+        positions.push_back({w[1], Pose{v[0], v[1], wrap_pi(deg2rad(v[2]))}});
+        return true;
+    }
+
+    std::size_t want;
+    if (kw == "segment" || kw == "box")
+        want = 4;
+    else if (kw == "circle")
+        want = 3;
+    else if (kw == "rbox")
+        want = 5;
+    else if (kw == "polygon")
+        want = 0;  // checked below
+    else {
+        *what = "unknown keyword '" + kw + "' (expected segment, polygon, box, rbox, circle, position)";
+        return false;
+    }
+    std::size_t n = w.size() - 1;
+    if (kw == "polygon") {
+        if (n < 6 || n % 2 != 0) {
+            *what = "polygon needs at least 3 x y pairs, got " + std::to_string(n) + " numbers";
+            return false;
+        }
+    } else if (n != want) {
+        *what = kw + " needs " + std::to_string(want) + " numbers, got " + std::to_string(n);
+        return false;
+    }
+    std::vector<double> v(n);
+    for (std::size_t i = 0; i < n; i++)
+        if (!parse_number(w[1 + i], &v[i], what))
+            return false;
+    // Every number except an rbox angle is a length or coordinate in mm.
+    for (std::size_t i = 0; i < n; i++) {
+        if (kw == "rbox" && i == 4)
+            continue;
+        if (std::fabs(v[i]) > kWorldCoordMax) {
+            *what = "coordinate " + w[1 + i] + " beyond +-4000000 mm";
+            return false;
+        }
+    }
+    std::size_t adds = kw == "circle" ? 1 : kw == "segment" ? 1 : kw == "polygon" ? n / 2 : 4;
+    if (segments.size() + circles.size() + adds > kWorldMaxShapes) {
+        *what = "too many shapes (limit " + std::to_string(kWorldMaxShapes) + ")";
+        return false;
+    }
+
+    if (kw == "segment") {
+        Segment s{{v[0], v[1]}, {v[2], v[3]}};
+        if ((s.b - s.a).norm() < 1.0) {
+            *what = "segment shorter than 1 mm";
+            return false;
+        }
+        segments.push_back(s);
+    } else if (kw == "polygon") {
+        std::size_t k = n / 2;
+        for (std::size_t i = 0; i < k; i++) {
+            Vec2 a{v[2 * i], v[2 * i + 1]};
+            Vec2 b{v[2 * ((i + 1) % k)], v[2 * ((i + 1) % k) + 1]};
+            if ((b - a).norm() < 1.0) {
+                *what = "polygon side " + std::to_string(i + 1) + " shorter than 1 mm";
+                return false;
+            }
+            segments.push_back({a, b});
+        }
+    } else if (kw == "box") {
+        double w_ = std::fabs(v[2] - v[0]), h_ = std::fabs(v[3] - v[1]);
+        if (w_ < 1.0 || h_ < 1.0) {
+            *what = "box sides must be at least 1 mm";
+            return false;
+        }
+        add_box({(v[0] + v[2]) / 2, (v[1] + v[3]) / 2}, w_, h_, 0.0);
+    } else if (kw == "rbox") {
+        if (v[2] < 1.0 || v[3] < 1.0) {
+            *what = "rbox width and depth must be at least 1 mm";
+            return false;
+        }
+        if (std::fabs(v[4]) > 360.0) {
+            *what = "rbox angle must be within +-360 degrees";
+            return false;
+        }
+        add_box({v[0], v[1]}, v[2], v[3], deg2rad(v[4]));
+    } else {  // circle
+        if (v[2] < 1.0) {
+            *what = "circle radius must be at least 1 mm";
+            return false;
+        }
+        circles.push_back({{v[0], v[1]}, v[2]});
+    }
+    return true;
+}
+
+bool World::parse(const std::string &text, const std::string &name, std::string *err)
+{
+    *this = World();
+    std::istringstream in(text);
+    std::string line;
+    int lineno = 0;
+    while (std::getline(in, line)) {
+        lineno++;
+        std::string what;
+        if (line.size() > kWorldMaxLine)
+            what = "line longer than " + std::to_string(kWorldMaxLine) + " characters";
+        else {
+            std::size_t hash = line.find('#');
+            if (hash != std::string::npos)
+                line.resize(hash);
+            parse_line(line, &what);
+        }
+        if (!what.empty()) {
+            *err = name + ":" + std::to_string(lineno) + ": " + what;
+            *this = World();
+            return false;
+        }
+    }
+    return true;
+}
+
+bool World::load(const std::string &path, std::string *err)
+{
+    std::ifstream f(path, std::ios::binary);
+    if (!f) {
+        *err = path + ": cannot open";
+        return false;
+    }
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return parse(ss.str(), path, err);
+}
+
+World World::lab()
+{
+    World w;
+    std::string err;
+    // The compiled-in text is tested (tests/sim/test_world.cpp); it cannot fail.
+    w.parse(lab_text(), "lab.world", &err);
+    return w;
+}
+
+bool World::cast(Vec2 o, Vec2 d, double max_dist, Hit *hit) const
+{
+    double best = max_dist;
+    bool found = false;
+    for (const Segment &s : segments) {
+        Vec2 e = s.b - s.a;
+        double denom = d.cross(e);
+        if (std::fabs(denom) < 1e-12)
+            continue;  // parallel: a grazing ray returns nothing anyway
+        Vec2 ao = s.a - o;
+        double t = ao.cross(e) / denom;
+        double u = ao.cross(d) / denom;
+        if (t > kEps && t < best && u >= 0.0 && u <= 1.0) {
+            best = t;
+            found = true;
+            hit->dist = t;
+            hit->point = o + d * t;
+            Vec2 n{-e.y, e.x};
+            hit->normal = facing(n * (1.0 / e.norm()), d);
+        }
+    }
+    for (const Circle &c : circles) {
+        Vec2 oc = o - c.c;
+        double b = oc.dot(d);
+        double disc = b * b - (oc.dot(oc) - c.r * c.r);
+        if (disc < 0.0)
+            continue;
+        double sq = std::sqrt(disc);
+        double t = -b - sq;
+        if (t <= kEps)
+            t = -b + sq;  // origin inside the circle: the far side
+        if (t > kEps && t < best) {
+            best = t;
+            found = true;
+            hit->dist = t;
+            hit->point = o + d * t;
+            hit->normal = facing((hit->point - c.c) * (1.0 / c.r), d);
+        }
+    }
+    return found;
+}
+
+double World::clearance(Vec2 p) const
+{
+    double best = std::numeric_limits<double>::infinity();
+    for (const Segment &s : segments)
+        best = std::min(best, point_segment_dist(p, s));
+    for (const Circle &c : circles)
+        best = std::min(best, std::max(0.0, (p - c.c).norm() - c.r));
+    return best;
+}
+
+const Position *World::find(const std::string &name) const
+{
+    for (const Position &p : positions)
+        if (p.name == name)
+            return &p;
+    return nullptr;
+}
+
+bool World::bounds(Vec2 *lo, Vec2 *hi) const
+{
+    if (segments.empty() && circles.empty())
+        return false;
+    double inf = std::numeric_limits<double>::infinity();
+    *lo = {inf, inf};
+    *hi = {-inf, -inf};
+    auto grow = [&](Vec2 p, double r) {
+        lo->x = std::min(lo->x, p.x - r);
+        lo->y = std::min(lo->y, p.y - r);
+        hi->x = std::max(hi->x, p.x + r);
+        hi->y = std::max(hi->y, p.y + r);
+    };
+    for (const Segment &s : segments) {
+        grow(s.a, 0.0);
+        grow(s.b, 0.0);
+    }
+    for (const Circle &c : circles)
+        grow(c.c, c.r);
+    return true;
+}
+
+}  // namespace hlsim

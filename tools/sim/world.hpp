@@ -1,0 +1,83 @@
+// world.hpp - the simulated 2-D world: wall and obstacle segments, round obstacles,
+// and named sounding positions, loaded from a line-based text file (docs/simulator.md).
+#ifndef HLSIM_WORLD_HPP
+#define HLSIM_WORLD_HPP
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "geom.hpp"
+
+namespace hlsim {
+
+struct Segment {
+    Vec2 a, b;
+};
+
+struct Circle {
+    Vec2 c;
+    double r = 0.0;
+};
+
+/** A named place where the robot is set down (heading in radians). */
+struct Position {
+    std::string name;
+    Pose pose;
+};
+
+/** The first surface a ray meets. */
+struct Hit {
+    double dist = 0.0;  // mm along the ray
+    Vec2 point;         // where it hit
+    Vec2 normal;        // unit surface normal, facing back toward the ray's origin
+};
+
+/** Limits the parser enforces, so a hostile file cannot exhaust memory or overflow. */
+constexpr double kWorldCoordMax = 4000000.0;  // |coordinate| in mm (fits hl_mm_t)
+constexpr std::size_t kWorldMaxShapes = 20000;  // segments + circles
+constexpr std::size_t kWorldMaxPositions = 1000;
+constexpr std::size_t kWorldMaxLine = 1000;     // characters per line
+
+class World {
+public:
+    std::vector<Segment> segments;
+    std::vector<Circle> circles;
+    std::vector<Position> positions;
+
+    /**
+     * Parses world text. On failure returns false and sets @p err to one line,
+     * "NAME:LINE: what was wrong"; the world is then left empty.
+     */
+    bool parse(const std::string &text, const std::string &name, std::string *err);
+    /** Reads and parses a file; errors as for parse(). */
+    bool load(const std::string &path, std::string *err);
+    /** The built-in lab (tools/sim/worlds/lab.world, compiled in). */
+    static World lab();
+    /** The text of the built-in lab world. */
+    static const char *lab_text();
+
+    /**
+     * Casts a ray from @p origin along the unit vector @p dir.
+     * @return true and the nearest hit within @p max_dist, false if none.
+     */
+    bool cast(Vec2 origin, Vec2 dir, double max_dist, Hit *hit) const;
+
+    /** Distance from @p p to the nearest surface (infinity in an empty world). */
+    double clearance(Vec2 p) const;
+
+    /** The named position, or nullptr. */
+    const Position *find(const std::string &name) const;
+
+    /** Axis-aligned bounding box of all shapes; false if the world is empty. */
+    bool bounds(Vec2 *lo, Vec2 *hi) const;
+
+    /** Adds the four sides of a rectangle centred at @p c, size w x h, rotated by @p angle. */
+    void add_box(Vec2 c, double w, double h, double angle);
+
+private:
+    bool parse_line(const std::string &line, std::string *what);
+};
+
+}  // namespace hlsim
+#endif
