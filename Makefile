@@ -42,6 +42,9 @@ TRIG_SRC  := $(BUILD)/gen/trig_table.c
 VECTOR_FLAGS := -ftree-vectorize -fvect-cost-model=dynamic
 KERNEL_SRCS  := src/core/blur.c src/core/peak.c src/core/localize.c
 
+# ---- bus: LCM messages <-> core structs -----------------------------------------------
+BUS_SRCS := src/bus/scan_codec.c
+
 # ---- test kit: synthetic scenes and the floating-point reference localizer ------------
 TESTKIT_SRCS := tools/testkit/synthroom.c tools/testkit/ref_localize.c
 
@@ -59,16 +62,21 @@ CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(BUILD)/asan/gen/trig_table.o
 TESTKIT_OBJS      := $(call obj,$(TESTKIT_SRCS))
 TESTKIT_ASAN_OBJS := $(call asanobj,$(TESTKIT_SRCS))
 LCM_OBJS       := $(call obj,$(LCM_C_SRCS:$(BUILD)/%=%))
+BUS_OBJS       := $(call obj,$(BUS_SRCS))
+BUS_ASAN_OBJS  := $(call asanobj,$(BUS_SRCS))
 
 CORE_LIB      := $(BUILD)/lib/libhoughloc_core.a
 CORE_ASAN_LIB := $(BUILD)/lib/libhoughloc_core_asan.a
 TESTKIT_LIB      := $(BUILD)/lib/libhoughloc_testkit.a
 TESTKIT_ASAN_LIB := $(BUILD)/lib/libhoughloc_testkit_asan.a
 LCM_LIB       := $(BUILD)/lib/libhoughloc_lcmtypes.a
+BUS_LIB       := $(BUILD)/lib/libhoughloc_bus.a
+BUS_ASAN_LIB  := $(BUILD)/lib/libhoughloc_bus_asan.a
 
 # ---- unit tests (cmocka, under ASan + UBSan) ------------------------------------------
 CORE_TESTS := $(patsubst tests/core/%.c,$(BUILD)/tests/core/%,$(wildcard tests/core/test_*.c))
-TEST_BINS  := $(CORE_TESTS)
+BUS_TESTS  := $(patsubst tests/bus/%.c,$(BUILD)/tests/bus/%,$(wildcard tests/bus/test_*.c))
+TEST_BINS  := $(CORE_TESTS) $(BUS_TESTS)
 BINS       := $(BUILD)/bin/hl-bench
 INTEGRATION_TESTS :=
 
@@ -134,12 +142,19 @@ $(CORE_ASAN_LIB): $(CORE_ASAN_OBJS)
 $(TESTKIT_LIB): $(TESTKIT_OBJS)
 $(TESTKIT_ASAN_LIB): $(TESTKIT_ASAN_OBJS)
 $(LCM_LIB): $(LCM_OBJS)
+$(BUS_LIB): $(BUS_OBJS)
+$(BUS_ASAN_LIB): $(BUS_ASAN_OBJS)
 
 # ---- unit tests -----------------------------------------------------------------------
 $(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TESTKIT_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) -lm
+
+$(BUILD)/tests/bus/%: $(BUILD)/asan/tests/bus/%.o $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD-SAN  $@"
+	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm
 
 unit-test: $(TEST_BINS)
 	$(Q)sh tests/run-unit.sh $(TEST_BINS)
