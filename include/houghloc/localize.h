@@ -96,7 +96,7 @@ typedef struct hl_localizer hl_localizer_t;
 hl_localizer_t *hl_loc_create(const hl_loc_params_t *params);
 /** Accepts NULL. */
 void hl_loc_destroy(hl_localizer_t *loc);
-const hl_loc_params_t *hl_loc_params(const hl_localizer_t *loc);
+const hl_loc_params_t *hl_loc_get_params(const hl_localizer_t *loc);
 /** Bytes allocated by the localizer. */
 size_t hl_loc_mem_bytes(const hl_localizer_t *loc);
 
@@ -112,7 +112,7 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
                        hl_loc_result_t *result);
 
 /** The surface of the last successful hl_loc_run. */
-void hl_loc_surface(const hl_localizer_t *loc, hl_loc_surface_t *out);
+void hl_loc_get_surface(const hl_localizer_t *loc, hl_loc_surface_t *out);
 
 #ifdef __cplusplus
 }

@@ -75,7 +75,7 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start);
  * One cycle: predict from @p odometry (the base's dead-reckoned pose when the scan was
  * taken), localize, accept or reject, extend the map.
  */
-hl_status_t hl_slam_step(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
+hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
                          hl_slam_step_t *out);
 
 hl_map_t *hl_slam_map(hl_slam_t *s);

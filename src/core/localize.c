@@ -173,7 +173,7 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
     return loc;
 }
 
-const hl_loc_params_t *hl_loc_params(const hl_localizer_t *loc)
+const hl_loc_params_t *hl_loc_get_params(const hl_localizer_t *loc)
 {
     return &loc->p;
 }
@@ -485,7 +485,7 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
     return HL_OK;
 }
 
-void hl_loc_surface(const hl_localizer_t *loc, hl_loc_surface_t *out)
+void hl_loc_get_surface(const hl_localizer_t *loc, hl_loc_surface_t *out)
 {
     *out = loc->surface;
 }

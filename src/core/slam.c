@@ -109,7 +109,7 @@ static void track_peak(hl_slam_t *s, uint32_t peak)
         s->peak_avg = (uint32_t)((int64_t)s->peak_avg + ((int64_t)peak - s->peak_avg) / 4);
 }
 
-hl_status_t hl_slam_step(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
+hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
                          hl_slam_step_t *out)
 {
     if (!s || !scan || !out)

@@ -169,7 +169,7 @@ static void test_vote_saturation(void **state)
     assert_int_equal(hl_loc_run(loc, map, 16384, scan, &q, &r), HL_OK);
     assert_int_equal(r.votes, 16384u * 1024u);
     hl_loc_surface_t s;
-    hl_loc_surface(loc, &s);
+    hl_loc_get_surface(loc, &s);
     assert_int_equal(s.votes[r.iy * s.nx + r.ix], HL_VOTE_MAX);
     /* the blur spreads the saturated cell: peak below 65535 x 256, nothing wrapped */
     assert_true(r.peak > 0 && r.peak < 65535u * 256u);

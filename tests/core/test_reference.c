@@ -66,7 +66,7 @@ static void compare(const hl_loc_params_t *p, bool local)
         assert_int_equal(ref_run(ref, s->map, s->n, &s->scan, &q, &rr), 0);
         if (r.ix != rr.ix || r.iy != rr.iy || r.it != rr.it) {
             hl_loc_surface_t sf;
-            hl_loc_surface(loc, &sf);
+            hl_loc_get_surface(loc, &sf);
             uint32_t at_ref = sf.cells[((size_t)rr.it * sf.ny + rr.iy) * sf.nx + rr.ix];
             if (r.peak - at_ref <= 2 && ++ties <= SCENES / 8)
                 continue;

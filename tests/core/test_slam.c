@@ -57,7 +57,7 @@ static double run_walk(const hl_slam_params_t *p, walk_t *w, int *accepted, int 
     for (int i = 0; i < STEPS; i++) {
         sr_sound(&w->room, w->truth[i], 128, 8000, 15, scan);
         hl_slam_step_t out;
-        assert_int_equal(hl_slam_step(s, scan, w->odom[i], &out), HL_OK);
+        assert_int_equal(hl_slam_update(s, scan, w->odom[i], &out), HL_OK);
         if (i == 0)
             assert_int_equal(out.status, HL_SLAM_ODOMETRY_ONLY);
         *accepted += out.status == HL_SLAM_ACCEPTED;
@@ -117,13 +117,13 @@ static void test_wild_jump_is_rejected(void **state)
     hl_slam_step_t out;
     for (int i = 0; i < 6; i++) {
         sr_sound(&w->room, w->truth[i], 128, 8000, 15, scan);
-        assert_int_equal(hl_slam_step(s, scan, w->truth[i], &out), HL_OK);
+        assert_int_equal(hl_slam_update(s, scan, w->truth[i], &out), HL_OK);
     }
     uint32_t version = hl_map_version(hl_slam_map(s));
     hl_pose_t lie = w->truth[5];
     lie.x_mm += 2500;
     sr_sound(&w->room, w->truth[5], 128, 8000, 15, scan);
-    assert_int_equal(hl_slam_step(s, scan, lie, &out), HL_OK);
+    assert_int_equal(hl_slam_update(s, scan, lie, &out), HL_OK);
     assert_int_equal(out.status, HL_SLAM_REJECTED_WILD);
     assert_int_equal(out.added, 0);
     assert_int_equal(hl_map_version(hl_slam_map(s)), version);
@@ -157,14 +157,14 @@ static void test_params_and_inputs_validated(void **state)
     hl_scan_t *scan = calloc(1, sizeof *scan);
     hl_slam_step_t out;
     hl_pose_t far = { HL_COORD_MAX_MM + 5, 0, 0 };
-    assert_int_equal(hl_slam_step(s, scan, far, &out), HL_ERR_RANGE);
+    assert_int_equal(hl_slam_update(s, scan, far, &out), HL_ERR_RANGE);
     scan->count = HL_SCAN_MAX_READINGS + 1;
     hl_pose_t origin = { 0, 0, 0 };
-    assert_int_equal(hl_slam_step(s, scan, origin, &out), HL_ERR_RANGE);
-    assert_int_equal(hl_slam_step(NULL, scan, origin, &out), HL_ERR_ARG);
+    assert_int_equal(hl_slam_update(s, scan, origin, &out), HL_ERR_RANGE);
+    assert_int_equal(hl_slam_update(NULL, scan, origin, &out), HL_ERR_ARG);
     /* an empty scan on an empty map: odometry only, nothing added */
     scan->count = 0;
-    assert_int_equal(hl_slam_step(s, scan, origin, &out), HL_OK);
+    assert_int_equal(hl_slam_update(s, scan, origin, &out), HL_OK);
     assert_int_equal(out.status, HL_SLAM_ODOMETRY_ONLY);
     assert_int_equal(out.added, 0);
     free(scan);
