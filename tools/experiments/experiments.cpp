@@ -1,0 +1,131 @@
+// hl-experiments - reruns the paper's three experiments on the simulated data sets, in
+// "paper" and "improved" modes, and writes results.md, table1.tsv, orientation.tsv,
+// combined.tsv and the figures into one folder.
+#include <getopt.h>
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "experiment.hpp"
+#include "report.hpp"
+
+namespace {
+
+void usage(FILE *to)
+{
+    std::fputs(
+        "usage: hl-experiments [options]\n"
+        "Reruns the paper's experiments (Table 1, orientation, combined map-making) on the\n"
+        "simulated logs, in paper and improved modes; progress on stderr.\n"
+        "\n"
+        "  -l, --logs DIR      folder with lab28.lcmlog, orientation.lcmlog, tour.lcmlog\n"
+        "                      (default: logs)\n"
+        "  -o, --out DIR       where results and figures go (default: build/experiments)\n"
+        "  -r, --reps N        Table 1: random map subsets per setting, 1..100 (default 8)\n"
+        "  -x, --only NAME     run one experiment: table1, orientation or combined\n"
+        "      --no-figures    skip the PNG figures\n"
+        "  -h, --help          this text\n",
+        to);
+}
+
+bool load(const std::string &path, hlexp::Soundings *s)
+{
+    std::string err;
+    if (!hlexp::read_soundings(path, s, &err)) {
+        std::fprintf(stderr, "hl-experiments: %s\n", err.c_str());
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    hlexp::Context ctx;
+    ctx.out_dir = "build/experiments";
+    std::string logs = "logs", only;
+    const struct option opts[] = {
+        { "logs", required_argument, nullptr, 'l' }, { "out", required_argument, nullptr, 'o' },
+        { "reps", required_argument, nullptr, 'r' }, { "only", required_argument, nullptr, 'x' },
+        { "no-figures", no_argument, nullptr, 'F' }, { "help", no_argument, nullptr, 'h' },
+        { nullptr, 0, nullptr, 0 },
+    };
+    int c;
+    while ((c = getopt_long(argc, argv, "l:o:r:x:h", opts, nullptr)) != -1) {
+        switch (c) {
+        case 'l': logs = optarg; break;
+        case 'o': ctx.out_dir = optarg; break;
+        case 'r': {
+            char *end;
+            errno = 0;
+            long v = std::strtol(optarg, &end, 10);
+            if (errno || *end || v < 1 || v > 100) {
+                std::fprintf(stderr, "hl-experiments: --reps must be a whole number 1..100, not '%s'\n", optarg);
+                return 2;
+            }
+            ctx.reps = static_cast<int>(v);
+            break;
+        }
+        case 'x':
+            only = optarg;
+            if (only != "table1" && only != "orientation" && only != "combined") {
+                std::fprintf(stderr, "hl-experiments: --only takes table1, orientation or combined, not '%s'\n", optarg);
+                return 2;
+            }
+            break;
+        case 'F': ctx.figures = false; break;
+        case 'h': usage(stdout); return 0;
+        default: usage(stderr); return 2;
+        }
+    }
+    if (optind < argc) {
+        std::fprintf(stderr, "hl-experiments: unexpected argument '%s'\n", argv[optind]);
+        return 2;
+    }
+    if (mkdir(ctx.out_dir.c_str(), 0777) != 0 && errno != EEXIST) {
+        std::fprintf(stderr, "hl-experiments: cannot create %s: %s\n", ctx.out_dir.c_str(),
+                     std::strerror(errno));
+        return 1;
+    }
+
+    const hlexp::Mode modes[] = { hlexp::paper_mode(), hlexp::improved_mode() };
+    hlexp::Results res;
+    if (only.empty() || only == "table1") {
+        hlexp::Soundings lab;
+        if (!load(logs + "/lab28.lcmlog", &lab))
+            return 1;
+        for (const auto &m : modes) {
+            auto rows = hlexp::run_table1(lab, m, ctx);
+            res.table1.insert(res.table1.end(), rows.begin(), rows.end());
+        }
+    }
+    if (only.empty() || only == "orientation") {
+        hlexp::Soundings log;
+        if (!load(logs + "/orientation.lcmlog", &log))
+            return 1;
+        for (const auto &m : modes)
+            res.orientation.push_back(hlexp::run_orientation(log, m, ctx));
+    }
+    if (only.empty() || only == "combined") {
+        hlexp::Soundings tour;
+        if (!load(logs + "/tour.lcmlog", &tour))
+            return 1;
+        for (const auto &m : modes) {
+            auto rows = hlexp::run_combined(tour, m, ctx, &m == &modes[0]);
+            res.combined.insert(res.combined.end(), rows.begin(), rows.end());
+        }
+    }
+    res.reps = ctx.reps;
+    std::string err;
+    if (!hlexp::write_results(ctx.out_dir, res, &err)) {
+        std::fprintf(stderr, "hl-experiments: %s\n", err.c_str());
+        return 1;
+    }
+    std::fprintf(stderr, "hl-experiments: results in %s/results.md\n", ctx.out_dir.c_str());
+    return 0;
+}

@@ -1,0 +1,22 @@
+# tools/experiments/experiments.mk - the paper's experiments, rerun (hl-experiments).
+#
+#   make experiments   run all three in paper and improved modes; results, tables and
+#                      figures in build/experiments/
+
+EXP_SRCS := tools/experiments/experiments.cpp tools/experiments/dataset.cpp \
+            tools/experiments/modes.cpp tools/experiments/table1.cpp \
+            tools/experiments/orientation.cpp tools/experiments/combined.cpp \
+            tools/experiments/figures.cpp tools/experiments/report.cpp
+
+BINS += $(BUILD)/bin/hl-experiments
+
+# render.mk is read after this file, so name its library by path.
+$(BUILD)/bin/hl-experiments: $(call obj,$(EXP_SRCS)) $(BUILD)/lib/libhoughloc_render.a $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD      $@"
+	$(Q)$(CXX) -o $@ $^ $(CAIRO_LIBS) $(PKG_LIBS) -lm
+
+.PHONY: experiments
+experiments: deps
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-experiments
+	$(Q)$(BUILD)/bin/hl-experiments --logs logs --out $(BUILD)/experiments
