@@ -80,7 +80,7 @@ CORE_TESTS := $(patsubst tests/core/%.c,$(BUILD)/tests/core/%,$(wildcard tests/c
 BUS_TESTS  := $(patsubst tests/bus/%.c,$(BUILD)/tests/bus/%,$(wildcard tests/bus/test_*.c))
 TEST_BINS  := $(CORE_TESTS) $(BUS_TESTS)
 BINS       := $(BUILD)/bin/hl-bench
-INTEGRATION_TESTS :=
+INTEGRATION_TESTS := tests/integration/test_tools.sh
 
 .PHONY: all deps test unit-test bench demo clean lcmtypes
 .DEFAULT_GOAL := all

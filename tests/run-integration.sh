@@ -16,6 +16,6 @@ for t in "$@"; do
 done
 [ $# -eq 0 ] && exit 0
 echo
-echo "integration tests: $pass passed, $fail failed"
+echo "integration: $pass passed, $fail failed"
 [ -n "$failed" ] && echo "failed:$failed"
 [ "$fail" -eq 0 ]

@@ -14,6 +14,6 @@ for t in "$@"; do
     fi
 done
 echo
-echo "unit test programs: $pass passed, $fail failed"
+echo "unit: $pass passed, $fail failed"
 [ -n "$failed" ] && echo "failed:$failed"
 [ $# -gt 0 ] && [ "$fail" -eq 0 ]

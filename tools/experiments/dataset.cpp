@@ -1,7 +1,10 @@
 // dataset.cpp - LCM event log -> soundings with ground truth (see dataset.hpp).
 #include "dataset.hpp"
 
+#include <cstdio>
 #include <cstring>
+
+#include <sys/types.h>
 #include <map>
 
 #include <lcm/eventlog.h>
@@ -32,6 +35,7 @@ bool read_soundings(const std::string &path, Soundings *out, std::string *err)
     }
     std::map<int32_t, hl_pose_t> truth;
     long n = 0;
+    off_t good_end = 0;     // where the last complete event ended
     char why[HL_BUS_WHY_LEN];
     for (;;) {
         lcm_eventlog_event_t *ev = lcm_eventlog_read_next_event(f.log);
@@ -59,6 +63,14 @@ bool read_soundings(const std::string &path, Soundings *out, std::string *err)
             *err = where(path, n) + channel + ": " + why;
             return false;
         }
+        good_end = ftello(f.log->f);
+    }
+    // liblcm stops at the first event it cannot read whole and says nothing: anything
+    // left after the last complete event is a truncated or corrupt log, not a short one.
+    if (fseeko(f.log->f, 0, SEEK_END) != 0 || ftello(f.log->f) != good_end) {
+        *err = path + ": truncated or corrupt after event " + std::to_string(n) + " (byte " +
+               std::to_string(static_cast<long long>(good_end)) + ")";
+        return false;
     }
     if (out->empty()) {
         *err = path + ": no SONAR scans in the log";
@@ -66,10 +78,12 @@ bool read_soundings(const std::string &path, Soundings *out, std::string *err)
     }
     for (auto &s : *out) {
         auto it = truth.find(s->msg.seq);
-        if (it != truth.end()) {
-            s->truth = it->second;
-            s->has_truth = true;
+        if (it == truth.end()) {
+            *err = path + ": scan " + std::to_string(s->msg.seq) + " has no GROUND_TRUTH pose";
+            return false;
         }
+        s->truth = it->second;
+        s->has_truth = true;
     }
     return true;
 }

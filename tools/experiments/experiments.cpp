@@ -11,13 +11,14 @@
 #include <string>
 
 #include "experiment.hpp"
+#include "overrides.hpp"
 #include "report.hpp"
 
 namespace {
 
 void usage(FILE *to)
 {
-    std::fputs(
+    std::fprintf(to,
         "usage: hl-experiments [options]\n"
         "Reruns the paper's experiments (Table 1, orientation, combined map-making) on the\n"
         "simulated logs, in paper and improved modes; progress on stderr.\n"
@@ -27,9 +28,11 @@ void usage(FILE *to)
         "  -o, --out DIR       where results and figures go (default: build/experiments)\n"
         "  -r, --reps N        Table 1: random map subsets per setting, 1..100 (default 8)\n"
         "  -x, --only NAME     run one experiment: table1, orientation or combined\n"
+        "  -s, --set M.NAME=V  change one parameter of mode M (paper or improved); repeat\n"
+        "                      as needed. NAME is one of:\n%s\n"
         "      --no-figures    skip the PNG figures\n"
         "  -h, --help          this text\n",
-        to);
+        hlexp::override_names());
 }
 
 bool load(const std::string &path, hlexp::Soundings *s)
@@ -47,16 +50,17 @@ bool load(const std::string &path, hlexp::Soundings *s)
 int main(int argc, char **argv)
 {
     hlexp::Context ctx;
+    hlexp::Mode paper = hlexp::paper_mode(), improved = hlexp::improved_mode();
     ctx.out_dir = "build/experiments";
     std::string logs = "logs", only;
     const struct option opts[] = {
         { "logs", required_argument, nullptr, 'l' }, { "out", required_argument, nullptr, 'o' },
         { "reps", required_argument, nullptr, 'r' }, { "only", required_argument, nullptr, 'x' },
-        { "no-figures", no_argument, nullptr, 'F' }, { "help", no_argument, nullptr, 'h' },
+        { "set", required_argument, nullptr, 's' }, { "no-figures", no_argument, nullptr, 'F' }, { "help", no_argument, nullptr, 'h' },
         { nullptr, 0, nullptr, 0 },
     };
     int c;
-    while ((c = getopt_long(argc, argv, "l:o:r:x:h", opts, nullptr)) != -1) {
+    while ((c = getopt_long(argc, argv, "l:o:r:x:s:h", opts, nullptr)) != -1) {
         switch (c) {
         case 'l': logs = optarg; break;
         case 'o': ctx.out_dir = optarg; break;
@@ -78,6 +82,14 @@ int main(int argc, char **argv)
                 return 2;
             }
             break;
+        case 's': {
+            std::string err;
+            if (!hlexp::apply_override(optarg, &paper, &improved, &err)) {
+                std::fprintf(stderr, "hl-experiments: %s\n", err.c_str());
+                return 2;
+            }
+            break;
+        }
         case 'F': ctx.figures = false; break;
         case 'h': usage(stdout); return 0;
         default: usage(stderr); return 2;
@@ -93,7 +105,16 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    const hlexp::Mode modes[] = { hlexp::paper_mode(), hlexp::improved_mode() };
+    for (const hlexp::Mode *m : { &paper, &improved }) {
+        const char *e = hl_slam_params_error(&m->slam);
+        if (!e)
+            e = hl_loc_params_error(&m->loc);
+        if (e) {
+            std::fprintf(stderr, "hl-experiments: %s mode: %s\n", m->name.c_str(), e);
+            return 2;
+        }
+    }
+    const hlexp::Mode modes[] = { paper, improved };
     hlexp::Results res;
     if (only.empty() || only == "table1") {
         hlexp::Soundings lab;

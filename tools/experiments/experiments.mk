@@ -6,7 +6,8 @@
 EXP_SRCS := tools/experiments/experiments.cpp tools/experiments/dataset.cpp \
             tools/experiments/modes.cpp tools/experiments/table1.cpp \
             tools/experiments/orientation.cpp tools/experiments/combined.cpp \
-            tools/experiments/figures.cpp tools/experiments/report.cpp
+            tools/experiments/figures.cpp tools/experiments/report.cpp \
+            tools/experiments/overrides.cpp
 
 BINS += $(BUILD)/bin/hl-experiments
 

@@ -1,0 +1,64 @@
+#!/bin/sh
+# Integration test of the offline tools, as a user runs them: the data sets regenerate
+# byte-identically, the experiments run end to end on them and write their tables, the
+# benchmark prints its parseable lines, and bad input gets a one-line error and a
+# non-zero exit, never a crash.
+set -u
+BIN=${BUILD:-build}/bin
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+check() {   # check DESCRIPTION COMMAND...: the command must succeed
+    desc=$1; shift
+    if "$@"; then echo "ok: $desc"; else echo "FAIL: $desc"; fail=1; fi
+}
+rejects() { # rejects DESCRIPTION EXPECTED_TEXT COMMAND...: exit 1 or 2, one line naming it
+    desc=$1; want=$2; shift 2
+    "$@" >"$tmp/out" 2>"$tmp/err"
+    rc=$?
+    if { [ $rc -eq 1 ] || [ $rc -eq 2 ]; } && [ "$(wc -l <"$tmp/err")" -eq 1 ] &&
+        grep -q -- "$want" "$tmp/err"; then
+        echo "ok: $desc"
+    else
+        echo "FAIL: $desc (exit $rc): $(head -c 300 "$tmp/err")"
+        fail=1
+    fi
+}
+
+# The committed logs are what `make logs` makes.
+"$BIN/hl-sim-logs" --seed 1 --out-dir "$tmp" >/dev/null
+for f in lab28 orientation tour; do
+    check "logs/$f.lcmlog regenerates byte-identically" cmp -s "$tmp/$f.lcmlog" "logs/$f.lcmlog"
+done
+
+# The experiments run end to end and write their tables.
+"$BIN/hl-experiments" --logs logs --out "$tmp/exp" --reps 1 --no-figures 2>"$tmp/progress"
+check "hl-experiments exits 0" test $? -eq 0
+check "table1.tsv has 12 rows" test "$(tail -n +2 "$tmp/exp/table1.tsv" | wc -l)" -eq 12
+check "table1.tsv header" grep -q "^mode	fraction	raster_mm	trials	wild	wild_pct	tame_mean_mm	tame_sigma_mm$" "$tmp/exp/table1.tsv"
+check "orientation.tsv has both modes" test "$(cut -f1 "$tmp/exp/orientation.tsv" | tr '\n' ' ')" = "mode paper improved "
+check "combined.tsv has paper, odometry, improved" test "$(cut -f1 "$tmp/exp/combined.tsv" | tr '\n' ' ')" = "mode paper odometry improved "
+check "results.md names the three experiments" test "$(grep -c '^## ' "$tmp/exp/results.md")" -eq 3
+check "progress goes to stderr" grep -q "^table1: " "$tmp/progress"
+
+# The benchmark's lines parse (values are not judged here: that is `make bench`).
+"$BIN/hl-bench" 3 >"$tmp/bench"
+check "hl-bench prints three parseable lines" test "$(grep -cE '^bench w[123]_[a-z0-9_]+ median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench")" -eq 3
+
+# Bad input: one line, non-zero exit.
+rejects "missing log folder" "cannot open" "$BIN/hl-experiments" --logs "$tmp/nowhere" --out "$tmp/x" --no-figures
+mkdir -p "$tmp/trunc"
+head -c 5000 logs/lab28.lcmlog >"$tmp/trunc/lab28.lcmlog"
+rejects "truncated log" "lab28.lcmlog" "$BIN/hl-experiments" --logs "$tmp/trunc" --only table1 --out "$tmp/x" --no-figures
+mkdir -p "$tmp/garbage"
+head -c 20000 /dev/urandom >"$tmp/garbage/lab28.lcmlog"
+rejects "random bytes as a log" "lab28.lcmlog" "$BIN/hl-experiments" --logs "$tmp/garbage" --only table1 --out "$tmp/x" --no-figures
+rejects "bad --reps" "--reps" "$BIN/hl-experiments" --reps 0
+rejects "bad --set" "unknown parameter" "$BIN/hl-experiments" --set improved.nonsense=1
+rejects "bad bench runs" "usage" "$BIN/hl-bench" -5
+printf 'segment 0 0 1000\n' >"$tmp/bad.world"
+rejects "bad world file" "bad.world:1" "$BIN/hl-sim-logs" --world "$tmp/bad.world" --out-dir "$tmp/w"
+printf '1000 935\n2000 abc\n' >"$tmp/bad.pairs"
+rejects "bad calibration pairs" "bad.pairs:2" "$BIN/hl-calibrate" "$tmp/bad.pairs"
+
+exit $fail
