@@ -31,7 +31,9 @@ typedef struct hl_loc_params {
     hl_mm_t cell_mm;            /* xy raster cell, 1..1000; default 24 (paper: 47, 24) */
     hl_bam_t theta_step;        /* heading raster step; default 1.1 deg (200 BAM) */
     uint16_t theta_half_steps;  /* slices each side of the predicted heading when
-                                   searching heading; default 8 (+-8.8 deg); max 256 */
+                                   searching heading; default 8: +-8.8 deg, the fewest
+                                   whole 1.1 deg steps that cover the +-8.4 deg asked
+                                   for; max 256 */
     hl_bam_t normal_gate;       /* pairs vote only if normals agree within this;
                                    default 30 deg (paper) */
     hl_mm_t blur_sigma_mm;      /* xy Gaussian blur; default 36; 0 = no blur */

@@ -70,21 +70,37 @@ bool finish(LogWriter &log, const std::string &path)
     return true;
 }
 
+// The simulated robot a data set is recorded with: its own random stream (so the data
+// sets do not depend on each other), the default sonar and body.
+struct Rig {
+    Rng rng;
+    SonarParams sonar;
+    RobotParams body;
+    Robot robot;
+    Rig(const World &w, uint64_t seed) : rng(seed), robot(w, sonar, body, rng, kBaseUtime) {}
+};
+
+bool open_log(LogWriter *log, const std::string &path)
+{
+    std::string err;
+    if (log->open(path, &err))
+        return true;
+    std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
+    return false;
+}
+
 // Experiment 1: the robot set down by hand at each named position. The operator's
 // measurement (the nominal tile intersection and heading) is what the ODOMETRY and
 // scan odometry carry; the true pose differs by the placement error.
 bool lab28(const World &w, const Options &o, const std::string &path)
 {
-    Rng rng(mix(o.seed, 1));
-    SonarParams sp;
-    RobotParams rp;
-    Robot robot(w, sp, rp, rng, kBaseUtime);
+    Rig rig(w, mix(o.seed, 1));
+    Rng &rng = rig.rng;
+    Robot &robot = rig.robot;
+    const SonarParams &sp = rig.sonar;
     LogWriter log;
-    std::string err;
-    if (!log.open(path, &err)) {
-        std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
+    if (!open_log(&log, path))
         return false;
-    }
     const double place_sigma_mm = 5.0, place_sigma_deg = 1.0;
     int32_t seq = 0;
     for (const Position &p : w.positions) {
@@ -104,16 +120,12 @@ bool lab28(const World &w, const Options &o, const std::string &path)
 // odometry; then soundings at 14 headings over 17 degrees at the square's centre.
 bool orientation(const World &w, const Options &o, const std::string &path)
 {
-    Rng rng(mix(o.seed, 2));
-    SonarParams sp;
-    RobotParams rp;
-    Robot robot(w, sp, rp, rng, kBaseUtime);
+    Rig rig(w, mix(o.seed, 2));
+    Robot &robot = rig.robot;
+    const SonarParams &sp = rig.sonar;
     LogWriter log;
-    std::string err;
-    if (!log.open(path, &err)) {
-        std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
+    if (!open_log(&log, path))
         return false;
-    }
     // The square's south-west corner: tile intersection (8, 0), where the west part
     // opens into the leg; all seven positions have 0.5 m clearance there.
     const Vec2 c0{8 * kTileMm, 0.0};
@@ -149,10 +161,9 @@ bool orientation(const World &w, const Options &o, const std::string &path)
 // Experiment 3: one sounding at every stop of a space-filling tour of the lab.
 bool tour(const World &w, const Options &o, const std::string &path)
 {
-    Rng rng(mix(o.seed, 3));
-    SonarParams sp;
-    RobotParams rp;
-    Robot robot(w, sp, rp, rng, kBaseUtime);
+    Rig rig(w, mix(o.seed, 3));
+    Robot &robot = rig.robot;
+    const SonarParams &sp = rig.sonar;
     // Start in the dense north-west corner and grow outward through the whole L.
     std::vector<TourStop> stops = tour_order(w, lab_tour_start(), kTileMm, kTourClearanceMm);
     if (static_cast<int>(stops.size()) < o.tour_min_stops) {
@@ -161,11 +172,8 @@ bool tour(const World &w, const Options &o, const std::string &path)
         return false;
     }
     LogWriter log;
-    std::string err;
-    if (!log.open(path, &err)) {
-        std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
+    if (!open_log(&log, path))
         return false;
-    }
     Pose p0{stops[0].at.x, stops[0].at.y, 0.0};
     robot.place(p0, p0);
     int32_t seq = 0;
