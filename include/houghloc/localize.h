@@ -43,7 +43,7 @@ typedef struct hl_loc_params {
     hl_mm_t prior_sigma_mm;     /* odometry prior (paper, section 9): votes attenuated by
                                    a Gaussian of the distance from the prediction, when a
                                    query asks for it; default 300 */
-    hl_bam_t prior_sigma_theta; /* default 4 deg */
+    hl_bam_t prior_sigma_theta; /* default 15 deg */
     uint32_t max_cells;         /* raster cells (nx * ny * nt) to allocate for; default
                                    2^20 (10 MiB). A global search over a 10 m x 10 m map at
                                    24 mm needs 174k per heading; a +-1 m window with 17
