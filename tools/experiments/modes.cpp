@@ -1,9 +1,6 @@
 // modes.cpp - the parameters of the "paper" and "improved" modes.
 #include "experiment.hpp"
 
-#include <cstdarg>
-#include <cstdio>
-
 namespace hlexp {
 
 Mode paper_mode()
@@ -41,13 +38,5 @@ Mode improved_mode()
     return m;
 }
 
-void progress(const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    std::vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    std::fputc('\n', stderr);
-}
 
 }  // namespace hlexp

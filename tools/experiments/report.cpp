@@ -2,6 +2,7 @@
 #include "report.hpp"
 
 #include <cerrno>
+#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 
@@ -59,44 +60,45 @@ double pct(int n, int of)
     return of ? 100.0 * n / of : 0.0;
 }
 
+// One TSV file: a header line, then one line per row from `print`. Skipped when there
+// are no rows (that experiment was not run).
+template <typename Row, typename Print>
+bool write_tsv(const std::string &path, const char *header, const std::vector<Row> &rows,
+               Print print, std::string *err)
+{
+    if (rows.empty())
+        return true;
+    File f(path, err);
+    if (!f.ok())
+        return false;
+    std::fprintf(f.get(), "%s\n", header);
+    for (const Row &row : rows)
+        print(f.get(), row);
+    return f.close();
+}
+
 bool write_tsvs(const std::string &dir, const Results &r, std::string *err)
 {
-    if (!r.table1.empty()) {
-        File f(dir + "/table1.tsv", err);
-        if (!f.ok())
-            return false;
-        std::fprintf(f.get(), "mode\tfraction\traster_mm\ttrials\twild\twild_pct\ttame_mean_mm\ttame_sigma_mm\n");
-        for (const auto &t : r.table1)
-            std::fprintf(f.get(), "%s\t%d/16\t%d\t%d\t%d\t%.1f\t%.1f\t%.1f\n", t.mode.c_str(),
-                         t.fraction16, t.raster_mm, t.trials, t.wild, pct(t.wild, t.trials),
-                         t.tame_mean_mm, t.tame_sigma_mm);
-        if (!f.close())
-            return false;
-    }
-    if (!r.orientation.empty()) {
-        File f(dir + "/orientation.tsv", err);
-        if (!f.ok())
-            return false;
-        std::fprintf(f.get(), "mode\ttrials\tmean_deg\tsigma_deg\tmax_abs_deg\n");
-        for (const auto &o : r.orientation)
-            std::fprintf(f.get(), "%s\t%d\t%.3f\t%.3f\t%.3f\n", o.mode.c_str(), o.trials,
-                         o.mean_deg, o.sigma_deg, o.max_abs_deg);
-        if (!f.close())
-            return false;
-    }
-    if (!r.combined.empty()) {
-        File f(dir + "/combined.tsv", err);
-        if (!f.ok())
-            return false;
-        std::fprintf(f.get(), "mode\tstops\taccepted\trejected\twild_accepted\trmse_mm\tmax_mm\tfinal_mm\n");
-        for (const auto &c : r.combined)
-            std::fprintf(f.get(), "%s\t%d\t%d\t%d\t%d\t%.1f\t%.1f\t%.1f\n", c.mode.c_str(),
-                         c.stops, c.accepted, c.rejected, c.wild_accepted, c.rmse_mm, c.max_mm,
-                         c.final_mm);
-        if (!f.close())
-            return false;
-    }
-    return true;
+    return write_tsv(dir + "/table1.tsv",
+                     "mode\tfraction\traster_mm\ttrials\twild\twild_pct\ttame_mean_mm\ttame_sigma_mm",
+                     r.table1, [](FILE *f, const Table1Row &t) {
+                         std::fprintf(f, "%s\t%d/16\t%d\t%d\t%d\t%.1f\t%.1f\t%.1f\n",
+                                      t.mode.c_str(), t.fraction16, t.raster_mm, t.trials,
+                                      t.wild, pct(t.wild, t.trials), t.tame_mean_mm,
+                                      t.tame_sigma_mm);
+                     }, err) &&
+           write_tsv(dir + "/orientation.tsv", "mode\ttrials\tmean_deg\tsigma_deg\tmax_abs_deg",
+                     r.orientation, [](FILE *f, const OrientationRow &o) {
+                         std::fprintf(f, "%s\t%d\t%.3f\t%.3f\t%.3f\n", o.mode.c_str(),
+                                      o.trials, o.mean_deg, o.sigma_deg, o.max_abs_deg);
+                     }, err) &&
+           write_tsv(dir + "/combined.tsv",
+                     "mode\tstops\taccepted\trejected\twild_accepted\trmse_mm\tmax_mm\tfinal_mm",
+                     r.combined, [](FILE *f, const CombinedRow &c) {
+                         std::fprintf(f, "%s\t%d\t%d\t%d\t%d\t%.1f\t%.1f\t%.1f\n",
+                                      c.mode.c_str(), c.stops, c.accepted, c.rejected,
+                                      c.wild_accepted, c.rmse_mm, c.max_mm, c.final_mm);
+                     }, err);
 }
 
 void markdown_table1(FILE *f, const Results &r)
@@ -164,6 +166,15 @@ void markdown_combined(FILE *f, const Results &r)
 }
 
 }  // namespace
+
+void progress(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    std::vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    std::fputc('\n', stderr);
+}
 
 bool write_results(const std::string &dir, const Results &r, std::string *err)
 {

@@ -63,9 +63,7 @@ int main(int argc, char **argv)
     }
     World w;
     std::string err;
-    if (world_path.empty())
-        w = World::lab();
-    else if (!w.load(world_path, &err)) {
+    if (!World::load_or_lab(world_path, &w, &err)) {
         std::fprintf(stderr, "hl-sim-draw: %s\n", err.c_str());
         return 1;
     }

@@ -222,9 +222,7 @@ int main(int argc, char **argv)
     }
     World w;
     std::string err;
-    if (o.world.empty())
-        w = World::lab();
-    else if (!w.load(o.world, &err)) {
+    if (!World::load_or_lab(o.world, &w, &err)) {
         std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
         return 1;
     }

@@ -241,6 +241,15 @@ bool World::load(const std::string &path, std::string *err)
     return parse(ss.str(), path, err);
 }
 
+bool World::load_or_lab(const std::string &path, World *out, std::string *err)
+{
+    if (path.empty()) {
+        *out = lab();
+        return true;
+    }
+    return out->load(path, err);
+}
+
 World World::lab()
 {
     World w;

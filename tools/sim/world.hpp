@@ -52,6 +52,8 @@ public:
     bool parse(const std::string &text, const std::string &name, std::string *err);
     /** Reads and parses a file; errors as for parse(). */
     bool load(const std::string &path, std::string *err);
+    /** The world file at @p path, or the built-in lab when @p path is empty. */
+    static bool load_or_lab(const std::string &path, World *out, std::string *err);
     /** The built-in lab (tools/sim/worlds/lab.world, compiled in). */
     static World lab();
     /** The text of the built-in lab world. */
