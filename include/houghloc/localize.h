@@ -36,7 +36,9 @@ typedef struct hl_loc_params {
                                    for; max 256 */
     hl_bam_t normal_gate;       /* pairs vote only if normals agree within this;
                                    default 30 deg (paper) */
-    hl_mm_t blur_sigma_mm;      /* xy Gaussian blur; default 36; 0 = no blur */
+    hl_mm_t blur_sigma_mm;      /* xy Gaussian blur; default 60 (the spread of echo-placed
+                                   readings: about 40 mm of range noise and a few degrees
+                                   of bearing); 0 = no blur */
     hl_bam_t blur_sigma_theta;  /* heading blur; default 0.75 deg; 0 = no blur */
     hl_mm_t peak_separation_mm; /* the "second peak" is the best cell at least this far
                                    from the best one; default 500 (the wild-error radius) */

@@ -19,8 +19,10 @@
 
 #include <stdbool.h>
 
+#include "houghloc/echo.h"
 #include "houghloc/localize.h"
 #include "houghloc/map.h"
+#include "houghloc/refine.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -48,6 +50,13 @@ typedef struct hl_slam_params {
                                    whole raster; default 20 */
     double min_peak_ratio;      /* guarded: reject a peak lower than this fraction of the
                                    recent average; default 0.25; 0 = off */
+    bool echo_bearings;         /* move each reading to its estimated echo bearing
+                                   (echo.h) before localizing and mapping; default true */
+    hl_echo_params_t echo;
+    bool refine;                /* polish the Hough pose (refine.h); default true */
+    bool refine_heading;        /* ... in heading too; default false: the heading stays
+                                   the Hough's */
+    hl_refine_params_t refine_params;
 } hl_slam_params_t;
 
 void hl_slam_params_default(hl_slam_params_t *p);
@@ -78,6 +87,14 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start);
 hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
                          hl_slam_step_t *out);
 
+/**
+ * Localizes @p scan against the current map as hl_slam_update would, with @p predicted
+ * as the prediction, and changes nothing: no map update, no state.
+ * @param[out] loc   the Hough result;  @param[out] pose  the pose (refined if asked).
+ * @return as hl_loc_run.
+ */
+hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
+                             hl_loc_result_t *loc, hl_pose_t *pose);
 hl_map_t *hl_slam_map(hl_slam_t *s);
 hl_localizer_t *hl_slam_localizer(hl_slam_t *s);
 

@@ -51,7 +51,7 @@ void hl_loc_params_default(hl_loc_params_t *p)
     p->theta_step = hl_bam_from_deg(1.1);
     p->theta_half_steps = 8;
     p->normal_gate = hl_bam_from_deg(30.0);
-    p->blur_sigma_mm = 36;
+    p->blur_sigma_mm = 60;
     p->blur_sigma_theta = hl_bam_from_deg(0.75);
     p->peak_separation_mm = 500;
     p->prior_sigma_mm = 300;

@@ -11,6 +11,8 @@ struct hl_slam {
     hl_pose_t pose;     /* the last estimate (or the start pose) */
     hl_pose_t odom;     /* the odometry that went with it */
     uint32_t peak_avg;  /* moving average of recent peaks (votes x 256), 0 = none yet */
+    hl_scan_t *echoed;  /* the scan at its echo bearings, when the params ask for it */
+    hl_refiner_t *refiner;  /* when the params ask for refinement */
 };
 
 void hl_slam_params_default(hl_slam_params_t *p)
@@ -27,6 +29,11 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->min_confidence = 0.05;
     p->min_votes = 20;
     p->min_peak_ratio = 0.25;
+    p->echo_bearings = true;
+    hl_echo_params_default(&p->echo);
+    p->refine = true;
+    p->refine_heading = false;
+    hl_refine_params_default(&p->refine_params);
 }
 
 const char *hl_slam_params_error(const hl_slam_params_t *p)
@@ -47,6 +54,10 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "min_confidence must be in 0..1";
     if (!(p->min_peak_ratio >= 0.0 && p->min_peak_ratio <= 1.0))
         return "min_peak_ratio must be in 0..1";
+    if (p->echo_bearings && hl_echo_params_error(&p->echo))
+        return hl_echo_params_error(&p->echo);
+    if (p->refine)
+        return hl_refine_params_error(&p->refine_params);
     return NULL;
 }
 
@@ -60,7 +71,9 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->p = *p;
     s->map = hl_map_create(p->map_capacity, p->seed);
     s->loc = hl_loc_create(&p->loc);
-    if (!s->map || !s->loc) {
+    s->echoed = p->echo_bearings ? malloc(sizeof *s->echoed) : NULL;
+    s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
+    if (!s->map || !s->loc || (p->echo_bearings && !s->echoed) || (p->refine && !s->refiner)) {
         hl_slam_destroy(s);
         return NULL;
     }
@@ -73,6 +86,8 @@ void hl_slam_destroy(hl_slam_t *s)
         return;
     hl_map_destroy(s->map);
     hl_loc_destroy(s->loc);
+    free(s->echoed);
+    hl_refine_destroy(s->refiner);
     free(s);
 }
 
@@ -109,6 +124,41 @@ static void track_peak(hl_slam_t *s, uint32_t peak)
         s->peak_avg = (uint32_t)((int64_t)s->peak_avg + ((int64_t)peak - s->peak_avg) / 4);
 }
 
+/* The scan as the localizer and the map see it. */
+static const hl_scan_t *prepared(hl_slam_t *s, const hl_scan_t *scan)
+{
+    if (!s->p.echo_bearings || hl_echo_correct(&s->p.echo, scan, s->echoed) != HL_OK)
+        return scan;    /* only a scan hl_scan_check refuses fails, and callers check */
+    return s->echoed;
+}
+
+/* Hough, then the optional refinement. */
+static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
+                            hl_loc_result_t *loc, hl_pose_t *pose)
+{
+    hl_loc_query_t q = { .predicted = predicted, .window_mm = s->p.window_mm,
+                         .search_theta = s->p.search_theta, .use_prior = s->p.use_prior };
+    hl_status_t st = hl_loc_run(s->loc, hl_map_vectors(s->map), hl_map_count(s->map), scan,
+                                &q, loc);
+    if (st != HL_OK)
+        return st;
+    *pose = s->p.interpolate ? loc->pose : loc->cell_pose;
+    if (s->refiner)  /* a refused refinement leaves the Hough pose */
+        hl_refine_run(s->refiner, hl_map_vectors(s->map), hl_map_count(s->map), scan, *pose,
+                      s->p.refine_heading, pose);
+    return HL_OK;
+}
+
+hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
+                             hl_loc_result_t *loc, hl_pose_t *pose)
+{
+    if (!s || !scan || !loc || !pose)
+        return HL_ERR_ARG;
+    if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(predicted))
+        return HL_ERR_RANGE;
+    return localize(s, prepared(s, scan), predicted, loc, pose);
+}
+
 hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
                          hl_slam_step_t *out)
 {
@@ -126,14 +176,12 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
     s->started = true;
     s->odom = odometry;
     s->pose = predicted;
+    scan = prepared(s, scan);
 
-    hl_loc_query_t q = { .predicted = predicted, .window_mm = s->p.window_mm,
-                         .search_theta = s->p.search_theta, .use_prior = s->p.use_prior };
-    hl_status_t st = hl_loc_run(s->loc, hl_map_vectors(s->map), hl_map_count(s->map), scan,
-                                &q, &out->loc);
+    hl_pose_t found;
+    hl_status_t st = localize(s, scan, predicted, &out->loc, &found);
     bool extend = true;
     if (st == HL_OK) {
-        hl_pose_t found = s->p.interpolate ? out->loc.pose : out->loc.cell_pose;
         bool accept = !s->p.guarded || plausible(s, found, predicted, &out->loc);
         track_peak(s, out->loc.peak);
         if (accept) {

@@ -22,11 +22,16 @@ struct Mode {
                                 // seeded Gaussian error of this sigma per axis (what
                                 // odometry over a short hop gives), searched in the
                                 // slam window with the odometry prior
-    hl_slam_params_t slam;      // orientation baseline and combined tour
+    hl_slam_params_t slam;      // orientation baseline and combined tour; its
+                                // echo_bearings and echo apply to every experiment
 };
 
 Mode paper_mode();
 Mode improved_mode();
+
+// The scan as the mode's localizer sees it: at the readings' echo bearings when the mode
+// estimates them (houghloc/echo.h), else unchanged.
+hl_scan_t as_localized(const Mode &m, const hl_scan_t &scan);
 
 struct Context {
     std::string out_dir;        // results and figures go here

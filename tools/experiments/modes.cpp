@@ -22,6 +22,8 @@ Mode paper_mode()
     m.slam.use_prior = false;
     m.slam.interpolate = false;
     m.slam.window_mm = 0;           // global search over the map
+    m.slam.echo_bearings = false;   // readings on their beam axes
+    m.slam.refine = false;          // the best cell is the answer
     return m;
 }
 
@@ -38,5 +40,12 @@ Mode improved_mode()
     return m;
 }
 
+hl_scan_t as_localized(const Mode &m, const hl_scan_t &scan)
+{
+    hl_scan_t out = scan;
+    if (m.slam.echo_bearings && hl_echo_correct(&m.slam.echo, &scan, &out) != HL_OK)
+        out = scan;     // only a bad scan fails, and the localizer rejects that itself
+    return out;
+}
 
 }  // namespace hlexp

@@ -33,24 +33,18 @@ OrientationRow run_orientation(const Soundings &log, const Mode &m, const Contex
             progress("orientation: baseline sounding %d failed", s->msg.seq);
     hl_pose_t last_pose = step.pose, last_odom = base.back()->msg.odometry;
 
-    hl_localizer_t *loc = hl_slam_localizer(slam);
-    hl_map_t *map = hl_slam_map(slam);
     std::vector<double> err;
     for (const Sounding *s : tests) {
-        hl_loc_query_t q{};
-        q.predicted = hl_pose_compose(last_pose, hl_pose_between(last_odom, s->msg.odometry));
-        q.window_mm = m.slam.window_mm;
-        q.search_theta = true;
-        q.use_prior = m.slam.use_prior;
+        hl_pose_t predicted =
+            hl_pose_compose(last_pose, hl_pose_between(last_odom, s->msg.odometry));
         hl_loc_result_t r;
-        hl_status_t st = hl_loc_run(loc, hl_map_vectors(map), hl_map_count(map), &s->msg.scan,
-                                    &q, &r);
+        hl_pose_t found;
+        hl_status_t st = hl_slam_localize(slam, &s->msg.scan, predicted, &r, &found);
         if (st != HL_OK || !s->has_truth) {
             progress("orientation: test sounding %d: %s", s->msg.seq,
                      st != HL_OK ? hl_status_str(st) : "no ground truth");
             continue;
         }
-        hl_pose_t found = m.interpolate ? r.pose : r.cell_pose;
         double e = hl_bam_diff(found.theta, s->truth.theta) * 360.0 / 65536.0;
         err.push_back(e);
         row.max_abs_deg = std::fmax(row.max_abs_deg, std::fabs(e));

@@ -35,6 +35,15 @@ const std::map<std::string, std::pair<std::pair<double, double>, Setter>> &sette
         { "min_confidence", { { 0, 1 }, [](Mode *m, double v) { m->slam.min_confidence = v; } } },
         { "min_peak_ratio", { { 0, 1 }, [](Mode *m, double v) { m->slam.min_peak_ratio = v; } } },
         { "map_capacity", { { 1, 1 << 20 }, [](Mode *m, double v) { m->slam.map_capacity = (uint32_t)v; } } },
+        { "echo_bearings", { { 0, 1 }, [](Mode *m, double v) { m->slam.echo_bearings = v != 0; } } },
+        { "echo_cap", { { 0, 255 }, [](Mode *m, double v) { m->slam.echo.cap_q8 = (uint16_t)std::lround(v * 256); } } },
+        { "echo_tie", { { 0, 255 }, [](Mode *m, double v) { m->slam.echo.tie_q8 = (uint16_t)std::lround(v * 256); } } },
+        { "echo_half_beam_deg", { { 1, 45 }, [](Mode *m, double v) { m->slam.echo.half_beam = hl_bam_from_deg(v); } } },
+        { "refine", { { 0, 1 }, [](Mode *m, double v) { m->slam.refine = v != 0; } } },
+        { "refine_heading", { { 0, 1 }, [](Mode *m, double v) { m->slam.refine_heading = v != 0; } } },
+        { "refine_radius_mm", { { 1, 100000 }, [](Mode *m, double v) { m->slam.refine_params.normal_radius_mm = (hl_mm_t)v; } } },
+        { "refine_match_mm", { { 1, 100000 }, [](Mode *m, double v) { m->slam.refine_params.match_mm = (hl_mm_t)v; } } },
+        { "refine_max_shift_mm", { { 0, 100000 }, [](Mode *m, double v) { m->slam.refine_params.max_shift_mm = (hl_mm_t)v; } } },
         { "table1_prior_sigma_mm", { { 0, 100000 }, [](Mode *m, double v) { m->prior_sigma_mm = v; } } },
     };
     return s;
@@ -47,7 +56,8 @@ const char *override_names()
     return "cell_mm blur_sigma_mm blur_sigma_theta_deg normal_gate_deg theta_step_deg\n"
            "theta_half_steps prior_sigma_mm prior_sigma_theta_deg interpolate use_prior\n"
            "guarded window_mm wild_mm min_confidence min_peak_ratio map_capacity\n"
-           "table1_prior_sigma_mm";
+           "echo_bearings echo_cap echo_tie echo_half_beam_deg refine refine_heading\n"
+           "refine_radius_mm refine_match_mm refine_max_shift_mm table1_prior_sigma_mm";
 }
 
 bool apply_override(const std::string &setting, Mode *paper, Mode *improved, std::string *err)

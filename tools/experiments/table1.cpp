@@ -18,12 +18,13 @@ namespace {
 const double WILD_MM = 500.0;
 
 // Every valid reading of a sounding as a map vector at its measured pose.
-std::vector<hl_vector_t> vectors_of(const Sounding &s)
+std::vector<hl_vector_t> vectors_of(const Sounding &s, const Mode &m)
 {
     std::vector<hl_vector_t> v;
-    for (uint32_t i = 0; i < s.msg.scan.count; i++) {
+    hl_scan_t scan = as_localized(m, s.msg.scan);
+    for (uint32_t i = 0; i < scan.count; i++) {
         hl_vector_t t;
-        if (hl_vector_from_reading(s.msg.odometry, &s.msg.scan.readings[i], &t))
+        if (hl_vector_from_reading(s.msg.odometry, &scan.readings[i], &t))
             v.push_back(t);
     }
     return v;
@@ -43,6 +44,7 @@ std::vector<hl_vector_t> sample(std::vector<hl_vector_t> all, int sixteenths, hl
 
 struct Trial {
     double error_mm;
+    hl_pose_t found;
     hl_loc_result_t result;
 };
 
@@ -56,8 +58,9 @@ double gauss(hl_rng_t *rng)
 
 // Localizes sounding `test` against `map` with its heading known: over the whole map
 // (paper), or in a window around a prior estimate (improved, see Mode::prior_sigma_mm).
-bool localize(hl_localizer_t *loc, const Mode &m, const std::vector<hl_vector_t> &map,
-              const Sounding &test, hl_rng_t *rng, Trial *t)
+bool localize(hl_localizer_t *loc, hl_refiner_t *refiner, const Mode &m,
+              const std::vector<hl_vector_t> &map, const Sounding &test, hl_rng_t *rng,
+              Trial *t)
 {
     hl_loc_query_t q{};
     q.predicted = test.msg.odometry;    // the hand-measured pose
@@ -69,13 +72,18 @@ bool localize(hl_localizer_t *loc, const Mode &m, const std::vector<hl_vector_t>
         q.window_mm = m.slam.window_mm;
         q.use_prior = true;
     }
-    hl_status_t st = hl_loc_run(loc, map.data(), static_cast<uint32_t>(map.size()),
-                                &test.msg.scan, &q, &t->result);
+    hl_scan_t scan = as_localized(m, test.msg.scan);
+    hl_status_t st = hl_loc_run(loc, map.data(), static_cast<uint32_t>(map.size()), &scan, &q,
+                                &t->result);
     if (st != HL_OK) {
         progress("table1: sounding %d: %s", test.msg.seq, hl_status_str(st));
         return false;
     }
     hl_pose_t found = m.interpolate ? t->result.pose : t->result.cell_pose;
+    if (refiner)    // heading known: polish x and y; a refused refinement keeps the peak
+        hl_refine_run(refiner, map.data(), static_cast<uint32_t>(map.size()), &scan, found,
+                      false, &found);
+    t->found = found;
     t->error_mm = distance_mm(found, test.truth);
     return true;
 }
@@ -112,9 +120,8 @@ void draw_figures(const Soundings &lab, const std::vector<std::vector<hl_vector_
                 others.insert(others.end(), per[j].begin(), per[j].end());
         std::vector<hl_vector_t> map = sample(others, 3, &rng);
         Trial t;
-        if (localize(loc, global, map, *lab[test], &rng, &t) && t.error_mm < 100.0) {
-            save_localization_figures(ctx, loc, map, *lab[test],
-                                      m.interpolate ? t.result.pose : t.result.cell_pose);
+        if (localize(loc, nullptr, global, map, *lab[test], &rng, &t) && t.error_mm < 100.0) {
+            save_localization_figures(ctx, loc, map, *lab[test], t.found);
             break;
         }
     }
@@ -127,13 +134,17 @@ std::vector<Table1Row> run_table1(const Soundings &lab, const Mode &m, const Con
 {
     std::vector<std::vector<hl_vector_t>> per;
     for (const auto &s : lab)
-        per.push_back(vectors_of(*s));
+        per.push_back(vectors_of(*s, m));
     std::vector<Table1Row> rows;
     for (int raster : { 47, 24 }) {
         hl_loc_params_t p = m.loc;
         p.cell_mm = raster;
         hl_localizer_t *loc = hl_loc_create(&p);
-        if (!loc) {
+        hl_refiner_t *refiner =
+            m.slam.refine ? hl_refine_create(&m.slam.refine_params, p.max_map_vectors) : nullptr;
+        if (!loc || (m.slam.refine && !refiner)) {
+            hl_refine_destroy(refiner);
+            hl_loc_destroy(loc);
             progress("table1: %s", hl_loc_params_error(&p) ? hl_loc_params_error(&p) : "no memory");
             return rows;
         }
@@ -149,7 +160,7 @@ std::vector<Table1Row> run_table1(const Soundings &lab, const Mode &m, const Con
                         if (j != i)
                             others.insert(others.end(), per[j].begin(), per[j].end());
                     Trial t;
-                    if (!localize(loc, m, sample(others, f, &rng), *lab[i], &rng, &t)) {
+                    if (!localize(loc, refiner, m, sample(others, f, &rng), *lab[i], &rng, &t)) {
                         row.trials++;
                         row.wild++;     // no answer counts as a wild error
                         continue;
@@ -168,6 +179,7 @@ std::vector<Table1Row> run_table1(const Soundings &lab, const Mode &m, const Con
                      row.tame_mean_mm, row.tame_sigma_mm, row.trials);
             rows.push_back(row);
         }
+        hl_refine_destroy(refiner);
         hl_loc_destroy(loc);
     }
     if (ctx.figures && m.name == "improved")

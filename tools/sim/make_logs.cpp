@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <sys/stat.h>
 
@@ -236,6 +237,12 @@ int main(int argc, char **argv)
                          p.name.c_str(), kMinClearance);
             return 1;
         }
+    std::error_code ec;
+    std::filesystem::create_directories(o.out_dir, ec);   // like mkdir -p
+    if (ec) {
+        std::fprintf(stderr, "hl-sim-logs: %s: %s\n", o.out_dir.c_str(), ec.message().c_str());
+        return 1;
+    }
     bool ok = lab28(w, o, o.out_dir + "/lab28.lcmlog") &&
               orientation(w, o, o.out_dir + "/orientation.lcmlog") &&
               tour(w, o, o.out_dir + "/tour.lcmlog");

@@ -1,0 +1,145 @@
+/* echo.c - estimating each reading's echo bearing within its beam (see echo.h). */
+#include "houghloc/echo.h"
+
+#include <stdlib.h>
+
+void hl_echo_params_default(hl_echo_params_t *p)
+{
+    p->half_beam = hl_bam_from_deg(11.0);
+    p->step = hl_bam_from_deg(0.5);
+    p->noise_mm = 10;
+    p->noise_permille = 10;
+    p->cap_q8 = 8 * 256;
+    p->tie_q8 = 128;
+}
+
+static uint32_t candidates(const hl_echo_params_t *p)
+{
+    return 2u * p->half_beam / p->step + 1;
+}
+
+const char *hl_echo_params_error(const hl_echo_params_t *p)
+{
+    if (!p)
+        return "no echo parameters";
+    if (p->half_beam < hl_bam_from_deg(1.0) || p->half_beam > hl_bam_from_deg(45.0))
+        return "echo half_beam must be in 1..45 degrees";
+    if (p->step < 1 || candidates(p) > HL_ECHO_MAX_CANDIDATES)
+        return "echo step must be positive and give at most 257 candidate bearings";
+    if (p->noise_mm < 1)
+        return "echo noise_mm must be at least 1";
+    return NULL;
+}
+
+/* Valid readings' indices in bearing order: key = bearing << 16 | index. */
+static int by_key(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* How strongly reading k, longer than r_i, contradicts an echo at r_i inside its cone:
+ * ((r_k - r_i) / sigma_k)^2 / 2 in Q8, capped. */
+static uint32_t contradiction(const hl_echo_params_t *p, int32_t r_i, int32_t r_k)
+{
+    int64_t excess = (int64_t)r_k - r_i;
+    if (excess <= 0)
+        return 0;
+    int64_t sigma = p->noise_mm + (int64_t)r_k * p->noise_permille / 1000;
+    int64_t q8 = excess * excess * 128 / (sigma * sigma);
+    return q8 > p->cap_q8 ? p->cap_q8 : (uint32_t)q8;
+}
+
+/* Adds reading k's contradiction to the candidates its cone covers. Candidate s of
+ * reading i lies at b_i - h + s * step; it is inside k's cone when
+ * |b_i - h + s * step - b_k| <= h, i.e. d <= s * step <= d + 2h with d = b_k - b_i. */
+static void add_neighbour(const hl_echo_params_t *p, int32_t d, uint32_t penalty,
+                          uint32_t *score, int32_t n)
+{
+    int32_t lo = d <= 0 ? 0 : (d + p->step - 1) / p->step;
+    int32_t top = d + 2 * (int32_t)p->half_beam;
+    if (top < 0)
+        return;
+    int32_t hi = top / p->step;
+    if (hi > n - 1)
+        hi = n - 1;
+    for (int32_t s = lo; s <= hi; s++)
+        score[s] += penalty;
+}
+
+/* The middle of the least contradicted candidates. (On a flank the echo is at the edge
+ * of the least contradicted span, not its middle, but taking the edge there did worse on
+ * noisy soundings: docs/experiments.md.) */
+static int32_t best_candidate(const hl_echo_params_t *p, const uint32_t *score, int32_t n)
+{
+    uint32_t least = score[0];
+    for (int32_t s = 1; s < n; s++)
+        least = score[s] < least ? score[s] : least;
+    int32_t first = -1, last = -1;
+    for (int32_t s = 0; s < n; s++) {
+        if (score[s] <= least + p->tie_q8) {
+            if (first < 0)
+                first = s;
+            last = s;
+        }
+    }
+    return (first + last) / 2;
+}
+
+hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_scan_t *out)
+{
+    if (!in || !out || in == out || hl_echo_params_error(p))
+        return HL_ERR_ARG;
+    if (hl_scan_check(in) != HL_OK)
+        return HL_ERR_RANGE;
+    uint32_t order[HL_SCAN_MAX_READINGS];
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < in->count; i++)
+        if (in->readings[i].valid)
+            order[n++] = (uint32_t)in->readings[i].bearing << 16 | i;
+    qsort(order, n, sizeof order[0], by_key);
+
+    /* An isolated spike, longer than both its ring neighbours by more than three sigma,
+     * is a bounced echo (the neighbours' cones overlap most of its own): it contradicts
+     * nothing. */
+    bool spike[HL_SCAN_MAX_READINGS] = { false };
+    for (uint32_t a = 0; n >= 3 && a < n; a++) {
+        int32_t r = in->readings[order[a] & 0xFFFF].range_mm;
+        int32_t l = in->readings[order[(a + n - 1) % n] & 0xFFFF].range_mm;
+        int32_t h = in->readings[order[(a + 1) % n] & 0xFFFF].range_mm;
+        int32_t longest = l > h ? l : h;
+        spike[a] = r - longest > 3 * (p->noise_mm + (int64_t)r * p->noise_permille / 1000);
+    }
+
+    *out = *in;
+    const int32_t ncand = (int32_t)candidates(p), reach = 2 * (int32_t)p->half_beam;
+    uint32_t score[HL_ECHO_MAX_CANDIDATES];
+    for (uint32_t a = 0; a < n; a++) {
+        const hl_reading_t *ri = &in->readings[order[a] & 0xFFFF];
+        for (int32_t s = 0; s < ncand; s++)
+            score[s] = 0;
+        /* Neighbours in bearing order, first backwards round the ring, then forwards
+         * over the ones the backward walk did not reach, while within two half-cones. */
+        uint32_t back = 0;
+        for (uint32_t step = 1; step < n; step++, back++) {
+            const hl_reading_t *rk = &in->readings[order[(a + n - step) % n] & 0xFFFF];
+            int32_t d = hl_bam_diff(rk->bearing, ri->bearing);
+            if (d > 0 || d < -reach)
+                break;
+            if (!spike[(a + n - step) % n])
+                add_neighbour(p, d, contradiction(p, ri->range_mm, rk->range_mm), score, ncand);
+        }
+        for (uint32_t step = 1; step + back < n; step++) {
+            const hl_reading_t *rk = &in->readings[order[(a + step) % n] & 0xFFFF];
+            int32_t d = hl_bam_diff(rk->bearing, ri->bearing);
+            if (d < 0 || d > reach)
+                break;
+            if (!spike[(a + step) % n])
+                add_neighbour(p, d, contradiction(p, ri->range_mm, rk->range_mm), score, ncand);
+        }
+        int32_t pick = best_candidate(p, score, ncand);
+        out->readings[order[a] & 0xFFFF].bearing =
+            (hl_bam_t)(ri->bearing - p->half_beam + pick * p->step);
+    }
+    return HL_OK;
+}
