@@ -38,7 +38,8 @@ check "table1.tsv has 12 rows" test "$(tail -n +2 "$tmp/exp/table1.tsv" | wc -l)
 check "table1.tsv header" grep -q "^mode	fraction	raster_mm	trials	wild	wild_pct	tame_mean_mm	tame_sigma_mm$" "$tmp/exp/table1.tsv"
 check "orientation.tsv has both modes" test "$(cut -f1 "$tmp/exp/orientation.tsv" | tr '\n' ' ')" = "mode paper improved "
 check "combined.tsv has paper, odometry, improved" test "$(cut -f1 "$tmp/exp/combined.tsv" | tr '\n' ' ')" = "mode paper odometry improved "
-check "results.md names the three experiments" test "$(grep -c '^## ' "$tmp/exp/results.md")" -eq 3
+check "results.md names the three experiments and the limits" test "$(grep -c '^## ' "$tmp/exp/results.md")" -eq 4
+check "limits.tsv has its six rows" test "$(tail -n +2 "$tmp/exp/limits.tsv" | wc -l)" -eq 6
 check "progress goes to stderr" grep -q "^table1: " "$tmp/progress"
 
 # The benchmark's lines parse (values are not judged here: that is `make bench`).
@@ -56,9 +57,14 @@ head -c 20000 /dev/urandom >"$tmp/garbage/lab28.lcmlog"
 rejects "random bytes as a log" "lab28.lcmlog" "$BIN/hl-experiments" --logs "$tmp/garbage" --only table1 --out "$tmp/x" --no-figures
 rejects "bad --reps" "--reps" "$BIN/hl-experiments" --reps 0
 rejects "bad --set" "unknown parameter" "$BIN/hl-experiments" --set improved.nonsense=1
+rejects "bad --only" "--only" "$BIN/hl-experiments" --only nonsense
+mkdir -p "$tmp/made"
+"$BIN/hl-sim-logs" --seed 3 --out-dir "$tmp/made/deeper/logs" >/dev/null
+check "hl-sim-logs creates its output folder" test -s "$tmp/made/deeper/logs/tour.lcmlog"
 rejects "bad bench runs" "usage" "$BIN/hl-bench" -5
 printf 'segment 0 0 1000\n' >"$tmp/bad.world"
 rejects "bad world file" "bad.world:1" "$BIN/hl-sim-logs" --world "$tmp/bad.world" --out-dir "$tmp/w"
+rejects "bad limits world" "bad.world:1" "$BIN/hl-experiments" --only limits --world "$tmp/bad.world" --out "$tmp/x"
 printf '1000 935\n2000 abc\n' >"$tmp/bad.pairs"
 rejects "bad calibration pairs" "bad.pairs:2" "$BIN/hl-calibrate" "$tmp/bad.pairs"
 

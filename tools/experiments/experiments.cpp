@@ -1,6 +1,7 @@
 // hl-experiments - reruns the paper's three experiments on the simulated data sets, in
 // "paper" and "improved" modes, and writes results.md, table1.tsv, orientation.tsv,
-// combined.tsv and the figures into one folder.
+// combined.tsv, limits.tsv (what the simulated sonar allows) and the figures into one
+// folder.
 #include <getopt.h>
 #include <sys/stat.h>
 
@@ -10,7 +11,9 @@
 #include <cstring>
 #include <string>
 
+#include "../sim/world.hpp"
 #include "experiment.hpp"
+#include "limits.hpp"
 #include "overrides.hpp"
 #include "report.hpp"
 
@@ -27,7 +30,9 @@ void usage(FILE *to)
         "                      (default: logs)\n"
         "  -o, --out DIR       where results and figures go (default: build/experiments)\n"
         "  -r, --reps N        Table 1: random map subsets per setting, 1..100 (default 8)\n"
-        "  -x, --only NAME     run one experiment: table1, orientation or combined\n"
+        "  -x, --only NAME     run one experiment: table1, orientation, combined or limits\n"
+        "  -w, --world FILE    limits: the world the logs were simulated in (default: the\n"
+        "                      built-in lab, as `make logs` uses)\n"
         "  -s, --set M.NAME=V  change one parameter of mode M (paper or improved); repeat\n"
         "                      as needed. NAME is one of:\n%s\n"
         "      --no-figures    skip the PNG figures\n"
@@ -52,15 +57,16 @@ int main(int argc, char **argv)
     hlexp::Context ctx;
     hlexp::Mode paper = hlexp::paper_mode(), improved = hlexp::improved_mode();
     ctx.out_dir = "build/experiments";
-    std::string logs = "logs", only;
+    std::string logs = "logs", only, world_path;
     const struct option opts[] = {
         { "logs", required_argument, nullptr, 'l' }, { "out", required_argument, nullptr, 'o' },
         { "reps", required_argument, nullptr, 'r' }, { "only", required_argument, nullptr, 'x' },
+        { "world", required_argument, nullptr, 'w' },
         { "set", required_argument, nullptr, 's' }, { "no-figures", no_argument, nullptr, 'F' }, { "help", no_argument, nullptr, 'h' },
         { nullptr, 0, nullptr, 0 },
     };
     int c;
-    while ((c = getopt_long(argc, argv, "l:o:r:x:s:h", opts, nullptr)) != -1) {
+    while ((c = getopt_long(argc, argv, "l:o:r:x:w:s:h", opts, nullptr)) != -1) {
         switch (c) {
         case 'l': logs = optarg; break;
         case 'o': ctx.out_dir = optarg; break;
@@ -77,8 +83,8 @@ int main(int argc, char **argv)
         }
         case 'x':
             only = optarg;
-            if (only != "table1" && only != "orientation" && only != "combined") {
-                std::fprintf(stderr, "hl-experiments: --only takes table1, orientation or combined, not '%s'\n", optarg);
+            if (only != "table1" && only != "orientation" && only != "combined" && only != "limits") {
+                std::fprintf(stderr, "hl-experiments: --only takes table1, orientation, combined or limits, not '%s'\n", optarg);
                 return 2;
             }
             break;
@@ -90,6 +96,7 @@ int main(int argc, char **argv)
             }
             break;
         }
+        case 'w': world_path = optarg; break;
         case 'F': ctx.figures = false; break;
         case 'h': usage(stdout); return 0;
         default: usage(stderr); return 2;
@@ -115,34 +122,36 @@ int main(int argc, char **argv)
         }
     }
     const hlexp::Mode modes[] = { paper, improved };
+    auto want = [&](const char *name) { return only.empty() || only == name; };
+    hlsim::World world;
+    std::string err;
+    if (want("limits") && !hlsim::World::load_or_lab(world_path, &world, &err)) {
+        std::fprintf(stderr, "hl-experiments: %s\n", err.c_str());
+        return 1;
+    }
+    hlexp::Soundings lab, orientation, tour;
+    if (((want("table1") || want("limits")) && !load(logs + "/lab28.lcmlog", &lab)) ||
+        ((want("orientation") || want("limits")) &&
+         !load(logs + "/orientation.lcmlog", &orientation)) ||
+        ((want("combined") || want("limits")) && !load(logs + "/tour.lcmlog", &tour)))
+        return 1;
     hlexp::Results res;
-    if (only.empty() || only == "table1") {
-        hlexp::Soundings lab;
-        if (!load(logs + "/lab28.lcmlog", &lab))
-            return 1;
+    if (want("table1"))
         for (const auto &m : modes) {
             auto rows = hlexp::run_table1(lab, m, ctx);
             res.table1.insert(res.table1.end(), rows.begin(), rows.end());
         }
-    }
-    if (only.empty() || only == "orientation") {
-        hlexp::Soundings log;
-        if (!load(logs + "/orientation.lcmlog", &log))
-            return 1;
+    if (want("orientation"))
         for (const auto &m : modes)
-            res.orientation.push_back(hlexp::run_orientation(log, m, ctx));
-    }
-    if (only.empty() || only == "combined") {
-        hlexp::Soundings tour;
-        if (!load(logs + "/tour.lcmlog", &tour))
-            return 1;
+            res.orientation.push_back(hlexp::run_orientation(orientation, m, ctx));
+    if (want("combined"))
         for (const auto &m : modes) {
             auto rows = hlexp::run_combined(tour, m, ctx, &m == &modes[0]);
             res.combined.insert(res.combined.end(), rows.begin(), rows.end());
         }
-    }
+    if (want("limits"))
+        res.limits = hlexp::run_limits({ &lab, &orientation, &tour }, world, improved, ctx);
     res.reps = ctx.reps;
-    std::string err;
     if (!hlexp::write_results(ctx.out_dir, res, &err)) {
         std::fprintf(stderr, "hl-experiments: %s\n", err.c_str());
         return 1;

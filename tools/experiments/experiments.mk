@@ -7,12 +7,12 @@ EXP_SRCS := tools/experiments/experiments.cpp tools/experiments/dataset.cpp \
             tools/experiments/modes.cpp tools/experiments/table1.cpp \
             tools/experiments/orientation.cpp tools/experiments/combined.cpp \
             tools/experiments/figures.cpp tools/experiments/report.cpp \
-            tools/experiments/overrides.cpp
+            tools/experiments/overrides.cpp tools/experiments/limits.cpp
 
 BINS += $(BUILD)/bin/hl-experiments
 
-# render.mk is read after this file, so name its library by path.
-$(BUILD)/bin/hl-experiments: $(call obj,$(EXP_SRCS)) $(BUILD)/lib/libhoughloc_render.a $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+# render.mk and sim.mk are read after this file, so name their libraries by path.
+$(BUILD)/bin/hl-experiments: $(call obj,$(EXP_SRCS)) $(BUILD)/lib/libhoughloc_render.a $(BUILD)/lib/libhoughloc_sim.a $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $^ $(CAIRO_LIBS) $(PKG_LIBS) -lm

@@ -2,6 +2,7 @@
 #include "report.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
@@ -55,6 +56,16 @@ private:
     std::string *err_;
 };
 
+// A number with @p decimals and @p unit, or @p none when it is NaN (not measured).
+std::string cell(double v, int decimals, const char *unit = "", const char *none = "")
+{
+    if (std::isnan(v))
+        return none;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f%s", decimals, v, unit);
+    return buf;
+}
+
 double pct(int n, int of)
 {
     return of ? 100.0 * n / of : 0.0;
@@ -98,6 +109,14 @@ bool write_tsvs(const std::string &dir, const Results &r, std::string *err)
                          std::fprintf(f, "%s\t%d\t%d\t%d\t%d\t%.1f\t%.1f\t%.1f\n",
                                       c.mode.c_str(), c.stops, c.accepted, c.rejected,
                                       c.wild_accepted, c.rmse_mm, c.max_mm, c.final_mm);
+                     }, err) &&
+           write_tsv(dir + "/limits.tsv",
+                     "what\ttrials\twild\tposition_mm\theading_mean_deg\theading_sigma_deg",
+                     r.limits, [](FILE *f, const LimitsRow &l) {
+                         std::fprintf(f, "%s\t%d\t%d\t%s\t%s\t%s\n", l.what.c_str(), l.trials,
+                                      l.wild, cell(l.pos_mean_mm, 1).c_str(),
+                                      cell(l.heading_mean_deg, 3).c_str(),
+                                      cell(l.heading_sigma_deg, 3).c_str());
                      }, err);
 }
 
@@ -165,6 +184,26 @@ void markdown_combined(FILE *f, const Results &r)
     std::fprintf(f, "\n");
 }
 
+void markdown_limits(FILE *f, const Results &r)
+{
+    std::fprintf(f, "## 4. What the simulated sonar allows\n\n"
+                    "Two oracles that use the simulator's own world and physics, which no robot "
+                    "has (`tools/experiments/limits.hpp`): the exact first-echo model fitted to "
+                    "each sounding near its true pose (the floor set by range noise, the body "
+                    "rotation error and the ring's sampling), and the improved mode's own "
+                    "experiments with every reading moved to the bearing its echo really came "
+                    "from (what perfect echo-bearing estimation would give). Position: the mean "
+                    "error of the non-wild trials, or the RMSE where the row says so.\n\n"
+                    "| oracle and experiment | trials | wild | position | heading mean | heading sigma |\n"
+                    "|---|---|---|---|---|---|\n");
+    for (const auto &l : r.limits)
+        std::fprintf(f, "| %s | %d | %d | %s | %s | %s |\n", l.what.c_str(), l.trials, l.wild,
+                     cell(l.pos_mean_mm, 0, " mm", "-").c_str(),
+                     cell(l.heading_mean_deg, 2, " deg", "-").c_str(),
+                     cell(l.heading_sigma_deg, 2, " deg", "-").c_str());
+    std::fprintf(f, "\n");
+}
+
 }  // namespace
 
 void progress(const char *fmt, ...)
@@ -193,6 +232,8 @@ bool write_results(const std::string &dir, const Results &r, std::string *err)
         markdown_orientation(f.get(), r);
     if (!r.combined.empty())
         markdown_combined(f.get(), r);
+    if (!r.limits.empty())
+        markdown_limits(f.get(), r);
     return f.close();
 }
 

@@ -1,5 +1,6 @@
 // report.hpp - writes the experiments' results: results.md (each table next to the
-// paper's figures) and machine-readable table1.tsv, orientation.tsv, combined.tsv.
+// paper's figures) and machine-readable table1.tsv, orientation.tsv, combined.tsv,
+// limits.tsv.
 #ifndef HLEXP_REPORT_HPP
 #define HLEXP_REPORT_HPP
 
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "experiment.hpp"
+#include "limits.hpp"
 
 namespace hlexp {
 
@@ -14,6 +16,7 @@ struct Results {
     std::vector<Table1Row> table1;
     std::vector<OrientationRow> orientation;
     std::vector<CombinedRow> combined;
+    std::vector<LimitsRow> limits;
     int reps = 0;
 };
 
