@@ -54,8 +54,9 @@ typedef struct hl_slam_params {
                                    (echo.h) before localizing and mapping; default true */
     hl_echo_params_t echo;
     bool refine;                /* polish the Hough pose (refine.h); default true */
-    bool refine_heading;        /* ... in heading too; default false: the heading stays
-                                   the Hough's */
+    bool refine_heading;        /* ... in heading too; default true (over 24 simulated
+                                   tours: RMSE 310 mm against 572 with the Hough's
+                                   heading, docs/experiments.md) */
     hl_refine_params_t refine_params;
 } hl_slam_params_t;
 

@@ -67,23 +67,46 @@ static void add_neighbour(const hl_echo_params_t *p, int32_t d, uint32_t penalty
         score[s] += penalty;
 }
 
-/* The middle of the least contradicted candidates. (On a flank the echo is at the edge
- * of the least contradicted span, not its middle, but taking the edge there did worse on
- * noisy soundings: docs/experiments.md.) */
-static int32_t best_candidate(const hl_echo_params_t *p, const uint32_t *score, int32_t n)
+/* The least contradicted candidates: the first and last within tie_q8 of the best. */
+static void least_contradicted(const hl_echo_params_t *p, const uint32_t *score, int32_t n,
+                               int32_t *first, int32_t *last)
 {
     uint32_t least = score[0];
     for (int32_t s = 1; s < n; s++)
         least = score[s] < least ? score[s] : least;
-    int32_t first = -1, last = -1;
+    *first = *last = -1;
     for (int32_t s = 0; s < n; s++) {
         if (score[s] <= least + p->tie_q8) {
-            if (first < 0)
-                first = s;
-            last = s;
+            if (*first < 0)
+                *first = s;
+            *last = s;
         }
     }
-    return (first + last) / 2;
+}
+
+/* The positions in @p order (valid readings by bearing) of reading a's neighbours within
+ * @p reach BAM: first backwards round the ring, then forwards over the ones the backward
+ * walk did not reach. @return how many. */
+static uint32_t neighbours(const hl_scan_t *in, const uint32_t *order, uint32_t n, uint32_t a,
+                           int32_t reach, uint32_t *out)
+{
+    hl_bam_t b = in->readings[order[a] & 0xFFFF].bearing;
+    uint32_t m = 0, back = 0;
+    for (uint32_t step = 1; step < n; step++, back++) {
+        uint32_t k = (a + n - step) % n;
+        int32_t d = hl_bam_diff(in->readings[order[k] & 0xFFFF].bearing, b);
+        if (d > 0 || d < -reach)
+            break;
+        out[m++] = k;
+    }
+    for (uint32_t step = 1; step + back < n; step++) {
+        uint32_t k = (a + step) % n;
+        int32_t d = hl_bam_diff(in->readings[order[k] & 0xFFFF].bearing, b);
+        if (d < 0 || d > reach)
+            break;
+        out[m++] = k;
+    }
+    return m;
 }
 
 hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_scan_t *out)
@@ -114,32 +137,25 @@ hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_s
     *out = *in;
     const int32_t ncand = (int32_t)candidates(p), reach = 2 * (int32_t)p->half_beam;
     uint32_t score[HL_ECHO_MAX_CANDIDATES];
+    uint32_t near[HL_SCAN_MAX_READINGS];
     for (uint32_t a = 0; a < n; a++) {
         const hl_reading_t *ri = &in->readings[order[a] & 0xFFFF];
         for (int32_t s = 0; s < ncand; s++)
             score[s] = 0;
-        /* Neighbours in bearing order, first backwards round the ring, then forwards
-         * over the ones the backward walk did not reach, while within two half-cones. */
-        uint32_t back = 0;
-        for (uint32_t step = 1; step < n; step++, back++) {
-            const hl_reading_t *rk = &in->readings[order[(a + n - step) % n] & 0xFFFF];
-            int32_t d = hl_bam_diff(rk->bearing, ri->bearing);
-            if (d > 0 || d < -reach)
-                break;
-            if (!spike[(a + n - step) % n])
-                add_neighbour(p, d, contradiction(p, ri->range_mm, rk->range_mm), score, ncand);
+        uint32_t m = neighbours(in, order, n, a, reach, near);
+        for (uint32_t k = 0; k < m; k++) {
+            const hl_reading_t *rk = &in->readings[order[near[k]] & 0xFFFF];
+            if (!spike[near[k]])
+                add_neighbour(p, hl_bam_diff(rk->bearing, ri->bearing),
+                              contradiction(p, ri->range_mm, rk->range_mm), score, ncand);
         }
-        for (uint32_t step = 1; step + back < n; step++) {
-            const hl_reading_t *rk = &in->readings[order[(a + step) % n] & 0xFFFF];
-            int32_t d = hl_bam_diff(rk->bearing, ri->bearing);
-            if (d < 0 || d > reach)
-                break;
-            if (!spike[(a + step) % n])
-                add_neighbour(p, d, contradiction(p, ri->range_mm, rk->range_mm), score, ncand);
-        }
-        int32_t pick = best_candidate(p, score, ncand);
+        int32_t first, last;
+        least_contradicted(p, score, ncand, &first, &last);
+        /* The middle of the least contradicted bearings. On a flank the echo is at the
+         * span's outer edge, not its middle, but taking the edge when the span touches
+         * one end of the cone did worse on noisy soundings (docs/experiments.md). */
         out->readings[order[a] & 0xFFFF].bearing =
-            (hl_bam_t)(ri->bearing - p->half_beam + pick * p->step);
+            (hl_bam_t)(ri->bearing - p->half_beam + (first + last) * p->step / 2);
     }
     return HL_OK;
 }

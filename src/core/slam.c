@@ -32,7 +32,7 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->echo_bearings = true;
     hl_echo_params_default(&p->echo);
     p->refine = true;
-    p->refine_heading = false;
+    p->refine_heading = true;
     hl_refine_params_default(&p->refine_params);
 }
 
