@@ -10,7 +10,7 @@ trap 'rm -rf "$tmp"' EXIT
 
 row() {   # row LABEL ARGS...
     label=$1; shift
-    "$bin" --logs "$logs" --out "$tmp" --no-figures "$@" 2>/dev/null
+    "$bin" --logs "$logs" --out "$tmp" --no-figures --only table1,orientation,combined "$@" 2>/dev/null
     t1=$(awk -F'\t' '$1=="improved" && $3==24 && $2=="3/16" {printf "%s %% / %s mm", $6, $7}' "$tmp/table1.tsv")
     or=$(awk -F'\t' '$1=="improved" {printf "%s / %s deg", $3, $4}' "$tmp/orientation.tsv")
     co=$(awk -F'\t' '$1=="improved" {printf "%s / %s mm, %s wild", $6, $7, $5}' "$tmp/combined.tsv")
@@ -20,6 +20,10 @@ row() {   # row LABEL ARGS...
 echo "| variant | Table 1, 24 mm, 3/16: wild / tame mean | orientation: mean / sigma | combined: RMSE / max, wild accepted |"
 echo "|---|---|---|---|"
 row "improved (all changes)"
+row "without echo-bearing estimation (readings on their beam axes)" --set improved.echo_bearings=0
+row "without refinement (the Hough pose)" --set improved.refine=0
+row "refinement of x and y only (the Hough's heading)" --set improved.refine_heading=0
+row "blur 36 mm (the previous default) instead of 60" --set improved.blur_sigma_mm=36
 row "without sub-cell interpolation" --set improved.interpolate=0
 row "without the odometry prior (Table 1: no prior estimate, so a global search)" --set improved.use_prior=0 --set improved.table1_prior_sigma_mm=0
 row "without the guard (accept every pose)" --set improved.guarded=0

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <algorithm>
+#include <set>
 #include <string>
 
 #include "../sim/world.hpp"
@@ -30,7 +32,8 @@ void usage(FILE *to)
         "                      (default: logs)\n"
         "  -o, --out DIR       where results and figures go (default: build/experiments)\n"
         "  -r, --reps N        Table 1: random map subsets per setting, 1..100 (default 8)\n"
-        "  -x, --only NAME     run one experiment: table1, orientation, combined or limits\n"
+        "  -x, --only NAMES    run only these, comma-separated: table1, orientation,\n"
+        "                      combined, limits\n"
         "  -w, --world FILE    limits: the world the logs were simulated in (default: the\n"
         "                      built-in lab, as `make logs` uses)\n"
         "  -s, --set M.NAME=V  change one parameter of mode M (paper or improved); repeat\n"
@@ -57,7 +60,8 @@ int main(int argc, char **argv)
     hlexp::Context ctx;
     hlexp::Mode paper = hlexp::paper_mode(), improved = hlexp::improved_mode();
     ctx.out_dir = "build/experiments";
-    std::string logs = "logs", only, world_path;
+    std::string logs = "logs", world_path;
+    std::set<std::string> only;     // empty: all
     const struct option opts[] = {
         { "logs", required_argument, nullptr, 'l' }, { "out", required_argument, nullptr, 'o' },
         { "reps", required_argument, nullptr, 'r' }, { "only", required_argument, nullptr, 'x' },
@@ -81,13 +85,22 @@ int main(int argc, char **argv)
             ctx.reps = static_cast<int>(v);
             break;
         }
-        case 'x':
-            only = optarg;
-            if (only != "table1" && only != "orientation" && only != "combined" && only != "limits") {
-                std::fprintf(stderr, "hl-experiments: --only takes table1, orientation, combined or limits, not '%s'\n", optarg);
-                return 2;
+        case 'x': {
+            // a comma-separated list of experiment names
+            std::string list = optarg;
+            for (size_t at = 0; at <= list.size();) {
+                size_t comma = std::min(list.find(',', at), list.size());
+                std::string name = list.substr(at, comma - at);
+                if (name != "table1" && name != "orientation" && name != "combined" &&
+                    name != "limits") {
+                    std::fprintf(stderr, "hl-experiments: --only takes table1, orientation, combined or limits, not '%s'\n", name.c_str());
+                    return 2;
+                }
+                only.insert(name);
+                at = comma + 1;
             }
             break;
+        }
         case 's': {
             std::string err;
             if (!hlexp::apply_override(optarg, &paper, &improved, &err)) {
@@ -122,7 +135,7 @@ int main(int argc, char **argv)
         }
     }
     const hlexp::Mode modes[] = { paper, improved };
-    auto want = [&](const char *name) { return only.empty() || only == name; };
+    auto want = [&](const char *name) { return only.empty() || only.count(name) > 0; };
     hlsim::World world;
     std::string err;
     if (want("limits") && !hlsim::World::load_or_lab(world_path, &world, &err)) {
