@@ -100,7 +100,8 @@ void draw_figures(const Soundings &lab, const std::vector<std::vector<hl_vector_
     }
     save_map_figure(ctx, "fig3_known_map.png", all, where,
                     "Known map: " + std::to_string(all.size()) + " valid readings from " +
-                        std::to_string(lab.size()) + " positions");
+                        std::to_string(lab.size()) + " positions" +
+                        (m.slam.echo_bearings ? ", at their estimated echo bearings" : ""));
 
     // Figs. 4 and 5, as in the paper: a global search over the map (3/16 of it, 24 mm
     // raster, heading known) and, like its Fig. 5, a successful one: the first sounding
