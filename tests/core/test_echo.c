@@ -84,20 +84,26 @@ static void check_wall(const hl_echo_params_t *p, const hl_scan_t *in, const hl_
     }
 }
 
-static void test_wall_plateau_and_flanks(void **state)
+/* Estimates a noiseless wall's ring and checks it (check_wall). */
+static void run_wall(double normal_deg, double d_mm)
 {
-    (void)state;
     hl_echo_params_t p;
     hl_echo_params_default(&p);
     hl_scan_t *in = malloc(sizeof *in), *out = malloc(sizeof *out);
-    make_wall_ring(in, 47.0, 2500.0);
+    make_wall_ring(in, normal_deg, d_mm);
     assert_int_equal(hl_echo_correct(&p, in, out), HL_OK);
     int near_foot, steep;
-    check_wall(&p, in, out, 47.0, &near_foot, &steep);
+    check_wall(&p, in, out, normal_deg, &near_foot, &steep);
     assert_true(near_foot >= 2);
     assert_true(steep >= 6);    /* three or four per flank, from about 27 deg of incidence */
     free(in);
     free(out);
+}
+
+static void test_wall_plateau_and_flanks(void **state)
+{
+    (void)state;
+    run_wall(47.0, 2500.0);
 }
 
 /* In a round room centred on the robot no reading contradicts another: all stay put. */
@@ -146,17 +152,7 @@ static void test_bounced_reading_is_capped(void **state)
 static void test_wraps_through_zero(void **state)
 {
     (void)state;
-    hl_echo_params_t p;
-    hl_echo_params_default(&p);
-    hl_scan_t *in = malloc(sizeof *in), *out = malloc(sizeof *out);
-    make_wall_ring(in, 0.0, 1800.0);
-    assert_int_equal(hl_echo_correct(&p, in, out), HL_OK);
-    int near_foot, steep;
-    check_wall(&p, in, out, 0.0, &near_foot, &steep);
-    assert_true(near_foot >= 2);
-    assert_true(steep >= 6);    /* three or four per flank, from about 27 deg of incidence */
-    free(in);
-    free(out);
+    run_wall(0.0, 1800.0);
 }
 
 /* Hostile scans: every reading on one bearing, random ranges, empty and all-invalid
