@@ -143,6 +143,49 @@ static void test_wild_jump_is_rejected(void **state)
     free(w);
 }
 
+/* hl_slam_localize answers near the truth, twice the same, and changes nothing: the
+ * map's version stays, and the cycle then proceeds normally. With and without
+ * refinement. */
+static void test_localize_changes_nothing(void **state)
+{
+    (void)state;
+    walk_t *w = make_walk(8);
+    for (int refine = 0; refine <= 1; refine++) {
+        hl_slam_params_t p;
+        ray_sensor_defaults(&p);
+        p.refine = refine;
+        hl_slam_t *s = hl_slam_create(&p);
+        hl_slam_reset(s, w->truth[0]);
+        hl_scan_t *scan = malloc(sizeof *scan);
+        hl_slam_step_t out;
+        for (int i = 0; i < 5; i++) {
+            sr_sound(&w->room, w->truth[i], 128, 8000, 15, scan);
+            assert_int_equal(hl_slam_update(s, scan, w->truth[i], &out), HL_OK);
+        }
+        uint32_t version = hl_map_version(hl_slam_map(s));
+        sr_sound(&w->room, w->truth[5], 128, 8000, 15, scan);
+        hl_pose_t guess = w->truth[5];
+        guess.x_mm += 120;
+        hl_loc_result_t r;
+        hl_pose_t found, again;
+        assert_int_equal(hl_slam_localize(s, scan, guess, &r, &found), HL_OK);
+        assert_int_equal(hl_slam_localize(s, scan, guess, &r, &again), HL_OK);
+        assert_memory_equal(&found, &again, sizeof found);
+        assert_true(dist(found, w->truth[5]) < 60.0);
+        assert_int_equal(hl_map_version(hl_slam_map(s)), version);
+        /* the cycle itself then proceeds as if nothing had been asked */
+        assert_int_equal(hl_slam_update(s, scan, w->truth[5], &out), HL_OK);
+        assert_int_equal(out.status, HL_SLAM_ACCEPTED);
+        assert_true(dist(out.pose, w->truth[5]) < 60.0);
+        assert_int_equal(hl_slam_localize(NULL, scan, guess, &r, &found), HL_ERR_ARG);
+        hl_pose_t outside = { HL_COORD_MAX_MM + 1, 0, 0 };
+        assert_int_equal(hl_slam_localize(s, scan, outside, &r, &found), HL_ERR_RANGE);
+        free(scan);
+        hl_slam_destroy(s);
+    }
+    free(w);
+}
+
 static void test_params_and_inputs_validated(void **state)
 {
     (void)state;
@@ -159,6 +202,15 @@ static void test_params_and_inputs_validated(void **state)
     hl_slam_params_default(&p);
     p.min_confidence = 2;
     assert_non_null(hl_slam_params_error(&p));
+    hl_slam_params_default(&p);
+    p.echo.half_beam = 0;
+    assert_non_null(hl_slam_params_error(&p));
+    p.echo_bearings = false;    /* not used, not checked */
+    assert_null(hl_slam_params_error(&p));
+    hl_slam_params_default(&p);
+    p.refine_params.match_mm = 0;
+    assert_non_null(hl_slam_params_error(&p));
+    assert_null(hl_slam_create(&p));
 
     hl_slam_params_default(&p);
     hl_slam_t *s = hl_slam_create(&p);
@@ -186,6 +238,7 @@ int main(void)
         cmocka_unit_test(test_guarded_walk_beats_odometry),
         cmocka_unit_test(test_paper_mode_accepts_everything),
         cmocka_unit_test(test_wild_jump_is_rejected),
+        cmocka_unit_test(test_localize_changes_nothing),
         cmocka_unit_test(test_params_and_inputs_validated),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
