@@ -316,7 +316,7 @@ hl_status_t hl_refine_run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
     for (uint16_t it = 0; it < r->p.iterations; it++) {
         double step[3];
         matched = gauss_newton_step(r, map, scan, pose, dim, step);
-        if (matched == 0)
+        if (matched == 0 || !isfinite(step[0]) || !isfinite(step[1]) || !isfinite(step[2]))
             return HL_ERR_EMPTY;
         pose[0] += step[0];
         pose[1] += step[1];
@@ -326,7 +326,7 @@ hl_status_t hl_refine_run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
     }
     double dx = pose[0] - start.x_mm, dy = pose[1] - start.y_mm;
     double turn = remainder(pose[2] - th0, TWO_PI);
-    if (matched < r->p.min_matches || !isfinite(dx) || !isfinite(dy) ||
+    if (matched < r->p.min_matches || !isfinite(dx) || !isfinite(dy) || !isfinite(turn) ||
         dx * dx + dy * dy > (double)r->p.max_shift_mm * r->p.max_shift_mm ||
         fabs(turn) > hl_bam_to_rad(r->p.max_turn))
         return HL_ERR_EMPTY;
