@@ -13,6 +13,11 @@
  *              proposal for eliminating wild errors). The recent-peak average follows
  *              every localization, accepted or not, so entering poorly mapped space
  *              only rejects the first scan or two there.
+ *
+ * Around the vote, in either mode when the parameters ask (the defaults do): each scan's
+ * readings are moved to their estimated echo bearings first (echo.h; for a sonar cone,
+ * off for a thin beam), and the Hough pose is polished by refinement after (refine.h).
+ * The scan added to the map is the echo-placed one.
  */
 #ifndef HOUGHLOC_SLAM_H
 #define HOUGHLOC_SLAM_H
