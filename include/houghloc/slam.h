@@ -102,7 +102,6 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
 hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
                              hl_loc_result_t *loc, hl_pose_t *pose);
 hl_map_t *hl_slam_map(hl_slam_t *s);
-hl_localizer_t *hl_slam_localizer(hl_slam_t *s);
 
 #ifdef __cplusplus
 }

@@ -208,8 +208,3 @@ hl_map_t *hl_slam_map(hl_slam_t *s)
 {
     return s->map;
 }
-
-hl_localizer_t *hl_slam_localizer(hl_slam_t *s)
-{
-    return s->loc;
-}
