@@ -42,6 +42,10 @@ check "results.md names the three experiments and the limits" test "$(grep -c '^
 check "limits.tsv has its six rows" test "$(tail -n +2 "$tmp/exp/limits.tsv" | wc -l)" -eq 6
 check "progress goes to stderr" grep -q "^table1: " "$tmp/progress"
 
+# The multi-seed summary runs and prints its orientation line.
+BUILD=${BUILD:-build} sh tools/experiments/seeds.sh 2 --only orientation >"$tmp/seeds"
+check "seeds.sh summarises two seeds" grep -q "^orientation, 2 seeds: mean |bias| [0-9.]* deg, sigma [0-9.]* deg$" "$tmp/seeds"
+
 # The benchmark's lines parse (values are not judged here: that is `make bench`).
 "$BIN/hl-bench" 3 >"$tmp/bench"
 check "hl-bench prints three parseable lines" test "$(grep -cE '^bench w[123]_[a-z0-9_]+ median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench")" -eq 3
