@@ -4,7 +4,8 @@
 # means that docs/experiments.md quotes.
 #   sh tools/experiments/seeds.sh [N [HL-EXPERIMENTS ARGS...]]      (after `make`)
 #   sh tools/experiments/seeds.sh 24 --only combined --set improved.refine_heading=0
-# Default: N = 12, all experiments except limits. Two runs at a time.
+# Default: N = 12, all experiments except limits (add `--only limits` for the oracles'
+# floors). Two runs at a time.
 set -eu
 n=${1:-12}
 [ $# -gt 0 ] && shift
@@ -45,3 +46,14 @@ cat "$tmp"/out*/table1.tsv 2>/dev/null | awk -F'\t' '
 cat "$tmp"/out*/orientation.tsv 2>/dev/null | awk -F'\t' '
     $1 == "improved" { a += ($3 < 0 ? -$3 : $3); s += $4; k++ }
     END { if (k) printf "orientation, %d seeds: mean |bias| %.2f deg, sigma %.2f deg\n", k, a / k, s / k }'
+cat "$tmp"/out*/limits.tsv 2>/dev/null | awk -F'\t' '
+    $1 == "what" { next }
+    { k = $1; if (!(k in n)) order[++rows] = k
+      n[k]++; t[k] += $2; w[k] += $3; p[k] += $4; m[k] += ($5 < 0 ? -$5 : $5); s[k] += $6
+      if ($4 > worst[k]) worst[k] = $4
+      if (!(k in best) || $4 < best[k]) best[k] = $4 }
+    END { for (i = 1; i <= rows; i++) { k = order[i]
+              printf "limits, %d seeds: %s: wild %.1f %%", n[k], k, 100 * w[k] / t[k]
+              if (p[k] > 0) printf ", position %.1f mm (seeds %.1f to %.1f)", p[k] / n[k], best[k], worst[k]
+              if (s[k] > 0) printf ", heading |bias| %.2f deg, sigma %.2f deg", m[k] / n[k], s[k] / n[k]
+              printf "\n" } }'
