@@ -65,6 +65,11 @@ rejects "bad --only" "--only" "$BIN/hl-experiments" --only nonsense
 mkdir -p "$tmp/made"
 "$BIN/hl-sim-logs" --seed 3 --out-dir "$tmp/made/deeper/logs" >/dev/null
 check "hl-sim-logs creates its output folder" test -s "$tmp/made/deeper/logs/tour.lcmlog"
+"$BIN/hl-sim-logs" --rotation-sigma-deg 0.3 --out-dir "$tmp/rot_default" >/dev/null
+check "--rotation-sigma-deg 0.3 is the default" cmp -s "$tmp/rot_default/lab28.lcmlog" logs/lab28.lcmlog
+"$BIN/hl-sim-logs" --rotation-sigma-deg 0 --out-dir "$tmp/rot_none" >/dev/null
+check "--rotation-sigma-deg 0 changes the soundings" sh -c '! cmp -s "$1" logs/lab28.lcmlog' - "$tmp/rot_none/lab28.lcmlog"
+rejects "bad --rotation-sigma-deg" "--rotation-sigma-deg" "$BIN/hl-sim-logs" --rotation-sigma-deg -1 --out-dir "$tmp/w"
 rejects "bad bench runs" "usage" "$BIN/hl-bench" -5
 printf 'segment 0 0 1000\n' >"$tmp/bad.world"
 rejects "bad world file" "bad.world:1" "$BIN/hl-sim-logs" --world "$tmp/bad.world" --out-dir "$tmp/w"

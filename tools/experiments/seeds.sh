@@ -4,6 +4,8 @@
 # means that docs/experiments.md quotes.
 #   sh tools/experiments/seeds.sh [N [HL-EXPERIMENTS ARGS...]]      (after `make`)
 #   sh tools/experiments/seeds.sh 24 --only combined --set improved.refine_heading=0
+#   SIM_ARGS="--rotation-sigma-deg 0" sh tools/experiments/seeds.sh 12 --only orientation,limits
+# SIM_ARGS goes to hl-sim-logs (the same data sets with one simulated effect changed).
 # Default: N = 12, all experiments except limits (add `--only limits` for the oracles'
 # floors). Two runs at a time.
 set -eu
@@ -20,7 +22,8 @@ trap 'rm -rf "$tmp"' EXIT
 run() {     # run SEED ARGS...: data set, then experiments, quietly
     seed=$1
     shift
-    "$bin/hl-sim-logs" --seed "$seed" --out-dir "$tmp/logs$seed" >/dev/null
+    # shellcheck disable=SC2086  # SIM_ARGS is a list of options
+    "$bin/hl-sim-logs" --seed "$seed" --out-dir "$tmp/logs$seed" ${SIM_ARGS:-} >/dev/null
     "$bin/hl-experiments" --logs "$tmp/logs$seed" --out "$tmp/out$seed" --no-figures "$@" 2>/dev/null
 }
 s=1

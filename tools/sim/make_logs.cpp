@@ -29,16 +29,20 @@ struct Options {
     std::string out_dir = "logs";
     std::string world;  // empty: built-in lab
     int tour_min_stops = 100;
+    double rotation_sigma_deg = RobotParams{}.rotation_sigma_deg;
 };
 
 void usage(FILE *f)
 {
     std::fprintf(f,
-                 "usage: hl-sim-logs [--seed N] [--out-dir DIR] [--world FILE]\n"
+                 "usage: hl-sim-logs [--seed N] [--out-dir DIR] [--world FILE] [--rotation-sigma-deg S]\n"
                  "Writes DIR/lab28.lcmlog, DIR/orientation.lcmlog and DIR/tour.lcmlog:\n"
                  "simulated sonar soundings (SONAR, SONAR_TEST), odometry (ODOMETRY) and\n"
                  "true poses (GROUND_TRUTH) in the default lab world or FILE.\n"
-                 "Same seed, same bytes. Defaults: --seed 1 --out-dir logs.\n");
+                 "--rotation-sigma-deg sets the error of each of the body's rotation steps\n"
+                 "within a sounding (0..5 degrees; default %.1f), to study its effect.\n"
+                 "Same seed, same bytes. Defaults: --seed 1 --out-dir logs.\n",
+                 RobotParams{}.rotation_sigma_deg);
 }
 
 // One data set's generator: the seed and the data-set number, mixed (splitmix64).
@@ -78,7 +82,14 @@ struct Rig {
     SonarParams sonar;
     RobotParams body;
     Robot robot;
-    Rig(const World &w, uint64_t seed) : rng(seed), robot(w, sonar, body, rng, kBaseUtime) {}
+    Rig(const World &w, const Options &o, uint64_t set)
+        : rng(mix(o.seed, set)), body(body_of(o)), robot(w, sonar, body, rng, kBaseUtime) {}
+    static RobotParams body_of(const Options &o)
+    {
+        RobotParams b;
+        b.rotation_sigma_deg = o.rotation_sigma_deg;
+        return b;
+    }
 };
 
 bool open_log(LogWriter *log, const std::string &path)
@@ -95,7 +106,7 @@ bool open_log(LogWriter *log, const std::string &path)
 // scan odometry carry; the true pose differs by the placement error.
 bool lab28(const World &w, const Options &o, const std::string &path)
 {
-    Rig rig(w, mix(o.seed, 1));
+    Rig rig(w, o, 1);
     Rng &rng = rig.rng;
     Robot &robot = rig.robot;
     const SonarParams &sp = rig.sonar;
@@ -121,7 +132,7 @@ bool lab28(const World &w, const Options &o, const std::string &path)
 // odometry; then soundings at 14 headings over 17 degrees at the square's centre.
 bool orientation(const World &w, const Options &o, const std::string &path)
 {
-    Rig rig(w, mix(o.seed, 2));
+    Rig rig(w, o, 2);
     Robot &robot = rig.robot;
     const SonarParams &sp = rig.sonar;
     LogWriter log;
@@ -162,7 +173,7 @@ bool orientation(const World &w, const Options &o, const std::string &path)
 // Experiment 3: one sounding at every stop of a space-filling tour of the lab.
 bool tour(const World &w, const Options &o, const std::string &path)
 {
-    Rig rig(w, mix(o.seed, 3));
+    Rig rig(w, o, 3);
     Robot &robot = rig.robot;
     const SonarParams &sp = rig.sonar;
     // Start in the dense north-west corner and grow outward through the whole L.
@@ -215,6 +226,15 @@ int main(int argc, char **argv)
             o.out_dir = argv[++i];
         } else if (a == "--world" && has_value) {
             o.world = argv[++i];
+        } else if (a == "--rotation-sigma-deg" && has_value) {
+            char *end = nullptr;
+            const char *v = argv[++i];
+            double d = std::strtod(v, &end);
+            if (*v == '\0' || *end != '\0' || !(d >= 0.0 && d <= 5.0)) {
+                std::fprintf(stderr, "hl-sim-logs: --rotation-sigma-deg wants degrees in 0..5, got '%s'\n", v);
+                return 2;
+            }
+            o.rotation_sigma_deg = d;
         } else {
             std::fprintf(stderr, "hl-sim-logs: unknown or incomplete option '%s'\n", a.c_str());
             usage(stderr);
