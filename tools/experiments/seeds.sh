@@ -44,8 +44,8 @@ cat "$tmp"/out*/combined.tsv 2>/dev/null | awk -F'\t' -v n="$n" '
           printf "tour, %d seeds: improved RMSE %.0f mm, final %.0f mm, wild accepted %.1f; odometry RMSE %.0f mm, final %.0f mm; better than odometry in %d, final 5x lower in %d\n",
                  k, r / k, f / k, w / k, o / j, of / j, beat, five }'
 cat "$tmp"/out*/table1.tsv 2>/dev/null | awk -F'\t' '
-    $1 == "improved" && $3 == 24 { t[$2] += $4; w[$2] += $5; m[$2] += $7; c[$2]++ }
-    END { for (f in c) printf "Table 1, 24 mm, %s, %d seeds: wild %.2f %%, tame mean %.1f mm\n", f, c[f], 100 * w[f] / t[f], m[f] / c[f] }' | sort
+    $1 == "improved" { k = $3 " mm, " $2; t[k] += $4; w[k] += $5; m[k] += $7; c[k]++ }
+    END { for (k in c) printf "Table 1, %s, %d seeds: wild %.2f %%, tame mean %.1f mm\n", k, c[k], 100 * w[k] / t[k], m[k] / c[k] }' | sort
 cat "$tmp"/out*/orientation.tsv 2>/dev/null | awk -F'\t' '
     $1 == "improved" { a += ($3 < 0 ? -$3 : $3); s += $4; k++ }
     END { if (k) printf "orientation, %d seeds: mean |bias| %.2f deg, sigma %.2f deg\n", k, a / k, s / k }'
