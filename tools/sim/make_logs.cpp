@@ -76,7 +76,8 @@ bool finish(LogWriter &log, const std::string &path)
 }
 
 // The simulated robot a data set is recorded with: its own random stream (so the data
-// sets do not depend on each other), the default sonar and body.
+// sets do not depend on each other), the default sonar, and the default body but for the
+// rotation-step error the options set.
 struct Rig {
     Rng rng;
     SonarParams sonar;
