@@ -29,7 +29,12 @@ WARN     := -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2
 CWARN    := $(WARN) -Wmissing-prototypes -Wstrict-prototypes
 OPT      ?= -O2 -g
 SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-CPPFLAGS := -Iinclude -I$(BUILD)/lcmtypes -D_POSIX_C_SOURCE=200809L -MMD -MP
+# Layers are enforced here: the core sees only include/ (CORE_CPPFLAGS); the generated LCM
+# headers (LCMGEN_CPPFLAGS) are on the path of src/bus and of tools, never of src/core or
+# src/daemon.
+CORE_CPPFLAGS := -Iinclude -D_POSIX_C_SOURCE=200809L -MMD -MP
+LCMGEN_CPPFLAGS := -I$(BUILD)/lcmtypes
+CPPFLAGS := $(CORE_CPPFLAGS) $(LCMGEN_CPPFLAGS)
 CFLAGS   := -std=c11 $(CWARN) $(OPT)
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(EIGEN_CFLAGS)
 
@@ -43,9 +48,6 @@ TRIG_SRC  := $(BUILD)/gen/trig_table.c
 # vectorized; GCC's -O2 cost model would leave them scalar.
 VECTOR_FLAGS := -ftree-vectorize -fvect-cost-model=dynamic
 KERNEL_SRCS  := src/core/blur.c src/core/peak.c src/core/localize.c
-
-# ---- bus: LCM messages <-> core structs -----------------------------------------------
-BUS_SRCS := src/bus/scan_codec.c
 
 # ---- test kit: synthetic scenes and the floating-point reference localizer ------------
 TESTKIT_SRCS := tools/testkit/synthroom.c tools/testkit/ref_localize.c
@@ -64,28 +66,25 @@ CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(BUILD)/asan/gen/trig_table.o
 TESTKIT_OBJS      := $(call obj,$(TESTKIT_SRCS))
 TESTKIT_ASAN_OBJS := $(call asanobj,$(TESTKIT_SRCS))
 LCM_OBJS       := $(call obj,$(LCM_C_SRCS:$(BUILD)/%=%))
-BUS_OBJS       := $(call obj,$(BUS_SRCS))
-BUS_ASAN_OBJS  := $(call asanobj,$(BUS_SRCS))
 
 CORE_LIB      := $(BUILD)/lib/libhoughloc_core.a
 CORE_ASAN_LIB := $(BUILD)/lib/libhoughloc_core_asan.a
 TESTKIT_LIB      := $(BUILD)/lib/libhoughloc_testkit.a
 TESTKIT_ASAN_LIB := $(BUILD)/lib/libhoughloc_testkit_asan.a
 LCM_LIB       := $(BUILD)/lib/libhoughloc_lcmtypes.a
-BUS_LIB       := $(BUILD)/lib/libhoughloc_bus.a
-BUS_ASAN_LIB  := $(BUILD)/lib/libhoughloc_bus_asan.a
 
 # ---- unit tests (cmocka, under ASan + UBSan) ------------------------------------------
 CORE_TESTS := $(patsubst tests/core/%.c,$(BUILD)/tests/core/%,$(wildcard tests/core/test_*.c))
-BUS_TESTS  := $(patsubst tests/bus/%.c,$(BUILD)/tests/bus/%,$(wildcard tests/bus/test_*.c))
-TEST_BINS  := $(CORE_TESTS) $(BUS_TESTS)
+TEST_BINS  := $(CORE_TESTS)
 BINS       := $(BUILD)/bin/hl-bench
 INTEGRATION_TESTS := tests/integration/test_tools.sh
 
 .PHONY: all deps test unit-test bench demo clean lcmtypes
 .DEFAULT_GOAL := all
 
--include $(sort $(wildcard tools/*/*.mk src/*/*.mk tests/*/*.mk))
+# src/bus/bus.mk defines the bus library and its tests, src/daemon/daemon.mk houghlocd,
+# packaging/packaging.mk `make install`; tools/*/*.mk the separate programs.
+-include $(sort $(wildcard src/*/*.mk tools/*/*.mk tests/*/*.mk packaging/*.mk))
 
 all: $(BINS) $(TEST_BINS)
 
@@ -113,10 +112,10 @@ lcmtypes: $(LCM_STAMP)
 # ---- compile rules --------------------------------------------------------------------
 $(BUILD)/obj/gen/%.o: $(BUILD)/gen/%.c
 	@mkdir -p $(@D)
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) -c -o $@ $<
 $(BUILD)/asan/gen/%.o: $(BUILD)/gen/%.c
 	@mkdir -p $(@D)
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
 # Generated LCM code is not ours to fix: compile it without -Werror extras.
 $(BUILD)/obj/lcmtypes/%.o: $(BUILD)/lcmtypes/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
@@ -129,6 +128,15 @@ $(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CXX     $<"
 	$(Q)$(CXX) $(CPPFLAGS) $(PKG_CFLAGS) $(CAIRO_CFLAGS) $(CXXFLAGS) -c -o $@ $<
+# The core: its own include path and nothing else (no LCM, glib, Eigen or cairo).
+$(BUILD)/obj/src/core/%.o: src/core/%.c
+	@mkdir -p $(@D)
+	@echo "  CC      $<"
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) -c -o $@ $<
+$(BUILD)/asan/src/core/%.o: src/core/%.c
+	@mkdir -p $(@D)
+	@echo "  CC-SAN  $<"
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
 $(BUILD)/asan/%.o: %.c | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
@@ -144,19 +152,12 @@ $(CORE_ASAN_LIB): $(CORE_ASAN_OBJS)
 $(TESTKIT_LIB): $(TESTKIT_OBJS)
 $(TESTKIT_ASAN_LIB): $(TESTKIT_ASAN_OBJS)
 $(LCM_LIB): $(LCM_OBJS)
-$(BUS_LIB): $(BUS_OBJS)
-$(BUS_ASAN_LIB): $(BUS_ASAN_OBJS)
 
 # ---- unit tests -----------------------------------------------------------------------
 $(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TESTKIT_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) -lm
-
-$(BUILD)/tests/bus/%: $(BUILD)/asan/tests/bus/%.o $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
-	@mkdir -p $(@D)
-	@echo "  LD-SAN  $@"
-	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm
 
 unit-test: $(TEST_BINS)
 	$(Q)sh tests/run-unit.sh $(TEST_BINS)

@@ -1,18 +1,33 @@
 /*
- * bus.h - LCM messages <-> core structs, with validation of every field that arrives.
+ * bus.h - LCM messages <-> houghloc structs, validating every field that arrives.
  *
- * Channel names are fixed here so every program agrees. Decoders take the bytes as
- * received (an lcm_recv_buf_t's data, or an event log entry) and never trust them:
- * a message that is truncated, has a bad hash, a count out of range or a field outside
- * the fixed-point ranges is rejected with a one-line reason, and nothing is allocated
- * that could leak.
+ * One codec per message type of lcmtypes/ (scan, odometry, pose, map, status,
+ * destination, command, reply). Every codec works both ways:
+ *
+ *   int hl_bus_encode_X(const hl_bus_X_t *in, void *buf, size_t cap);
+ *       writes the LCM encoding (fingerprint hash first, big-endian, exactly what the
+ *       lcm-gen code writes) into the caller's buffer and returns its length, or -1 when
+ *       @p cap is too small or a field is outside its range. Never allocates.
+ *
+ *   hl_status_t hl_bus_decode_X(const void *data, size_t len, hl_bus_X_t *out, char *why);
+ *       decodes bytes as received (an lcm_recv_buf_t's data, an event log entry) without
+ *       trusting them and without a heap allocation: HL_OK, or HL_ERR_PARSE (truncated,
+ *       trailing bytes, wrong fingerprint) / HL_ERR_RANGE (a count or field outside its
+ *       range, NaN or infinite) with a one-line reason in @p why (HL_BUS_WHY_LEN bytes;
+ *       may be NULL). On failure *out is unspecified but holds no allocation.
+ *
+ * Only src/bus sees the generated LCM code; everything else goes through this header.
+ * Channel names are the base names below; a deployment may put a prefix in front of
+ * all of them (hl_bus_channel) so that several robots share one network.
  */
 #ifndef HOUGHLOC_BUS_H
 #define HOUGHLOC_BUS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc/map.h"
 #include "houghloc/scan.h"
 
 #ifdef __cplusplus
@@ -25,41 +40,174 @@ extern "C" {
 #define HL_CHANNEL_MAP "MAP"
 #define HL_CHANNEL_STATUS "STATUS"
 #define HL_CHANNEL_DESTINATION "DESTINATION"
+#define HL_CHANNEL_COMMAND "COMMAND"
+#define HL_CHANNEL_REPLY "REPLY"
 #define HL_CHANNEL_GROUND_TRUTH "GROUND_TRUTH"
 
 #define HL_BUS_WHY_LEN 128
+#define HL_BUS_CHANNEL_MAX 64       /* a channel name with its prefix, with the NUL */
+#define HL_BUS_PREFIX_MAX 32        /* a channel prefix, without the NUL */
+#define HL_BUS_TEXT_MAX 160         /* status last_error / reply message, with the NUL */
+#define HL_BUS_MAC_BYTES 32
 
-/** A sonar scan as it travels on SONAR. */
+/**
+ * Writes @p prefix followed by @p base into @p out (HL_BUS_CHANNEL_MAX bytes).
+ * @return false when the prefix is longer than HL_BUS_PREFIX_MAX or holds a character
+ *         other than letters, digits, '_', '-', '.' and '/'.
+ */
+bool hl_bus_channel(const char *prefix, const char *base, char *out);
+
+/* ---- SONAR: one sounding ---------------------------------------------------------- */
+
+/** An odometry sample as it travels on ODOMETRY (and inside every scan). */
+typedef struct hl_bus_odometry {
+    int64_t utime;
+    hl_pose_t pose;             /* in the odometry frame */
+    int16_t velocity_mm_s;
+    bool stopped;
+} hl_bus_odometry_t;
+
 typedef struct hl_bus_scan {
     int64_t utime;
     int32_t seq;
-    hl_pose_t odometry;     /* the base's pose when the scan completed */
+    hl_pose_t odometry;         /* the base's pose when the scan completed */
     hl_scan_t scan;
 } hl_bus_scan_t;
 
-/** A pose as it travels on POSE or GROUND_TRUTH. */
+/** Largest encoded scan (HL_SCAN_MAX_READINGS readings). */
+#define HL_BUS_SCAN_MAX_BYTES (8 + 8 + 4 + 29 + 2 + 8 * HL_SCAN_MAX_READINGS)
+
+hl_status_t hl_bus_decode_scan(const void *data, size_t len, hl_bus_scan_t *out, char *why);
+int hl_bus_encode_scan(const hl_bus_scan_t *in, void *buf, size_t cap);
+
+/* ---- ODOMETRY ---------------------------------------------------------------------- */
+
+#define HL_BUS_ODOMETRY_BYTES (8 + 8 + 4 + 4 + 2 + 2 + 1)
+hl_status_t hl_bus_decode_odometry(const void *data, size_t len, hl_bus_odometry_t *out,
+                                   char *why);
+int hl_bus_encode_odometry(const hl_bus_odometry_t *in, void *buf, size_t cap);
+
+/* ---- POSE (and GROUND_TRUTH) ------------------------------------------------------- */
+
 typedef struct hl_bus_pose {
     int64_t utime;
     int32_t scan_seq;
     hl_pose_t pose;
-    int8_t status;
+    int8_t status;              /* HL_SLAM_ACCEPTED .. HL_SLAM_ODOMETRY_ONLY (slam.h) */
+    float confidence;           /* 0..1 */
+    int32_t peak;               /* >= 0 */
+    int32_t second_peak;        /* >= 0 */
+    int32_t votes;              /* >= 0 */
 } hl_bus_pose_t;
 
-/**
- * Decodes a houghloc_scan_t.
- * @param[out] why  filled with a one-line reason on failure (HL_BUS_WHY_LEN bytes).
- * @return HL_OK, or HL_ERR_PARSE (malformed bytes) / HL_ERR_RANGE (a field out of range).
- */
-hl_status_t hl_bus_decode_scan(const void *data, size_t len, hl_bus_scan_t *out, char *why);
-
-/** Decodes a houghloc_pose_t. Same contract as hl_bus_decode_scan. */
+#define HL_BUS_POSE_BYTES (8 + 8 + 4 + 4 + 4 + 2 + 1 + 4 + 4 + 4 + 4)
 hl_status_t hl_bus_decode_pose(const void *data, size_t len, hl_bus_pose_t *out, char *why);
+int hl_bus_encode_pose(const hl_bus_pose_t *in, void *buf, size_t cap);
 
-/**
- * Encodes @p in as a houghloc_scan_t into @p buf (@p cap bytes).
- * @return bytes written, or -1 if the buffer is too small or the scan is invalid.
- */
-int hl_bus_encode_scan(const hl_bus_scan_t *in, void *buf, size_t cap);
+/* ---- MAP --------------------------------------------------------------------------- */
+
+typedef struct hl_bus_map {
+    int64_t utime;
+    int32_t version;
+    int32_t capacity;           /* 1..HL_MAP_MAX_CAPACITY */
+    uint32_t count;             /* 0..capacity */
+    hl_vector_t *vectors;       /* encode: count vectors to send; decode: caller's
+                                   storage for at most max_vectors */
+    uint32_t max_vectors;       /* decode only: the storage's size; more is HL_ERR_RANGE */
+} hl_bus_map_t;
+
+/** Encoded size of a map of @p count vectors. */
+size_t hl_bus_map_bytes(uint32_t count);
+hl_status_t hl_bus_decode_map(const void *data, size_t len, hl_bus_map_t *out, char *why);
+int hl_bus_encode_map(const hl_bus_map_t *in, void *buf, size_t cap);
+
+/* ---- STATUS ------------------------------------------------------------------------ */
+
+typedef struct hl_bus_status {
+    int64_t utime;
+    int8_t state;               /* HL_BUS_STATE_* */
+    int64_t destination_seq;    /* -1 when none */
+    int32_t scans, accepted, rejected_wild, odometry_only;
+    int32_t bad_packets, bad_messages, rejected_requests;
+    int32_t map_vectors, map_version, saves;
+    hl_pose_t pose;             /* current estimate */
+    int32_t compute_median_us, compute_p99_us, compute_samples;
+    char last_error[HL_BUS_TEXT_MAX];
+} hl_bus_status_t;
+
+enum {
+    HL_BUS_STATE_STARTING = 0,
+    HL_BUS_STATE_SOUNDING = 1,
+    HL_BUS_STATE_LOCALIZING = 2,
+    HL_BUS_STATE_MOVING = 3,
+    HL_BUS_STATE_IDLE = 4,
+    HL_BUS_STATE_FAULT = 5,
+    HL_BUS_STATE_STOPPING = 6,
+};
+
+#define HL_BUS_STATUS_MAX_BYTES (8 + 8 + 1 + 8 + 4 * 10 + 4 + 4 + 2 + 4 * 3 + 4 + HL_BUS_TEXT_MAX)
+hl_status_t hl_bus_decode_status(const void *data, size_t len, hl_bus_status_t *out,
+                                 char *why);
+int hl_bus_encode_status(const hl_bus_status_t *in, void *buf, size_t cap);
+
+/* ---- DESTINATION, COMMAND, REPLY ------------------------------------------------- */
+
+typedef struct hl_bus_destination {
+    int64_t utime;
+    int64_t seq;                /* > 0 */
+    int32_t x_mm, y_mm;         /* within +-HL_COORD_MAX_MM */
+    bool has_heading;
+    hl_bam_t heading;
+    uint8_t mac[HL_BUS_MAC_BYTES];
+} hl_bus_destination_t;
+
+#define HL_BUS_DESTINATION_BYTES (8 + 8 + 8 + 4 + 4 + 1 + 2 + HL_BUS_MAC_BYTES)
+hl_status_t hl_bus_decode_destination(const void *data, size_t len,
+                                      hl_bus_destination_t *out, char *why);
+int hl_bus_encode_destination(const hl_bus_destination_t *in, void *buf, size_t cap);
+
+enum {
+    HL_BUS_COMMAND_SET_POSE = 1,
+    HL_BUS_COMMAND_SAVE = 2,
+    HL_BUS_COMMAND_RELOCALIZE = 3,
+};
+
+typedef struct hl_bus_command {
+    int64_t utime;
+    int64_t seq;                /* > 0 */
+    int8_t kind;                /* HL_BUS_COMMAND_* */
+    hl_pose_t pose;             /* SET_POSE; position within +-HL_COORD_MAX_MM */
+    uint8_t mac[HL_BUS_MAC_BYTES];
+} hl_bus_command_t;
+
+#define HL_BUS_COMMAND_BYTES (8 + 8 + 8 + 1 + 4 + 4 + 2 + HL_BUS_MAC_BYTES)
+hl_status_t hl_bus_decode_command(const void *data, size_t len, hl_bus_command_t *out,
+                                  char *why);
+int hl_bus_encode_command(const hl_bus_command_t *in, void *buf, size_t cap);
+
+enum {
+    HL_BUS_REPLY_ACCEPTED = 0,
+    HL_BUS_REPLY_ARRIVED = 1,
+    HL_BUS_REPLY_REJECTED_FENCE = 2,
+    HL_BUS_REPLY_REJECTED_AUTH = 3,
+    HL_BUS_REPLY_REJECTED_REPLAY = 4,
+    HL_BUS_REPLY_NO_ROBOT = 5,
+    HL_BUS_REPLY_FAILED = 6,
+    HL_BUS_REPLY_REJECTED_INVALID = 7,
+};
+
+typedef struct hl_bus_reply {
+    int64_t utime;
+    int64_t seq;
+    int8_t result;              /* HL_BUS_REPLY_* */
+    char message[HL_BUS_TEXT_MAX];
+} hl_bus_reply_t;
+
+#define HL_BUS_REPLY_MAX_BYTES (8 + 8 + 8 + 1 + 4 + HL_BUS_TEXT_MAX)
+/** The constant's name, e.g. "REJECTED_FENCE"; "?" for an unknown value. */
+const char *hl_bus_reply_name(int8_t result);
+hl_status_t hl_bus_decode_reply(const void *data, size_t len, hl_bus_reply_t *out, char *why);
+int hl_bus_encode_reply(const hl_bus_reply_t *in, void *buf, size_t cap);
 
 #ifdef __cplusplus
 }

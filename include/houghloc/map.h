@@ -16,6 +16,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc/rng.h"
 #include "houghloc/scan.h"
 
 #ifdef __cplusplus
@@ -73,6 +74,20 @@ uint32_t hl_map_capacity(const hl_map_t *map);
 uint32_t hl_map_version(const hl_map_t *map);
 /** The vectors, valid until the next change to the map. */
 const hl_vector_t *hl_map_vectors(const hl_map_t *map);
+/** The culling generator's state, for saving. */
+hl_rng_t hl_map_rng(const hl_map_t *map);
+
+/**
+ * Replaces the contents with @p n saved vectors, a version and a culling state.
+ * @return HL_ERR_CAPACITY when n > capacity, HL_ERR_RANGE when a vector is out of range;
+ *         on error the map is unchanged.
+ */
+hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n,
+                           uint32_t version, hl_rng_t rng);
+
+/** Checks one vector's fields against their ranges. */
+bool hl_vector_in_range(const hl_vector_t *v);
+
 /** Bytes allocated by the map. */
 size_t hl_map_mem_bytes(const hl_map_t *map);
 

@@ -28,6 +28,7 @@
 #include "houghloc/localize.h"
 #include "houghloc/map.h"
 #include "houghloc/refine.h"
+#include "houghloc/rng.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -89,6 +90,8 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start);
 /**
  * One cycle: predict from @p odometry (the base's dead-reckoned pose when the scan was
  * taken), localize, accept or reject, extend the map.
+ * Either the whole cycle happens or nothing changes: on an error return the map, the
+ * pose, the odometry reference and the peak average are as they were.
  */
 hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
                          hl_slam_step_t *out);
@@ -102,6 +105,41 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
 hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
                              hl_loc_result_t *loc, hl_pose_t *pose);
 hl_map_t *hl_slam_map(hl_slam_t *s);
+
+/**
+ * Moves the estimate to @p pose and takes @p odometry as the base's odometry there
+ * (an operator placing the robot by hand). The map is kept. Before the first scan this
+ * sets the start pose instead, and the first scan's odometry is still the reference.
+ * @return HL_ERR_RANGE when a position is out of range (nothing changes).
+ */
+hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry);
+
+/** The current estimate (the start pose before the first scan). */
+hl_pose_t hl_slam_pose(const hl_slam_t *s);
+
+/**
+ * Everything besides the map's vectors that the next hl_slam_update depends on: with it
+ * and the vectors, a restarted process continues exactly as this one would.
+ */
+typedef struct hl_slam_state {
+    bool started;           /* a scan has been integrated since the last reset */
+    hl_pose_t pose;         /* the last estimate, or the start pose */
+    hl_pose_t odom;         /* the odometry that went with it */
+    uint32_t peak_avg;      /* recent peak average (guarded mode), votes x 256 */
+    uint32_t map_version;
+    hl_rng_t cull_rng;      /* the map's culling generator */
+} hl_slam_state_t;
+
+void hl_slam_get_state(const hl_slam_t *s, hl_slam_state_t *out);
+
+/**
+ * Replaces the map and the state with a saved one. The vectors are checked (count at
+ * most the map's capacity, every field in range) before anything changes.
+ * @return HL_OK; HL_ERR_CAPACITY when @p n exceeds the capacity; HL_ERR_RANGE for a
+ *         vector or pose out of range. On error nothing changes.
+ */
+hl_status_t hl_slam_restore(hl_slam_t *s, const hl_slam_state_t *state,
+                            const hl_vector_t *vectors, uint32_t n);
 
 #ifdef __cplusplus
 }

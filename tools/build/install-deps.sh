@@ -5,7 +5,7 @@
 set -eu
 
 PKGS="make gcc g++ pkg-config liblcm-dev liblcm-bin libglib2.0-dev libserialport-dev \
-libcmocka-dev libeigen3-dev libcairo2-dev"
+libcmocka-dev libeigen3-dev libcairo2-dev libinih-dev libsodium-dev libsystemd-dev zlib1g-dev"
 
 missing=""
 for p in $PKGS; do
