@@ -39,9 +39,7 @@ CFLAGS   := -std=c11 $(CWARN) $(OPT)
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(EIGEN_CFLAGS)
 
 # ---- core library (pure C11, no I/O) -------------------------------------------------
-CORE_SRCS := src/core/fixed.c src/core/status.c src/core/rng.c src/core/scan.c \
-             src/core/map.c src/core/localize.c src/core/blur.c src/core/peak.c \
-             src/core/slam.c src/core/calib.c src/core/echo.c src/core/refine.c
+CORE_SRCS := $(sort $(wildcard src/core/*.c))
 TRIG_SRC  := $(BUILD)/gen/trig_table.c
 
 # The blur, peak and vote kernels are plain loops over contiguous runs, written to be

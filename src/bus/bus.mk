@@ -1,14 +1,15 @@
 # src/bus/bus.mk - the bus library: LCM messages <-> houghloc structs, log checking,
-# message authentication. The only code under src/ that sees lcm-gen output.
+# message authentication (libsodium). The only code under src/ that sees lcm-gen output.
 
-BUS_SRCS := src/bus/scan_codec.c
+SODIUM_LIBS := $(shell pkg-config --libs libsodium 2>/dev/null)
 
+BUS_SRCS      := $(sort $(wildcard src/bus/*.c))
 BUS_OBJS      := $(call obj,$(BUS_SRCS))
 BUS_ASAN_OBJS := $(call asanobj,$(BUS_SRCS))
 BUS_LIB       := $(BUILD)/lib/libhoughloc_bus.a
 BUS_ASAN_LIB  := $(BUILD)/lib/libhoughloc_bus_asan.a
 # What a program linking $(BUS_LIB) also needs after it.
-BUS_LDLIBS    := $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) -lm
+BUS_LDLIBS    := $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) $(SODIUM_LIBS) -lm
 
 BUS_TESTS := $(patsubst tests/bus/%.c,$(BUILD)/tests/bus/%,$(wildcard tests/bus/test_*.c))
 TEST_BINS += $(BUS_TESTS)
@@ -19,4 +20,4 @@ $(BUS_ASAN_LIB): $(BUS_ASAN_OBJS)
 $(BUILD)/tests/bus/%: $(BUILD)/asan/tests/bus/%.o $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm
+	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) -lm
