@@ -174,15 +174,11 @@ bench: deps
 	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-bench OPT="-O2 -g"
 	$(Q)$(BUILD)/bin/hl-bench
 
-# Until the daemon lands (houghlocd, robot link, LCM loop), the demo runs the same online
-# localize-and-map cycle over the simulated robot's recorded tour.
+# The product on the built-in simulated robot: houghlocd replays the recorded tour,
+# hl-eval scores its POSE output (tools/demo/demo.sh; DEMO_MODE=live for lcm-logplayer).
 demo: deps
-	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-experiments
-	@echo "houghloc demo: the daemon (houghlocd) is not yet available; running the online"
-	@echo "map-making cycle on the simulated robot's tour (logs/tour.lcmlog) instead."
-	$(Q)mkdir -p $(BUILD)/demo
-	$(Q)$(BUILD)/bin/hl-experiments --only combined --out $(BUILD)/demo
-	@echo "houghloc demo: table in $(BUILD)/demo/results.md, map frames in $(BUILD)/demo/fig7_online/"
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval
+	$(Q)BUILD=$(BUILD) sh tools/demo/demo.sh
 
 clean:
 	rm -rf $(BUILD)

@@ -47,3 +47,10 @@ $(BUILD)/tests/daemon/%: $(BUILD)/asan/tests/daemon/%.o $(DAEMON_ASAN_LIB) $(BUS
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -o $@ $< $(DAEMON_ASAN_LIB) $(DAEMON_ASAN_LDLIBS) $(CMOCKA_LIBS)
+
+INTEGRATION_TESTS += tests/integration/test_daemon.sh
+
+# 100 kill -9 trials of a replay (the test suite runs 20).
+.PHONY: crash-trials
+crash-trials: $(BUILD)/bin/houghlocd
+	$(Q)BUILD=$(BUILD) sh tests/integration/crash_trials.sh 100

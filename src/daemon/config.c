@@ -1,0 +1,404 @@
+/* config.c - defaults, INI file (libinih), overrides, validation, printing. */
+#include "config.h"
+
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "config_keys.h"
+#include "log.h"
+
+#define WHY(...) snprintf(why, HL_CONFIG_WHY_LEN, __VA_ARGS__)
+/* A reason without the file or key, and a bounded path, so that messages fit. */
+#define REASON_LEN 200
+#define REASON(...) snprintf(why, REASON_LEN, __VA_ARGS__)
+#define KEY_MSG_LEN 320   /* "key 'x.y': " + a reason */
+
+/* The paper's method (tools/experiments/modes.cpp's paper mode): every localization
+ * extends the map, global search, best cell, readings on their beam axes. */
+static void paper_preset(hl_slam_params_t *p)
+{
+    hl_slam_params_default(p);
+    p->loc.cell_mm = 47;
+    p->loc.blur_sigma_mm = 50;
+    p->loc.max_cells = 1u << 22;
+    p->guarded = false;
+    p->use_prior = false;
+    p->interpolate = false;
+    p->window_mm = 0;
+    p->echo_bearings = false;
+    p->refine = false;
+}
+
+static void apply_mode(hl_config_t *c)
+{
+    if (strcmp(c->mode, "paper") == 0)
+        paper_preset(&c->slam);
+    else
+        hl_slam_params_default(&c->slam);
+}
+
+void hl_config_defaults(hl_config_t *c)
+{
+    memset(c, 0, sizeof *c);
+    c->queue = 1000;
+    c->save_every = 50;
+    c->map_period_ms = 1000;
+    c->status_period_ms = 1000;
+    c->idle_after_ms = 5000;
+    c->compute_window = 100;
+    c->log_level = HL_LOG_INFO;
+    hl_fence_rect(&c->fence, -10000, -10000, 10000, 10000);
+    snprintf(c->fence_text, sizeof c->fence_text, "-10,-10 10,-10 10,10 -10,10");
+    snprintf(c->mode, sizeof c->mode, "improved");
+    apply_mode(c);
+}
+
+/* ---- values ------------------------------------------------------------------------ */
+
+static bool parse_double(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    while (*end == ' ' || *end == '\t')
+        end++;
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v))
+        return false;
+    *out = v;
+    return true;
+}
+
+static bool parse_bool(const char *s, bool *out)
+{
+    static const char *const yes[] = { "true", "yes", "on", "1" };
+    static const char *const no[] = { "false", "no", "off", "0" };
+    for (int i = 0; i < 4; i++) {
+        if (strcmp(s, yes[i]) == 0)
+            return *out = true, true;
+        if (strcmp(s, no[i]) == 0)
+            return *out = false, true;
+    }
+    return false;
+}
+
+/* "X,Y X,Y ..." in metres -> vertices in mm. @return the count, or -1. */
+static int parse_points(const char *s, hl_mm_t *x, hl_mm_t *y, int max)
+{
+    int n = 0;
+    while (*s) {
+        while (*s == ' ' || *s == '\t')
+            s++;
+        if (!*s)
+            break;
+        char *end;
+        double vx = strtod(s, &end);
+        if (end == s || *end != ',' || n >= max)
+            return -1;
+        s = end + 1;
+        double vy = strtod(s, &end);
+        if (end == s || (*end && *end != ' ' && *end != '\t' && *end != ','))
+            return -1;
+        if (!isfinite(vx) || !isfinite(vy) || fabs(vx) > 4194 || fabs(vy) > 4194)
+            return -1;
+        x[n] = (hl_mm_t)lround(vx * 1000.0);
+        y[n] = (hl_mm_t)lround(vy * 1000.0);
+        n++;
+        s = *end == ',' ? end + 1 : end;    /* rect: "a,b,c,d" */
+    }
+    return n;
+}
+
+static bool set_fence(hl_config_t *c, const hl_config_key_t *k, const char *v, char *why)
+{
+    hl_mm_t x[HL_FENCE_MAX_VERTICES + 1], y[HL_FENCE_MAX_VERTICES + 1];
+    int n = parse_points(v, x, y, HL_FENCE_MAX_VERTICES + 1);
+    hl_fence_t f;
+    if (k->type == HL_KEY_FENCE_RECT) {
+        if (n != 2)
+            return REASON("expected MIN_X,MIN_Y,MAX_X,MAX_Y in metres"), false;
+        if (hl_fence_rect(&f, x[0], y[0], x[1], y[1]) != HL_OK)
+            return REASON("the minimum must be below the maximum on both axes"), false;
+    } else {
+        if (n < 0)
+            return REASON("expected X,Y pairs in metres separated by spaces"), false;
+        if (hl_fence_polygon(&f, x, y, (uint32_t)n) != HL_OK) {
+            const char *e = hl_fence_error(x, y, (uint32_t)n);
+            return REASON("%s", e ? e : "not a simple polygon of 3 to 64 vertices"), false;
+        }
+    }
+    c->fence = f;
+    size_t len = 0;
+    for (uint32_t i = 0; i < f.n && len < sizeof c->fence_text; i++)
+        len += (size_t)snprintf(c->fence_text + len, sizeof c->fence_text - len, "%s%g,%g",
+                                i ? " " : "", f.x_mm[i] / 1000.0, f.y_mm[i] / 1000.0);
+    return true;
+}
+
+/* Sets one key from its text. @return false with the reason (no file or line). */
+static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, char *why)
+{
+    char *field = (char *)c + k->offset;
+    double d = 0;
+    bool b;
+    switch (k->type) {
+    case HL_KEY_STR:
+        if (strlen(v) >= k->size)
+            return REASON("longer than %zu characters", k->size - 1), false;
+        memcpy(field, v, strlen(v) + 1);
+        return true;
+    case HL_KEY_BOOL:
+        if (!parse_bool(v, &b))
+            return REASON("'%s' is not true or false", v), false;
+        *(bool *)field = b;
+        return true;
+    case HL_KEY_LEVEL: {
+        int level = hl_log_parse_level(v);
+        if (level < 0)
+            return REASON("'%s' is not one of error, warning, notice, info, debug", v), false;
+        *(int32_t *)field = level;
+        return true;
+    }
+    case HL_KEY_MODE:
+        if (strcmp(v, "improved") != 0 && strcmp(v, "paper") != 0)
+            return REASON("'%s' is not improved or paper", v), false;
+        snprintf(c->mode, sizeof c->mode, "%s", v);
+        return true;   /* applied as a preset by hl_config_load */
+    case HL_KEY_FENCE_RECT:
+    case HL_KEY_FENCE_POLYGON:
+        return set_fence(c, k, v, why);
+    default:
+        break;
+    }
+    if (!parse_double(v, &d))
+        return REASON("'%s' is not a number", v), false;
+    if (d < k->min || d > k->max)
+        return REASON("%s is outside %g..%g", v, k->min, k->max), false;
+    bool integral = k->type == HL_KEY_I32 || k->type == HL_KEY_U16 || k->type == HL_KEY_U32 ||
+                    k->type == HL_KEY_U64;
+    if (integral && d != floor(d))
+        return REASON("%s is not a whole number", v), false;
+    switch (k->type) {
+    case HL_KEY_I32: *(int32_t *)field = (int32_t)d; break;
+    case HL_KEY_U16: *(uint16_t *)field = (uint16_t)d; break;
+    case HL_KEY_U32: *(uint32_t *)field = (uint32_t)d; break;
+    case HL_KEY_U64: *(uint64_t *)field = (uint64_t)d; break;
+    case HL_KEY_DOUBLE: *(double *)field = d; break;
+    case HL_KEY_METRES: *(hl_mm_t *)field = (hl_mm_t)lround(d * 1000.0); break;
+    case HL_KEY_Q8: *(uint16_t *)field = (uint16_t)lround(d * 256.0); break;
+    case HL_KEY_DEG:
+        /* 180 degrees is 32768 BAM, which a gate may use to mean "any direction" */
+        *(hl_bam_t *)field = fabs(d) == 180.0 && k->min >= 0 ? 32768 : hl_bam_from_deg(d);
+        break;
+    default: break;
+    }
+    return true;
+}
+
+static const hl_config_key_t *find_key(const char *section, const char *name)
+{
+    size_t slen = strlen(section);
+    for (size_t i = 0; i < hl_config_nkeys; i++) {
+        const char *full = hl_config_keys[i].name;
+        if (strncmp(full, section, slen) == 0 && full[slen] == '.' &&
+            strcmp(full + slen + 1, name) == 0)
+            return &hl_config_keys[i];
+    }
+    return NULL;
+}
+
+/* ---- the file and the overrides ------------------------------------------------------ */
+
+typedef struct parse_ctx {
+    hl_config_t *c;
+    const char *path;
+    bool mode_only;     /* first pass: only slam.mode */
+    bool failed;
+    char *why;
+    FILE *file;
+    int line;           /* the line being read: the one a handler call comes from */
+    bool at_line_start;
+    int fail_line;
+} parse_ctx_t;
+
+/* libinih's reader, counting lines so that our own errors can name theirs. */
+static char *read_line(char *str, int num, void *stream)
+{
+    parse_ctx_t *p = stream;
+    char *r = fgets(str, num, p->file);
+    if (r && p->at_line_start)
+        p->line++;
+    p->at_line_start = r && strchr(r, '\n');
+    return r;
+}
+
+static int on_key(void *user, const char *section, const char *name, const char *value)
+{
+    parse_ctx_t *p = user;
+    if (p->failed)
+        return 0;
+    const hl_config_key_t *k = find_key(section, name);
+    char reason[REASON_LEN];
+    if (!k) {
+        snprintf(p->why, KEY_MSG_LEN, "unknown key '%s' in section [%s]", name, section);
+    } else if (p->mode_only != (k->type == HL_KEY_MODE)) {
+        return 1;
+    } else if (set_value(p->c, k, value, reason)) {
+        return 1;
+    } else {
+        snprintf(p->why, KEY_MSG_LEN, "key '%s': %s", k->name, reason);
+    }
+    p->failed = true;
+    p->fail_line = p->line;
+    return 0;
+}
+
+/* Runs one pass over the file. @return false with the reason in why. */
+static bool parse_file(hl_config_t *c, const char *path, bool mode_only, char *why)
+{
+    char reason[KEY_MSG_LEN];
+    parse_ctx_t p = { .c = c, .path = path, .mode_only = mode_only, .why = reason,
+                      .at_line_start = true };
+    p.file = fopen(path, "r");
+    if (!p.file)
+        return WHY("%s: cannot open: %s", path, strerror(errno)), false;
+    int rc = ini_parse_stream(read_line, &p, on_key, &p);
+    bool read_error = ferror(p.file);
+    fclose(p.file);
+    if (read_error)
+        return WHY("%s: read error", path), false;
+    if (rc == -2)
+        return WHY("%s: out of memory while reading", path), false;
+    if (rc == 0)
+        return true;
+    /* libinih reports the first bad line, ours or a syntax error before it */
+    if (p.failed && (rc < 0 || rc >= p.fail_line))
+        WHY("%.300s:%d: %s", path, p.fail_line, reason);
+    else
+        WHY("%s:%d: not a 'key = value' line or a [section] (or longer than libinih reads)",
+            path, rc);
+    return false;
+}
+
+static bool apply_override(hl_config_t *c, const char *o, bool mode_only, char *why)
+{
+    const char *eq = strchr(o, '=');
+    const char *dot = strchr(o, '.');
+    if (!eq || !dot || dot > eq)
+        return WHY("--set %s: expected SECTION.KEY=VALUE", o), false;
+    char section[64], name[64];
+    size_t slen = (size_t)(dot - o), nlen = (size_t)(eq - dot - 1);
+    if (slen >= sizeof section || nlen >= sizeof name)
+        return WHY("--set %s: unknown key", o), false;
+    memcpy(section, o, slen);
+    section[slen] = '\0';
+    memcpy(name, dot + 1, nlen);
+    name[nlen] = '\0';
+    const hl_config_key_t *k = find_key(section, name);
+    if (!k)
+        return WHY("--set %s: unknown key '%s.%s'", o, section, name), false;
+    if (mode_only != (k->type == HL_KEY_MODE))
+        return true;
+    char reason[REASON_LEN];
+    if (!set_value(c, k, eq + 1, reason))
+        return WHY("--set %.200s: %s", o, reason), false;
+    return true;
+}
+
+/* Checks the combination of values. */
+static bool validate(const hl_config_t *c, char *why)
+{
+    const char *e = hl_slam_params_error(&c->slam);
+    if (e)
+        return WHY("config: %s", e), false;
+    char channel[HL_BUS_CHANNEL_MAX];
+    if (!hl_bus_channel(c->prefix, HL_CHANNEL_DESTINATION, channel))
+        return WHY("config: lcm.prefix '%s' must be at most %d of A-Z a-z 0-9 _ - . /", c->prefix,
+                   HL_BUS_PREFIX_MAX), false;
+    return true;
+}
+
+bool hl_config_load(hl_config_t *c, const char *path, bool optional,
+                    const char *const *overrides, int n_overrides, char *why)
+{
+    hl_config_defaults(c);
+    if (path && optional) {
+        FILE *f = fopen(path, "r");
+        if (!f && errno == ENOENT)
+            path = NULL;    /* no default file: the compiled-in defaults apply */
+        else if (f)
+            fclose(f);
+    }
+    /* Pass 1: the mode preset, from the file then the overrides; pass 2: the rest. */
+    for (int pass = 0; pass < 2; pass++) {
+        bool mode_only = pass == 0;
+        if (path && !parse_file(c, path, mode_only, why))
+            return false;
+        for (int i = 0; i < n_overrides; i++)
+            if (!apply_override(c, overrides[i], mode_only, why))
+                return false;
+        if (mode_only)
+            apply_mode(c);
+    }
+    return validate(c, why);
+}
+
+/* ---- printing ------------------------------------------------------------------------ */
+
+static void print_value(const hl_config_t *c, const hl_config_key_t *k, FILE *out)
+{
+    const char *field = (const char *)c + k->offset;
+    switch (k->type) {
+    case HL_KEY_STR: fprintf(out, "%s", field); break;
+    case HL_KEY_I32: fprintf(out, "%d", *(const int32_t *)field); break;
+    case HL_KEY_U16: fprintf(out, "%u", *(const uint16_t *)field); break;
+    case HL_KEY_U32: fprintf(out, "%u", *(const uint32_t *)field); break;
+    case HL_KEY_U64: fprintf(out, "%llu", (unsigned long long)*(const uint64_t *)field); break;
+    case HL_KEY_DOUBLE: fprintf(out, "%.17g", *(const double *)field); break;
+    case HL_KEY_BOOL: fprintf(out, "%s", *(const bool *)field ? "true" : "false"); break;
+    case HL_KEY_DEG: {
+        hl_bam_t a = *(const hl_bam_t *)field;
+        /* shortest decimal that reads back as the same BAM */
+        for (int prec = 1; prec <= 17; prec++) {
+            char buf[40];
+            double deg = k->min < 0 ? hl_bam_to_sdeg(a) : a == 32768 ? 180.0 : hl_bam_to_deg(a);
+            snprintf(buf, sizeof buf, "%.*g", prec, deg);
+            if (hl_bam_from_deg(strtod(buf, NULL)) == a || prec == 17) {
+                fprintf(out, "%s", buf);
+                break;
+            }
+        }
+        break;
+    }
+    case HL_KEY_METRES: fprintf(out, "%.3f", *(const hl_mm_t *)field / 1000.0); break;
+    case HL_KEY_Q8: fprintf(out, "%g", *(const uint16_t *)field / 256.0); break;
+    case HL_KEY_LEVEL: fprintf(out, "%s", hl_log_level_name(*(const int32_t *)field)); break;
+    case HL_KEY_MODE: fprintf(out, "%s", c->mode); break;
+    case HL_KEY_FENCE_POLYGON: fprintf(out, "%s", c->fence_text); break;
+    case HL_KEY_FENCE_RECT: break;
+    }
+}
+
+void hl_config_print(const hl_config_t *c, FILE *out)
+{
+    fputs("; houghlocd configuration (INI): every key with its value; ';' starts a comment.\n"
+          "; Keys left out keep the compiled-in defaults; `houghlocd --print-config` prints\n"
+          "; the effective values, and README.md explains each section.\n\n", out);
+    char section[64] = "";
+    for (size_t i = 0; i < hl_config_nkeys; i++) {
+        const hl_config_key_t *k = &hl_config_keys[i];
+        if (k->type == HL_KEY_FENCE_RECT)
+            continue;   /* the fence prints as its polygon, which reads back the same */
+        const char *dot = strchr(k->name, '.');
+        size_t slen = (size_t)(dot - k->name);
+        if (strncmp(section, k->name, slen) != 0 || section[slen] != '\0') {
+            snprintf(section, sizeof section, "%.*s", (int)slen, k->name);
+            fprintf(out, "%s[%s]\n", i ? "\n" : "", section);
+        }
+        fprintf(out, "; %s\n%s = ", k->help, dot + 1);
+        print_value(c, k, out);
+        fputc('\n', out);
+    }
+}

@@ -1,0 +1,75 @@
+/*
+ * config.h - houghlocd's configuration: compiled-in defaults, an INI file (libinih),
+ * command-line overrides, validation with the file, line, key and reason.
+ *
+ * Every key is "section.key" (the INI section and the key in it); config_keys.c lists
+ * them with their types, ranges and one-line descriptions, and packaging/houghlocd.conf
+ * is the commented default file. slam.mode (improved or paper) is a preset applied before
+ * every other key, wherever it is written, so that single keys can adjust a preset.
+ */
+#ifndef HOUGHLOC_DAEMON_CONFIG_H
+#define HOUGHLOC_DAEMON_CONFIG_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "houghloc/bus.h"
+#include "houghloc/fence.h"
+#include "houghloc/slam.h"
+
+#define HL_CONFIG_DEFAULT_PATH "/etc/houghloc/houghlocd.conf"
+#define HL_CONFIG_PATH_MAX 512
+#define HL_CONFIG_URL_MAX 512
+#define HL_CONFIG_WHY_LEN 640
+#define HL_CONFIG_MAX_OVERRIDES 64
+
+typedef struct hl_config {
+    /* [lcm] */
+    char lcm_url[HL_CONFIG_URL_MAX];    /* "" = $LCM_DEFAULT_URL, else host-only udpm */
+    char lcm_out[HL_CONFIG_URL_MAX];    /* "" = the input URL (or, for a log replay, the
+                                           live default) */
+    char prefix[HL_BUS_PREFIX_MAX + 1];
+    int32_t queue;                      /* liblcm queue per subscription, messages */
+    /* [daemon] */
+    char map_file[HL_CONFIG_PATH_MAX];  /* "" = $STATE_DIRECTORY/map.hlmap, else
+                                           /var/lib/houghloc/map.hlmap */
+    int32_t save_every;                 /* save after this many integrations; 0 = only
+                                           on exit and on SAVE */
+    int32_t map_period_ms;              /* MAP at most this often, in message time */
+    int32_t status_period_ms;           /* STATUS this often, wall clock */
+    int32_t idle_after_ms;              /* no SONAR this long (wall clock): state IDLE */
+    int32_t compute_window;             /* scans in STATUS's compute median and p99 */
+    int32_t log_level;                  /* HL_LOG_* */
+    /* [auth] */
+    char key_file[HL_CONFIG_PATH_MAX];  /* "" = requests are not authenticated */
+    /* [start] */
+    hl_pose_t start;                    /* where the first scan is placed */
+    /* [fence] */
+    hl_fence_t fence;
+    char fence_text[1024];              /* as given, for --print-config */
+    /* [slam], [localize], [echo], [refine] */
+    char mode[16];                      /* "improved" or "paper" */
+    hl_slam_params_t slam;
+} hl_config_t;
+
+/** The compiled-in defaults (improved mode, host-only LCM, a 20 m square fence). */
+void hl_config_defaults(hl_config_t *c);
+
+/**
+ * Builds the effective configuration: defaults, the preset named by slam.mode (in the
+ * file or the overrides, the overrides winning), the file's keys, then @p overrides
+ * ("section.key=value", in order).
+ * @param path      the INI file; NULL for none.
+ * @param optional  a missing file is not an error (the default path).
+ * @return true, or false with one line in @p why ("FILE:LINE: key 'x.y': reason" for
+ *         the file, "--set x.y=v: reason" for an override, "config: reason" for a
+ *         combination of values).
+ */
+bool hl_config_load(hl_config_t *c, const char *path, bool optional,
+                    const char *const *overrides, int n_overrides, char *why);
+
+/** Writes the effective configuration as an INI file that hl_config_load reads back. */
+void hl_config_print(const hl_config_t *c, FILE *out);
+
+#endif

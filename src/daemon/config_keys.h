@@ -1,0 +1,36 @@
+/* config_keys.h - the table of configuration keys (private to config.c). */
+#ifndef HOUGHLOC_DAEMON_CONFIG_KEYS_H
+#define HOUGHLOC_DAEMON_CONFIG_KEYS_H
+
+#include <stddef.h>
+
+enum hl_key_type {
+    HL_KEY_STR,         /* char[size] */
+    HL_KEY_I32,         /* int32_t (also hl_mm_t) */
+    HL_KEY_U16,
+    HL_KEY_U32,
+    HL_KEY_U64,
+    HL_KEY_DOUBLE,
+    HL_KEY_BOOL,
+    HL_KEY_DEG,         /* hl_bam_t, written in degrees */
+    HL_KEY_METRES,      /* hl_mm_t, written in metres */
+    HL_KEY_Q8,          /* uint16_t x 256, written as a plain number */
+    HL_KEY_LEVEL,       /* log level name */
+    HL_KEY_MODE,        /* slam.mode preset */
+    HL_KEY_FENCE_RECT,
+    HL_KEY_FENCE_POLYGON,
+};
+
+typedef struct hl_config_key {
+    const char *name;   /* "section.key" */
+    enum hl_key_type type;
+    size_t offset;      /* into hl_config_t */
+    size_t size;        /* HL_KEY_STR: the array's size */
+    double min, max;    /* numeric types, in the written unit */
+    const char *help;   /* one line */
+} hl_config_key_t;
+
+extern const hl_config_key_t hl_config_keys[];
+extern const size_t hl_config_nkeys;
+
+#endif

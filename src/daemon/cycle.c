@@ -1,0 +1,304 @@
+/* cycle.c - scans in, poses and maps out (see cycle.h). */
+#include "cycle_internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "log.h"
+
+static const char *const chan_names[HL_CH_COUNT] = {
+    [HL_CH_SONAR] = HL_CHANNEL_SONAR,       [HL_CH_ODOMETRY] = HL_CHANNEL_ODOMETRY,
+    [HL_CH_DESTINATION] = HL_CHANNEL_DESTINATION, [HL_CH_COMMAND] = HL_CHANNEL_COMMAND,
+    [HL_CH_POSE] = HL_CHANNEL_POSE,         [HL_CH_MAP] = HL_CHANNEL_MAP,
+    [HL_CH_STATUS] = HL_CHANNEL_STATUS,     [HL_CH_REPLY] = HL_CHANNEL_REPLY,
+};
+
+const char *hl_chan_name(hl_chan_t ch)
+{
+    return ch < HL_CH_COUNT ? chan_names[ch] : "?";
+}
+
+hl_cycle_t *hl_cycle_create(const hl_cycle_params_t *p, const hl_cycle_io_t *io)
+{
+    if (!p || !io || !io->emit || !io->now_us || p->compute_window < 1 ||
+        p->compute_window > 10000 || p->save_every < 0 || p->map_period_ms < 0 ||
+        !hl_pose_in_range(p->start))
+        return NULL;
+    hl_cycle_t *c = calloc(1, sizeof *c);
+    if (!c)
+        return NULL;
+    c->p = *p;
+    c->io = *io;
+    c->slam = hl_slam_create(&p->slam);
+    c->map_buf_len = hl_bus_map_bytes(p->slam.map_capacity);
+    c->map_buf = malloc(c->map_buf_len);
+    c->compute_us = calloc((size_t)p->compute_window, sizeof *c->compute_us);
+    c->compute_sorted = calloc((size_t)p->compute_window, sizeof *c->compute_sorted);
+    if (!c->slam || !c->map_buf || !c->compute_us || !c->compute_sorted) {
+        hl_cycle_destroy(c);
+        return NULL;
+    }
+    hl_slam_reset(c->slam, p->start);
+    c->state = HL_BUS_STATE_STARTING;
+    c->destination_seq = -1;
+    c->published_version = hl_map_version(hl_slam_map(c->slam));
+    return c;
+}
+
+void hl_cycle_destroy(hl_cycle_t *c)
+{
+    if (!c)
+        return;
+    hl_slam_destroy(c->slam);
+    free(c->map_buf);
+    free(c->compute_us);
+    free(c->compute_sorted);
+    free(c);
+}
+
+hl_status_t hl_cycle_restore(hl_cycle_t *c, const hl_mapfile_t *m)
+{
+    hl_status_t st = hl_slam_restore(c->slam, &m->state, m->vectors, m->count);
+    if (st != HL_OK)
+        return st;
+    c->last_request_seq = m->last_request_seq;
+    c->scans_total = m->scans;
+    /* the loaded map is what the daemon has; publish it with the first scan */
+    c->published_version = m->state.map_version - 1;
+    c->map_changed_utime = m->last_scan_utime;
+    return HL_OK;
+}
+
+void hl_cycle_fault(hl_cycle_t *c, int32_t *counter, const char *kind, const char *what)
+{
+    if (counter)
+        (*counter)++;
+    snprintf(c->last_error, sizeof c->last_error, "%s", what);
+    for (int i = 0; i < c->n_fault_kinds; i++)
+        if (c->fault_kinds[i] == kind)
+            return;
+    if (c->n_fault_kinds < HL_CYCLE_MAX_FAULT_KINDS)
+        c->fault_kinds[c->n_fault_kinds++] = kind;
+    hl_log(HL_LOG_WARNING, "%s (further faults of this kind are counted in STATUS, not logged)",
+           what);
+}
+
+void hl_cycle_note_error(hl_cycle_t *c, const char *what)
+{
+    snprintf(c->last_error, sizeof c->last_error, "%s", what);
+}
+
+/* ---- MAP ----------------------------------------------------------------------------- */
+
+static void publish_map(hl_cycle_t *c)
+{
+    hl_map_t *map = hl_slam_map(c->slam);
+    hl_bus_map_t m = {
+        .utime = c->map_changed_utime, .version = (int32_t)hl_map_version(map),
+        .capacity = (int32_t)hl_map_capacity(map), .count = hl_map_count(map),
+        .vectors = (hl_vector_t *)hl_map_vectors(map),
+    };
+    int len = hl_bus_encode_map(&m, c->map_buf, c->map_buf_len);
+    if (len < 0) {
+        hl_cycle_fault(c, NULL, "map encode", "MAP: the map does not encode (a bug)");
+        return;
+    }
+    c->io.emit(c->io.ctx, HL_CH_MAP, c->map_buf, (size_t)len);
+    c->published_version = hl_map_version(map);
+    c->map_published = true;
+    c->map_published_utime = c->map_changed_utime;
+}
+
+static bool map_pending(const hl_cycle_t *c)
+{
+    return hl_map_version(hl_slam_map(c->slam)) != c->published_version;
+}
+
+/* A changed map goes out at most once per map_period_ms of message time. */
+static void maybe_publish_map(hl_cycle_t *c)
+{
+    if (map_pending(c) && (!c->map_published ||
+                           c->map_changed_utime - c->map_published_utime >=
+                               (int64_t)c->p.map_period_ms * 1000))
+        publish_map(c);
+}
+
+void hl_cycle_flush_map(hl_cycle_t *c)
+{
+    if (map_pending(c))
+        publish_map(c);
+}
+
+/* ---- SONAR and ODOMETRY ------------------------------------------------------------- */
+
+static void publish_pose(hl_cycle_t *c, const hl_bus_scan_t *in, const hl_slam_step_t *step)
+{
+    bool localized = step->status != HL_SLAM_ODOMETRY_ONLY;
+    hl_bus_pose_t m = {
+        .utime = in->utime, .scan_seq = in->seq, .pose = step->pose,
+        .status = (int8_t)step->status,
+        .confidence = localized ? (float)hl_loc_confidence(&step->loc) : 0.0f,
+        .peak = localized ? (int32_t)step->loc.peak : 0,
+        .second_peak = localized ? (int32_t)step->loc.second : 0,
+        .votes = localized ? (int32_t)step->loc.votes : 0,
+    };
+    int len = hl_bus_encode_pose(&m, c->buf, sizeof c->buf);
+    if (len > 0)
+        c->io.emit(c->io.ctx, HL_CH_POSE, c->buf, (size_t)len);
+}
+
+/* The pose a failed update leaves: the estimate moved by odometry, as slam predicts. */
+static hl_pose_t prediction(const hl_cycle_t *c, hl_pose_t odometry)
+{
+    hl_slam_state_t s;
+    hl_slam_get_state(c->slam, &s);
+    if (!s.started)
+        return s.pose;
+    hl_pose_t p = hl_pose_compose(s.pose, hl_pose_between(s.odom, odometry));
+    return hl_pose_in_range(p) ? p : s.pose;
+}
+
+static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us)
+{
+    char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
+    hl_bus_scan_t *in = &c->scan;
+    if (hl_bus_decode_scan(data, len, in, why) != HL_OK) {
+        snprintf(what, sizeof what, "SONAR: %s", why);
+        hl_cycle_fault(c, &c->n.bad_messages, "sonar decode", what);
+        return;
+    }
+    if (c->have_scan && (in->seq <= c->last_scan_seq || in->utime <= c->last_scan_utime)) {
+        snprintf(what, sizeof what, "SONAR: scan seq %d at %lld is not after seq %d at %lld",
+                 in->seq, (long long)in->utime, c->last_scan_seq, (long long)c->last_scan_utime);
+        hl_cycle_fault(c, &c->n.bad_messages, "sonar order", what);
+        return;
+    }
+    c->have_scan = true;
+    c->last_scan_seq = in->seq;
+    c->last_scan_utime = in->utime;
+    if (in->utime > c->newest_utime)
+        c->newest_utime = in->utime;
+    c->last_sonar_wall_us = now_us;
+
+    uint32_t version = hl_map_version(hl_slam_map(c->slam));
+    hl_slam_step_t step;
+    int64_t t0 = c->io.now_us(c->io.ctx);
+    hl_status_t st = hl_slam_update(c->slam, &in->scan, in->odometry, &step);
+    hl_cycle_record_compute(c, c->io.now_us(c->io.ctx) - t0);
+    if (st != HL_OK) {
+        /* nothing changed (slam.h); answer with the prediction, as for an empty map */
+        snprintf(what, sizeof what, "SONAR: scan seq %d not localized: %s", in->seq,
+                 hl_status_str(st));
+        hl_cycle_fault(c, NULL, "sonar update", what);
+        step = (hl_slam_step_t){ .pose = prediction(c, in->odometry),
+                                 .status = HL_SLAM_ODOMETRY_ONLY };
+    }
+    c->scan_odometry = in->odometry;
+    if (!c->have_odometry || in->utime >= c->last_odometry_utime)
+        c->odometry = in->odometry;
+    c->n.scans++;
+    c->scans_total++;
+    c->n.accepted += step.status == HL_SLAM_ACCEPTED;
+    c->n.rejected_wild += step.status == HL_SLAM_REJECTED_WILD;
+    c->n.odometry_only += step.status == HL_SLAM_ODOMETRY_ONLY;
+    publish_pose(c, in, &step);
+    if (hl_log_enabled(HL_LOG_DEBUG)) {
+        static const char *const names[] = { "ACCEPTED", "REJECTED_WILD", "ODOMETRY_ONLY" };
+        hl_log(HL_LOG_DEBUG, "scan %llu (seq %d): %s at (%.3f, %.3f) m, %.1f deg; map %u",
+               (unsigned long long)c->scans_total, in->seq, names[step.status],
+               step.pose.x_mm / 1000.0, step.pose.y_mm / 1000.0, hl_bam_to_sdeg(step.pose.theta),
+               hl_map_count(hl_slam_map(c->slam)));
+    }
+
+    if (hl_map_version(hl_slam_map(c->slam)) != version) {
+        c->map_changed_utime = in->utime;
+        c->since_save++;
+    }
+    maybe_publish_map(c);
+    if (c->state != HL_BUS_STATE_LOCALIZING)
+        hl_cycle_set_state(c, HL_BUS_STATE_LOCALIZING, now_us);
+}
+
+static void on_odometry(hl_cycle_t *c, const void *data, size_t len)
+{
+    char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
+    hl_bus_odometry_t o;
+    if (hl_bus_decode_odometry(data, len, &o, why) != HL_OK) {
+        snprintf(what, sizeof what, "ODOMETRY: %s", why);
+        hl_cycle_fault(c, &c->n.bad_messages, "odometry decode", what);
+        return;
+    }
+    if (c->have_odometry && o.utime <= c->last_odometry_utime) {
+        snprintf(what, sizeof what, "ODOMETRY: time %lld is not after %lld",
+                 (long long)o.utime, (long long)c->last_odometry_utime);
+        hl_cycle_fault(c, &c->n.bad_messages, "odometry order", what);
+        return;
+    }
+    c->have_odometry = true;
+    c->last_odometry_utime = o.utime;
+    if (o.utime > c->newest_utime)
+        c->newest_utime = o.utime;
+    if (!c->have_scan || o.utime >= c->last_scan_utime)
+        c->odometry = o.pose;
+}
+
+void hl_cycle_on_message(hl_cycle_t *c, hl_chan_t ch, const void *data, size_t len,
+                         int64_t now_us)
+{
+    switch (ch) {
+    case HL_CH_SONAR: on_sonar(c, data, len, now_us); break;
+    case HL_CH_ODOMETRY: on_odometry(c, data, len); break;
+    case HL_CH_DESTINATION: hl_cycle_on_destination(c, data, len, now_us); break;
+    case HL_CH_COMMAND: hl_cycle_on_command(c, data, len, now_us); break;
+    default: break;     /* outputs are not inputs */
+    }
+}
+
+/* ---- saving ---------------------------------------------------------------------------- */
+
+bool hl_cycle_save_due(const hl_cycle_t *c)
+{
+    return c->save_requested || (c->p.save_every > 0 && c->since_save >= c->p.save_every);
+}
+
+void hl_cycle_snapshot(const hl_cycle_t *c, hl_mapfile_t *out)
+{
+    hl_map_t *map = hl_slam_map(c->slam);
+    *out = (hl_mapfile_t){
+        .capacity = hl_map_capacity(map), .count = hl_map_count(map),
+        .vectors = (hl_vector_t *)hl_map_vectors(map),
+        .last_request_seq = c->last_request_seq, .last_scan_utime = c->last_scan_utime,
+        .scans = c->scans_total,
+    };
+    hl_slam_get_state(c->slam, &out->state);
+}
+
+void hl_cycle_saved(hl_cycle_t *c, bool ok, const char *why)
+{
+    c->since_save = 0;     /* after a failure too: retry after save_every more */
+    if (ok)
+        c->n.saves++;
+    else
+        hl_cycle_fault(c, NULL, "save", why);
+    if (c->save_request_seq)
+        hl_cycle_reply(c, c->save_request_seq, ok ? HL_BUS_REPLY_ACCEPTED : HL_BUS_REPLY_FAILED,
+                       ok ? "map saved" : why);
+    c->save_requested = false;
+    c->save_request_seq = 0;
+}
+
+const hl_cycle_counts_t *hl_cycle_counts(const hl_cycle_t *c)
+{
+    return &c->n;
+}
+
+const char *hl_cycle_last_error(const hl_cycle_t *c)
+{
+    return c->last_error;
+}
+
+hl_slam_t *hl_cycle_slam(hl_cycle_t *c)
+{
+    return c->slam;
+}

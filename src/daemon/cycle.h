@@ -1,0 +1,109 @@
+/*
+ * cycle.h - the daemon's state machine: messages in -> localize -> integrate ->
+ * messages out. It owns no file descriptor and reads no clock of its own: input arrives
+ * as bytes with the channel they came on, output leaves through the emit callback, and
+ * wall-clock time (for STATUS, compute times and the idle state) comes from the caller.
+ * Everything published on POSE and MAP is a function of the input messages and the
+ * parameters only, so a replay reproduces it byte for byte.
+ *
+ * Saving the map is file I/O, so the cycle only says when a save is due
+ * (hl_cycle_save_due), lends its state for it (hl_cycle_snapshot) and is told the outcome
+ * (hl_cycle_saved), which answers a pending SAVE request.
+ */
+#ifndef HOUGHLOC_DAEMON_CYCLE_H
+#define HOUGHLOC_DAEMON_CYCLE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "houghloc/auth.h"
+#include "houghloc/bus.h"
+#include "houghloc/fence.h"
+#include "houghloc/slam.h"
+#include "mapstore.h"
+
+typedef enum hl_chan {
+    HL_CH_SONAR,            /* inputs */
+    HL_CH_ODOMETRY,
+    HL_CH_DESTINATION,
+    HL_CH_COMMAND,
+    HL_CH_POSE,             /* outputs */
+    HL_CH_MAP,
+    HL_CH_STATUS,
+    HL_CH_REPLY,
+    HL_CH_COUNT
+} hl_chan_t;
+
+/** The base name of a channel ("SONAR", ...). */
+const char *hl_chan_name(hl_chan_t ch);
+
+typedef struct hl_cycle_io {
+    /** Publishes @p len bytes on @p ch. */
+    void (*emit)(void *ctx, hl_chan_t ch, const void *data, size_t len);
+    /** A monotonic clock in microseconds, read around each localization. */
+    int64_t (*now_us)(void *ctx);
+    void *ctx;
+} hl_cycle_io_t;
+
+typedef struct hl_cycle_params {
+    hl_slam_params_t slam;
+    hl_pose_t start;            /* where the first scan is placed */
+    hl_fence_t fence;           /* destinations must lie inside */
+    bool authenticate;          /* requests must carry a MAC made with key */
+    hl_auth_key_t key;
+    int32_t save_every;         /* integrations between saves; 0 = only when asked */
+    int32_t map_period_ms;      /* least message time between two MAP messages */
+    int32_t idle_after_ms;      /* wall time without SONAR before the state is IDLE */
+    int32_t compute_window;     /* scans in the compute-time statistics, 1..10000 */
+} hl_cycle_params_t;
+
+/** Counters, as STATUS reports them. */
+typedef struct hl_cycle_counts {
+    int32_t scans, accepted, rejected_wild, odometry_only;
+    int32_t bad_messages, rejected_requests, saves;
+} hl_cycle_counts_t;
+
+typedef struct hl_cycle hl_cycle_t;
+
+/** @return NULL on invalid parameters or no memory (all memory is allocated here). */
+hl_cycle_t *hl_cycle_create(const hl_cycle_params_t *p, const hl_cycle_io_t *io);
+void hl_cycle_destroy(hl_cycle_t *c);    /* accepts NULL */
+
+/**
+ * Continues from a saved map file (mapstore.h). @return HL_OK, or HL_ERR_CAPACITY /
+ * HL_ERR_RANGE when it does not fit these parameters; nothing changes on error.
+ */
+hl_status_t hl_cycle_restore(hl_cycle_t *c, const hl_mapfile_t *m);
+
+/**
+ * One message from outside, as received. Malformed or out-of-order input is counted,
+ * logged once per kind of fault and otherwise ignored. @p now_us is the wall clock.
+ */
+void hl_cycle_on_message(hl_cycle_t *c, hl_chan_t ch, const void *data, size_t len,
+                         int64_t now_us);
+
+/** The periodic timer: STATUS, and LOCALIZING -> IDLE after idle_after_ms without SONAR. */
+void hl_cycle_tick(hl_cycle_t *c, int64_t now_us);
+
+/** Publishes STATUS now with @p state (HL_BUS_STATE_*) and remembers the state. */
+void hl_cycle_set_state(hl_cycle_t *c, int8_t state, int64_t now_us);
+
+/** Publishes a MAP whose change was held back by map_period_ms, if any (at shutdown). */
+void hl_cycle_flush_map(hl_cycle_t *c);
+
+/** Whether the map should be saved now (save_every reached, or a SAVE request). */
+bool hl_cycle_save_due(const hl_cycle_t *c);
+/** Fills @p out with the state to save; out->vectors points into the cycle's map. */
+void hl_cycle_snapshot(const hl_cycle_t *c, hl_mapfile_t *out);
+/** The outcome of a save: answers a pending SAVE request and resets the count. */
+void hl_cycle_saved(hl_cycle_t *c, bool ok, const char *why);
+
+const hl_cycle_counts_t *hl_cycle_counts(const hl_cycle_t *c);
+/** The last rejection or fault, one line ("" when none). */
+const char *hl_cycle_last_error(const hl_cycle_t *c);
+/** Records a fault from outside the cycle (STATUS's last_error). */
+void hl_cycle_note_error(hl_cycle_t *c, const char *what);
+hl_slam_t *hl_cycle_slam(hl_cycle_t *c);
+
+#endif

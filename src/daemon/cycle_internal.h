@@ -1,0 +1,63 @@
+/* cycle_internal.h - the cycle's state, shared by cycle.c, cycle_requests.c and
+ * cycle_status.c only. */
+#ifndef HOUGHLOC_DAEMON_CYCLE_INTERNAL_H
+#define HOUGHLOC_DAEMON_CYCLE_INTERNAL_H
+
+#include "cycle.h"
+
+#define HL_CYCLE_MAX_FAULT_KINDS 32
+
+struct hl_cycle {
+    hl_cycle_params_t p;
+    hl_cycle_io_t io;
+    hl_slam_t *slam;
+    hl_cycle_counts_t n;
+    int8_t state;
+    int64_t last_sonar_wall_us;     /* wall clock of the last scan, for IDLE */
+
+    /* input order */
+    bool have_scan, have_odometry;
+    int32_t last_scan_seq;
+    int64_t last_scan_utime, last_odometry_utime, newest_utime;
+    hl_pose_t scan_odometry;        /* odometry of the last scan */
+    hl_pose_t odometry;             /* newest odometry, from ODOMETRY or a scan */
+    int64_t last_request_seq;       /* highest DESTINATION/COMMAND seq accepted */
+    int64_t destination_seq;        /* current destination, -1 if none */
+    uint64_t scans_total;           /* over the map's life, saved with it */
+
+    /* MAP publishing */
+    uint32_t published_version;
+    bool map_published;
+    int64_t map_published_utime, map_changed_utime;
+    uint8_t *map_buf;
+    size_t map_buf_len;
+
+    /* saving */
+    int32_t since_save;
+    bool save_requested;
+    int64_t save_request_seq;       /* 0 when none */
+
+    /* compute time per scan, the last compute_window of them */
+    int32_t *compute_us, *compute_sorted;
+    int32_t compute_n, compute_next;
+
+    /* faults: each kind is logged once, the last is in STATUS */
+    const char *fault_kinds[HL_CYCLE_MAX_FAULT_KINDS];
+    int n_fault_kinds;
+    char last_error[HL_BUS_TEXT_MAX];
+
+    hl_bus_scan_t scan;             /* decode target: too big for the stack */
+    uint8_t buf[HL_BUS_STATUS_MAX_BYTES + HL_BUS_REPLY_MAX_BYTES + HL_BUS_POSE_BYTES];
+};
+
+/** Counts a fault in @p counter (may be NULL), keeps @p what as the last error and logs it
+ *  if no fault of the same @p kind (a constant string) was logged before. */
+void hl_cycle_fault(hl_cycle_t *c, int32_t *counter, const char *kind, const char *what);
+
+void hl_cycle_on_destination(hl_cycle_t *c, const void *data, size_t len, int64_t now_us);
+void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t now_us);
+void hl_cycle_reply(hl_cycle_t *c, int64_t seq, int8_t result, const char *message);
+void hl_cycle_publish_status(hl_cycle_t *c);
+void hl_cycle_record_compute(hl_cycle_t *c, int64_t us);
+
+#endif

@@ -1,0 +1,119 @@
+/* cycle_requests.c - DESTINATION and COMMAND: authenticity, freshness, the geofence,
+ * and one REPLY for every request whose seq could be read. */
+#include <stdio.h>
+
+#include "cycle_internal.h"
+#include "log.h"
+
+void hl_cycle_reply(hl_cycle_t *c, int64_t seq, int8_t result, const char *message)
+{
+    hl_bus_reply_t r = { .utime = c->newest_utime, .seq = seq, .result = result };
+    snprintf(r.message, sizeof r.message, "%s", message);
+    int len = hl_bus_encode_reply(&r, c->buf, sizeof c->buf);
+    if (len > 0)
+        c->io.emit(c->io.ctx, HL_CH_REPLY, c->buf, (size_t)len);
+    /* refusals are logged once per kind by hl_cycle_fault: a flood must not flood the log */
+    bool refused = result != HL_BUS_REPLY_ACCEPTED && result != HL_BUS_REPLY_ARRIVED &&
+                   result != HL_BUS_REPLY_NO_ROBOT;
+    hl_log(refused ? HL_LOG_DEBUG : HL_LOG_INFO, "request %lld: %s: %s", (long long)seq,
+           hl_bus_reply_name(result), message);
+}
+
+/* Refuses a request: counted, logged once per kind, answered. */
+static void refuse(hl_cycle_t *c, const char *channel, int64_t seq, int8_t result,
+                   const char *kind, const char *why)
+{
+    char what[HL_BUS_TEXT_MAX];
+    snprintf(what, sizeof what, "%s seq %lld: %s: %.100s", channel, (long long)seq,
+             hl_bus_reply_name(result), why);
+    hl_cycle_fault(c, &c->n.rejected_requests, kind, what);
+    hl_cycle_reply(c, seq, result, why);
+}
+
+/* Authentic and fresh? Answers and returns false if not; else takes the seq. */
+static bool admit(hl_cycle_t *c, const char *channel, int64_t seq, bool mac_ok)
+{
+    char why[HL_BUS_TEXT_MAX];
+    if (c->p.authenticate && !mac_ok) {
+        refuse(c, channel, seq, HL_BUS_REPLY_REJECTED_AUTH, "request auth",
+               "missing or wrong MAC: sign requests with the daemon's key");
+        return false;
+    }
+    if (seq <= c->last_request_seq) {
+        snprintf(why, sizeof why, "seq %lld is not above the last accepted %lld (a replay?)",
+                 (long long)seq, (long long)c->last_request_seq);
+        refuse(c, channel, seq, HL_BUS_REPLY_REJECTED_REPLAY, "request replay", why);
+        return false;
+    }
+    c->last_request_seq = seq;
+    return true;
+}
+
+void hl_cycle_on_destination(hl_cycle_t *c, const void *data, size_t len, int64_t now_us)
+{
+    (void)now_us;
+    char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
+    hl_bus_destination_t d;
+    if (hl_bus_decode_destination(data, len, &d, why) != HL_OK) {
+        snprintf(what, sizeof what, "DESTINATION: %s", why);
+        hl_cycle_fault(c, &c->n.bad_messages, "destination decode", what);
+        return;
+    }
+    bool mac_ok = c->p.authenticate && hl_auth_check_destination(&c->p.key, &d);
+    if (!admit(c, HL_CHANNEL_DESTINATION, d.seq, mac_ok))
+        return;
+    if (!hl_fence_contains(&c->p.fence, d.x_mm, d.y_mm)) {
+        snprintf(what, sizeof what, "(%.3f, %.3f) m is outside the geofence", d.x_mm / 1000.0,
+                 d.y_mm / 1000.0);
+        refuse(c, HL_CHANNEL_DESTINATION, d.seq, HL_BUS_REPLY_REJECTED_FENCE, "request fence",
+               what);
+        return;
+    }
+    /* The robot link (a later part) drives to it; until then there is nothing to move. */
+    hl_cycle_reply(c, d.seq, HL_BUS_REPLY_NO_ROBOT, "no robot is connected to houghlocd");
+}
+
+static void set_pose(hl_cycle_t *c, const hl_bus_command_t *cmd, int64_t now_us)
+{
+    char what[HL_BUS_TEXT_MAX];
+    hl_pose_t odometry = c->have_scan || c->have_odometry ? c->odometry : cmd->pose;
+    if (hl_slam_set_pose(c->slam, cmd->pose, odometry) != HL_OK) {
+        hl_cycle_reply(c, cmd->seq, HL_BUS_REPLY_REJECTED_INVALID, "pose out of range");
+        return;
+    }
+    snprintf(what, sizeof what, "pose set to (%.3f, %.3f) m, %.1f deg; map kept",
+             cmd->pose.x_mm / 1000.0, cmd->pose.y_mm / 1000.0, hl_bam_to_sdeg(cmd->pose.theta));
+    hl_cycle_reply(c, cmd->seq, HL_BUS_REPLY_ACCEPTED, what);
+    hl_cycle_set_state(c, c->state, now_us);   /* STATUS shows the new estimate at once */
+}
+
+void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t now_us)
+{
+    char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
+    hl_bus_command_t cmd;
+    if (hl_bus_decode_command(data, len, &cmd, why) != HL_OK) {
+        snprintf(what, sizeof what, "COMMAND: %s", why);
+        hl_cycle_fault(c, &c->n.bad_messages, "command decode", what);
+        return;
+    }
+    bool mac_ok = c->p.authenticate && hl_auth_check_command(&c->p.key, &cmd);
+    if (!admit(c, HL_CHANNEL_COMMAND, cmd.seq, mac_ok))
+        return;
+    switch (cmd.kind) {
+    case HL_BUS_COMMAND_SET_POSE:
+        set_pose(c, &cmd, now_us);
+        break;
+    case HL_BUS_COMMAND_SAVE:
+        /* answered by hl_cycle_saved once the loop has written the file */
+        if (c->save_request_seq)
+            hl_cycle_reply(c, c->save_request_seq, HL_BUS_REPLY_ACCEPTED,
+                           "superseded by SAVE request with a higher seq");
+        c->save_requested = true;
+        c->save_request_seq = cmd.seq;
+        break;
+    default:
+        hl_cycle_reply(c, cmd.seq, HL_BUS_REPLY_FAILED,
+                       "global relocalization is not available in this version");
+        break;
+    }
+}

@@ -1,0 +1,310 @@
+/* main.c - houghlocd: arguments, configuration, the map file, then the loop. */
+#include <errno.h>
+#include <getopt.h>
+#include <libgen.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <systemd/sd-daemon.h>
+#include <unistd.h>
+
+#include "config.h"
+#include "cycle.h"
+#include "houghloc/logcheck.h"
+#include "keyfile.h"
+#include "log.h"
+#include "loop.h"
+#include "mapstore.h"
+
+#define HL_VERSION "0.2.0"
+#define HOST_ONLY_URL "udpm://239.255.76.67:7667?ttl=0"
+
+static const char usage[] =
+    "Usage: houghlocd [OPTIONS]\n"
+    "Sonar localization and map-making daemon: localizes each SONAR scan against its map\n"
+    "of tangent vectors with a Hough transform, adds it to the map, and publishes POSE,\n"
+    "MAP and STATUS over LCM; answers DESTINATION and COMMAND on REPLY.\n"
+    "\n"
+    "Options:\n"
+    "  -c, --config FILE    configuration file (default " HL_CONFIG_DEFAULT_PATH ";\n"
+    "                       a missing default file means the compiled-in defaults)\n"
+    "  -m, --map FILE       map file (default $STATE_DIRECTORY/map.hlmap, else\n"
+    "                       /var/lib/houghloc/map.hlmap)\n"
+    "      --fresh-map      start with an empty map; a map file that does not load is\n"
+    "                       moved aside to FILE.bad-N first\n"
+    "  -u, --lcm-url URL    listen here (default: config lcm.url, $LCM_DEFAULT_URL, else\n"
+    "                       " HOST_ONLY_URL ", this host only).\n"
+    "                       'file://IN.lcmlog?speed=0' replays a log as fast as possible\n"
+    "                       and exits at its end\n"
+    "  -o, --lcm-out URL    publish here (default: the listening URL; for a replay, the\n"
+    "                       live default); 'file://OUT.lcmlog?mode=w' records a log\n"
+    "  -p, --prefix P       channel name prefix (SONAR becomes PSONAR, ...)\n"
+    "  -s, --set K=V        set configuration key K (section.key), after the file;\n"
+    "                       may be repeated\n"
+    "      --print-config   print the effective configuration and exit\n"
+    "      --check-map      check the map file, print what it holds and exit (0 if it\n"
+    "                       loads, 1 if not)\n"
+    "  -h, --help           this text\n"
+    "      --version        the version\n"
+    "\n"
+    "Channels: SONAR, ODOMETRY, DESTINATION, COMMAND in; POSE (one per scan), MAP,\n"
+    "STATUS, REPLY out. SIGTERM/SIGINT save the map and stop; SIGHUP saves it.\n"
+    "Exit status: 0 after a clean stop or the end of a replay, 1 on a start-up error or\n"
+    "a fault, 2 on bad usage. See README.md for the whole story.\n";
+
+typedef struct options {
+    const char *config;
+    bool config_given;
+    bool fresh_map, print_config, check_map;
+    const char *sets[HL_CONFIG_MAX_OVERRIDES];
+    char set_buf[4][HL_CONFIG_URL_MAX + 32];   /* --map/--lcm-url/--lcm-out/--prefix as sets */
+    int n_sets, n_buf;
+} options_t;
+
+static int usage_error(const char *what, const char *arg)
+{
+    fprintf(stderr, "houghlocd: %s '%s' (try --help)\n", what, arg);
+    return 2;
+}
+
+static bool add_set(options_t *o, const char *key, const char *value)
+{
+    if (o->n_sets >= HL_CONFIG_MAX_OVERRIDES)
+        return false;
+    if (!key) {
+        o->sets[o->n_sets++] = value;
+        return true;
+    }
+    if (o->n_buf >= 4)
+        return false;
+    char *b = o->set_buf[o->n_buf++];
+    snprintf(b, sizeof o->set_buf[0], "%s=%s", key, value);
+    o->sets[o->n_sets++] = b;
+    return true;
+}
+
+/* @return -1 to go on, else the exit code. */
+static int parse_args(int argc, char **argv, options_t *o)
+{
+    enum { OPT_FRESH = 256, OPT_PRINT, OPT_VERSION, OPT_CHECK };
+    static const struct option longopts[] = {
+        { "config", required_argument, NULL, 'c' },  { "map", required_argument, NULL, 'm' },
+        { "fresh-map", no_argument, NULL, OPT_FRESH }, { "lcm-url", required_argument, NULL, 'u' },
+        { "lcm-out", required_argument, NULL, 'o' }, { "prefix", required_argument, NULL, 'p' },
+        { "set", required_argument, NULL, 's' },     { "print-config", no_argument, NULL, OPT_PRINT },
+        { "check-map", no_argument, NULL, OPT_CHECK }, { "help", no_argument, NULL, 'h' },          { "version", no_argument, NULL, OPT_VERSION },
+        { NULL, 0, NULL, 0 },
+    };
+    o->config = HL_CONFIG_DEFAULT_PATH;
+    opterr = 0;
+    int c;
+    while ((c = getopt_long(argc, argv, ":c:m:u:o:p:s:h", longopts, NULL)) != -1) {
+        bool ok = true;
+        switch (c) {
+        case 'c': o->config = optarg; o->config_given = true; break;
+        case 'm': ok = add_set(o, "daemon.map_file", optarg); break;
+        case 'u': ok = add_set(o, "lcm.url", optarg); break;
+        case 'o': ok = add_set(o, "lcm.out_url", optarg); break;
+        case 'p': ok = add_set(o, "lcm.prefix", optarg); break;
+        case 's': ok = add_set(o, NULL, optarg); break;
+        case OPT_FRESH: o->fresh_map = true; break;
+        case OPT_PRINT: o->print_config = true; break;
+        case OPT_CHECK: o->check_map = true; break;
+        case 'h': fputs(usage, stdout); return 0;
+        case OPT_VERSION: puts("houghlocd " HL_VERSION); return 0;
+        case ':': return usage_error("this option needs a value:", argv[optind - 1]);
+        default: return usage_error("unknown option", argv[optind - 1]);
+        }
+        if (!ok)
+            return usage_error("too many settings (at most 64), at", argv[optind - 1]);
+    }
+    if (optind < argc)
+        return usage_error("unexpected argument", argv[optind]);
+    return -1;
+}
+
+/* The map file: the config's, else the service's state directory, else /var/lib. */
+static void map_path(const hl_config_t *cfg, char *out, size_t cap)
+{
+    const char *state_dir = getenv("STATE_DIRECTORY");
+    if (cfg->map_file[0])
+        snprintf(out, cap, "%s", cfg->map_file);
+    else if (state_dir && *state_dir && !strchr(state_dir, ':'))
+        snprintf(out, cap, "%s/map.hlmap", state_dir);
+    else
+        snprintf(out, cap, "/var/lib/houghloc/map.hlmap");
+}
+
+/* A daemon that could not save would lose its map at the first stop: refuse at once. */
+static bool map_folder_writable(const char *path)
+{
+    char copy[HL_CONFIG_PATH_MAX];
+    snprintf(copy, sizeof copy, "%s", path);
+    const char *dir = dirname(copy);
+    if (access(dir, W_OK | X_OK) == 0)
+        return true;
+    fprintf(stderr, "houghlocd: cannot write the map file's folder %s: %s (give --map FILE)\n",
+            dir, strerror(errno));
+    return false;
+}
+
+/* Loads the map file into the cycle. @return false after printing why. */
+static bool load_map(hl_cycle_t *cycle, const char *path, bool fresh, uint32_t capacity)
+{
+    hl_mapfile_t m = { .max_vectors = capacity };
+    m.vectors = calloc(capacity, sizeof *m.vectors);
+    if (!m.vectors)
+        return fprintf(stderr, "houghlocd: out of memory\n"), false;
+    char why[HL_MAPSTORE_WHY_LEN];
+    hl_status_t st = hl_mapstore_load(path, &m, why);
+    if (st == HL_OK && !fresh) {
+        st = hl_cycle_restore(cycle, &m);
+        if (st != HL_OK)
+            snprintf(why, sizeof why, "%.300s: holds %u vectors, more than slam.map_capacity %u",
+                     path, m.count, capacity);
+    }
+    bool ok = true;
+    if (st == HL_OK) {
+        if (fresh)
+            hl_log(HL_LOG_NOTICE, "--fresh-map: starting empty; %s will be overwritten", path);
+        else
+            hl_log(HL_LOG_INFO, "map %s: %u vectors, %llu scans", path, m.count,
+                   (unsigned long long)m.scans);
+    } else if (st == HL_ERR_OS && errno == ENOENT) {
+        hl_log(HL_LOG_INFO, "map %s does not exist yet: starting empty", path);
+    } else if (fresh) {
+        char moved[HL_CONFIG_PATH_MAX + 16], why2[HL_MAPSTORE_WHY_LEN];
+        ok = hl_mapstore_move_aside(path, moved, sizeof moved, why2) == HL_OK;
+        if (ok)
+            hl_log(HL_LOG_NOTICE, "--fresh-map: moved the unloadable map to %s (%s)", moved, why);
+        else
+            fprintf(stderr, "houghlocd: %s\n", why2);
+    } else {
+        fprintf(stderr, "houghlocd: %s; start with --fresh-map to move it aside and begin a "
+                "new map\n", why);
+        ok = false;
+    }
+    free(m.vectors);
+    return ok;
+}
+
+static int check_map(const hl_config_t *cfg)
+{
+    char path[HL_CONFIG_PATH_MAX], why[HL_MAPSTORE_WHY_LEN];
+    map_path(cfg, path, sizeof path);
+    hl_mapfile_t m = { .max_vectors = HL_MAP_MAX_CAPACITY };
+    m.vectors = calloc(HL_MAP_MAX_CAPACITY, sizeof *m.vectors);
+    if (!m.vectors)
+        return fprintf(stderr, "houghlocd: out of memory\n"), 1;
+    int rc = 0;
+    if (hl_mapstore_load(path, &m, why) != HL_OK) {
+        fprintf(stderr, "houghlocd: %s\n", why);
+        rc = 1;
+    } else {
+        printf("%s: format %u, %u of %u vectors, map version %u, %llu scans, last scan "
+               "utime %lld, last request seq %lld, pose (%.3f, %.3f) m %.2f deg\n",
+               path, HL_MAPSTORE_VERSION, m.count, m.capacity, m.state.map_version,
+               (unsigned long long)m.scans, (long long)m.last_scan_utime,
+               (long long)m.last_request_seq, m.state.pose.x_mm / 1000.0,
+               m.state.pose.y_mm / 1000.0, hl_bam_to_sdeg(m.state.pose.theta));
+    }
+    free(m.vectors);
+    return rc;
+}
+
+static bool cycle_params(const hl_config_t *cfg, hl_cycle_params_t *p)
+{
+    *p = (hl_cycle_params_t){
+        .slam = cfg->slam, .start = cfg->start, .fence = cfg->fence,
+        .save_every = cfg->save_every, .map_period_ms = cfg->map_period_ms,
+        .idle_after_ms = cfg->idle_after_ms, .compute_window = cfg->compute_window,
+    };
+    if (!cfg->key_file[0])
+        return true;
+    char why[HL_KEYFILE_WHY_LEN];
+    if (!hl_auth_init())
+        return fprintf(stderr, "houghlocd: libsodium does not start\n"), false;
+    if (hl_keyfile_load(cfg->key_file, &p->key, why) != HL_OK)
+        return fprintf(stderr, "houghlocd: %s\n", why), false;
+    p->authenticate = true;
+    return true;
+}
+
+static int run(const hl_config_t *cfg, const options_t *o)
+{
+    char path[HL_CONFIG_PATH_MAX], log_path[HL_CONFIG_PATH_MAX], why[HL_CONFIG_WHY_LEN];
+    const char *env_url = getenv("LCM_DEFAULT_URL");
+    const char *live = env_url && *env_url ? env_url : HOST_ONLY_URL;
+    const char *in_url = cfg->lcm_url[0] ? cfg->lcm_url : live;
+    int reads_log = hl_log_url_path(in_url, log_path, sizeof log_path);
+    if (reads_log < 0)
+        return fprintf(stderr, "houghlocd: the log path in '%s' is too long\n", in_url), 1;
+    if (reads_log == 1) {
+        char lwhy[HL_LOG_WHY_LEN];
+        hl_log_info_t info;
+        if (hl_log_check(log_path, &info, lwhy) != HL_OK)
+            return fprintf(stderr, "houghlocd: %s\n", lwhy), 1;
+        hl_log(HL_LOG_INFO, "replaying %s: %llu events", log_path,
+               (unsigned long long)info.events);
+    }
+    const char *out_url = cfg->lcm_out[0] ? cfg->lcm_out : reads_log ? live : in_url;
+
+    map_path(cfg, path, sizeof path);
+    hl_cycle_params_t cp;
+    if (!map_folder_writable(path) || !cycle_params(cfg, &cp))
+        return 1;
+    hl_loop_params_t lp = { .in_url = in_url, .out_url = out_url, .batch = reads_log == 1,
+                            .prefix = cfg->prefix, .queue = cfg->queue,
+                            .status_period_ms = cfg->status_period_ms, .map_path = path };
+    hl_loop_t *loop = hl_loop_create(&lp, why);
+    if (!loop)
+        return fprintf(stderr, "houghlocd: %s\n", why), 1;
+    hl_cycle_io_t io = hl_loop_io(loop);
+    hl_cycle_t *cycle = hl_cycle_create(&cp, &io);
+    int rc = 1;
+    if (!cycle)
+        fprintf(stderr, "houghlocd: out of memory for a map of %u vectors\n",
+                cfg->slam.map_capacity);
+    else if (load_map(cycle, path, o->fresh_map, cfg->slam.map_capacity)) {
+        hl_log(HL_LOG_INFO, "houghlocd %s ready: in %s, out %s, channel prefix '%s', %s mode, "
+               "map %s, requests %s", HL_VERSION, in_url, out_url, cfg->prefix, cfg->mode, path,
+               cp.authenticate ? "authenticated" : "NOT authenticated");
+        sd_notify(0, "READY=1");
+        hl_cycle_set_state(cycle, HL_BUS_STATE_IDLE, 0);
+        rc = hl_loop_run(loop, cycle);
+        const hl_cycle_counts_t *n = hl_cycle_counts(cycle);
+        hl_log(HL_LOG_INFO, "stopped: %d scans (%d accepted, %d rejected, %d odometry only), "
+               "%d bad messages, %d requests refused, %d saves", n->scans, n->accepted,
+               n->rejected_wild, n->odometry_only, n->bad_messages, n->rejected_requests, n->saves);
+    }
+    hl_cycle_destroy(cycle);
+    hl_loop_destroy(loop);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    options_t o = { 0 };
+    int rc = parse_args(argc, argv, &o);
+    if (rc >= 0)
+        return rc;
+    hl_config_t *cfg = malloc(sizeof *cfg);
+    char why[HL_CONFIG_WHY_LEN];
+    if (!cfg)
+        return fprintf(stderr, "houghlocd: out of memory\n"), 1;
+    if (!hl_config_load(cfg, o.config, !o.config_given, o.sets, o.n_sets, why)) {
+        fprintf(stderr, "houghlocd: %s\n", why);
+        free(cfg);
+        return 1;
+    }
+    hl_log_set_level(cfg->log_level);
+    if (o.print_config) {
+        hl_config_print(cfg, stdout);
+        rc = 0;
+    } else if (o.check_map)
+        rc = check_map(cfg);
+    else
+        rc = run(cfg, &o);
+    free(cfg);
+    return rc;
+}

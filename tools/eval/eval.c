@@ -1,0 +1,386 @@
+/*
+ * hl-eval - scores and compares houghlocd's recorded output.
+ *
+ *   hl-eval start IN.lcmlog             the first scan's true pose: "X_M Y_M HEADING_DEG"
+ *   hl-eval score IN.lcmlog OUT.lcmlog  error of every POSE against GROUND_TRUTH, the
+ *                                       odometry-only error, and a last line
+ *       demo stops=<n> rmse_mm=<x> max_mm=<y> odometry_rmse_mm=<z>
+ *   hl-eval extract LOG CHANNEL FILE    the payloads of every event on CHANNEL, each as
+ *                                       a 4-byte big-endian length and the bytes, so that
+ *                                       two runs compare with cmp(1)
+ *   hl-eval split LOG N FIRST REST      FIRST gets the events before the N-th SONAR scan
+ *                                       (counting from 0), REST the others
+ *   hl-eval garble LOG OUT              OUT is LOG with hostile events between the real
+ *                                       ones: random bytes, truncated copies, replayed
+ *                                       scans and messages of the wrong type, on every
+ *                                       input channel
+ *
+ * Every log is checked with hl_log_check before liblcm reads it.
+ */
+#include <errno.h>
+#include <lcm/eventlog.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "houghloc/bus.h"
+#include "houghloc/logcheck.h"
+
+#define MAX_STOPS 100000
+
+static const char usage[] =
+    "Usage: hl-eval start IN.lcmlog\n"
+    "       hl-eval score [--quiet] IN.lcmlog OUT.lcmlog\n"
+    "       hl-eval extract LOG CHANNEL FILE\n"
+    "       hl-eval split LOG N FIRST REST\n"
+    "       hl-eval garble LOG OUT\n"
+    "Scores houghlocd's POSE output (OUT) against the GROUND_TRUTH of its input (IN),\n"
+    "or extracts one channel's payloads for a byte-for-byte comparison.\n"
+    "score prints the error at every stop and ends with the line\n"
+    "  demo stops=<n> rmse_mm=<x> max_mm=<y> odometry_rmse_mm=<z>\n"
+    "where the odometry error integrates the scans' odometry from the first true pose.\n";
+
+typedef struct stop {
+    int32_t seq;
+    hl_pose_t truth, odometry, pose;
+    bool has_truth, has_scan, has_pose;
+} stop_t;
+
+typedef struct run {
+    stop_t *stops;
+    size_t n;
+} run_t;
+
+/* The stop with @p seq, appended if new. */
+static stop_t *stop_for(run_t *r, int32_t seq)
+{
+    for (size_t i = r->n; i-- > 0;)     /* the newest first: logs come in order */
+        if (r->stops[i].seq == seq)
+            return &r->stops[i];
+    if (r->n >= MAX_STOPS)
+        return NULL;
+    r->stops[r->n] = (stop_t){ .seq = seq };
+    return &r->stops[r->n++];
+}
+
+typedef bool (*event_fn)(void *user, const lcm_eventlog_event_t *ev, char *why);
+
+/* Checks the log, then hands every event to @p fn. @return 0, or 1 after printing why. */
+static int each_event(const char *path, event_fn fn, void *user)
+{
+    char why[HL_LOG_WHY_LEN];
+    if (hl_log_check(path, NULL, why) != HL_OK) {
+        fprintf(stderr, "hl-eval: %s\n", why);
+        return 1;
+    }
+    lcm_eventlog_t *log = lcm_eventlog_create(path, "r");
+    if (!log) {
+        fprintf(stderr, "hl-eval: %s: %s\n", path, strerror(errno));
+        return 1;
+    }
+    int rc = 0;
+    lcm_eventlog_event_t *ev;
+    while (rc == 0 && (ev = lcm_eventlog_read_next_event(log)) != NULL) {
+        char bwhy[HL_BUS_WHY_LEN] = "";
+        if (!fn(user, ev, bwhy)) {
+            fprintf(stderr, "hl-eval: %s: event %lld on %.*s: %s\n", path, (long long)ev->eventnum,
+                    (int)ev->channellen, ev->channel, bwhy);
+            rc = 1;
+        }
+        lcm_eventlog_free_event(ev);
+    }
+    lcm_eventlog_destroy(log);
+    return rc;
+}
+
+static bool is_channel(const lcm_eventlog_event_t *ev, const char *name)
+{
+    return (size_t)ev->channellen == strlen(name) && memcmp(ev->channel, name, ev->channellen) == 0;
+}
+
+/* IN: scans (their odometry) and ground truth. */
+static bool on_input(void *user, const lcm_eventlog_event_t *ev, char *why)
+{
+    run_t *r = user;
+    if (is_channel(ev, HL_CHANNEL_SONAR)) {
+        static hl_bus_scan_t scan;  /* large: not on the stack */
+        if (hl_bus_decode_scan(ev->data, ev->datalen, &scan, why) != HL_OK)
+            return false;
+        stop_t *s = stop_for(r, scan.seq);
+        if (!s)
+            return snprintf(why, HL_BUS_WHY_LEN, "more than %d scans", MAX_STOPS), false;
+        s->odometry = scan.odometry;
+        s->has_scan = true;
+    } else if (is_channel(ev, HL_CHANNEL_GROUND_TRUTH)) {
+        hl_bus_pose_t p;
+        if (hl_bus_decode_pose(ev->data, ev->datalen, &p, why) != HL_OK)
+            return false;
+        stop_t *s = stop_for(r, p.scan_seq);
+        if (!s)
+            return snprintf(why, HL_BUS_WHY_LEN, "more than %d scans", MAX_STOPS), false;
+        s->truth = p.pose;
+        s->has_truth = true;
+    }
+    return true;
+}
+
+/* OUT: the daemon's poses. */
+static bool on_output(void *user, const lcm_eventlog_event_t *ev, char *why)
+{
+    run_t *r = user;
+    if (!is_channel(ev, HL_CHANNEL_POSE))
+        return true;
+    hl_bus_pose_t p;
+    if (hl_bus_decode_pose(ev->data, ev->datalen, &p, why) != HL_OK)
+        return false;
+    for (size_t i = 0; i < r->n; i++) {
+        if (r->stops[i].seq == p.scan_seq) {
+            if (r->stops[i].has_pose)
+                return snprintf(why, HL_BUS_WHY_LEN, "a second POSE for scan %d", p.scan_seq),
+                       false;
+            r->stops[i].pose = p.pose;
+            r->stops[i].has_pose = true;
+            return true;
+        }
+    }
+    return snprintf(why, HL_BUS_WHY_LEN, "POSE for scan %d, which the input lacks", p.scan_seq),
+           false;
+}
+
+static double dist(hl_pose_t a, hl_pose_t b)
+{
+    return hypot((double)a.x_mm - b.x_mm, (double)a.y_mm - b.y_mm);
+}
+
+static int load_input(const char *path, run_t *r)
+{
+    r->stops = calloc(MAX_STOPS, sizeof *r->stops);
+    if (!r->stops)
+        return fprintf(stderr, "hl-eval: out of memory\n"), 1;
+    if (each_event(path, on_input, r) != 0)
+        return 1;
+    size_t first = 0;
+    while (first < r->n && !(r->stops[first].has_scan && r->stops[first].has_truth))
+        first++;
+    if (first == r->n)
+        return fprintf(stderr, "hl-eval: %s: no SONAR scan with a GROUND_TRUTH pose\n", path), 1;
+    return 0;
+}
+
+static int cmd_start(const char *in)
+{
+    run_t r = { 0 };
+    int rc = load_input(in, &r);
+    for (size_t i = 0; rc == 0 && i < r.n; i++) {
+        if (r.stops[i].has_scan && r.stops[i].has_truth) {
+            hl_pose_t t = r.stops[i].truth;
+            printf("%.3f %.3f %.4f\n", t.x_mm / 1000.0, t.y_mm / 1000.0, hl_bam_to_sdeg(t.theta));
+            break;
+        }
+    }
+    free(r.stops);
+    return rc;
+}
+
+static int cmd_score(const char *in, const char *out, bool quiet)
+{
+    run_t r = { 0 };
+    int rc = load_input(in, &r) || each_event(out, on_output, &r);
+    const stop_t *first = NULL;
+    double se = 0, se_odo = 0, max = 0;
+    size_t n = 0, missing = 0;
+    for (size_t i = 0; rc == 0 && i < r.n; i++) {
+        const stop_t *s = &r.stops[i];
+        if (!s->has_scan || !s->has_truth)
+            continue;
+        if (!s->has_pose) {
+            missing++;
+            continue;
+        }
+        if (!first)
+            first = s;
+        hl_pose_t odo = hl_pose_compose(first->truth, hl_pose_between(first->odometry, s->odometry));
+        double e = dist(s->pose, s->truth), e_odo = dist(odo, s->truth);
+        se += e * e;
+        se_odo += e_odo * e_odo;
+        max = e > max ? e : max;
+        n++;
+        if (!quiet)
+            printf("stop %4zu  scan %5d  error %7.0f mm  odometry %7.0f mm\n", n, s->seq, e, e_odo);
+    }
+    if (rc == 0 && missing > 0) {
+        fprintf(stderr, "hl-eval: %s: %zu scans of %s have no POSE\n", out, missing, in);
+        rc = 1;
+    }
+    if (rc == 0 && n == 0) {
+        fprintf(stderr, "hl-eval: %s: no POSE for any scan of %s\n", out, in);
+        rc = 1;
+    }
+    if (rc == 0)
+        printf("demo stops=%zu rmse_mm=%.1f max_mm=%.1f odometry_rmse_mm=%.1f\n", n,
+               sqrt(se / (double)n), max, sqrt(se_odo / (double)n));
+    free(r.stops);
+    return rc;
+}
+
+typedef struct extract {
+    const char *channel;
+    FILE *out;
+} extract_t;
+
+static bool on_extract(void *user, const lcm_eventlog_event_t *ev, char *why)
+{
+    extract_t *x = user;
+    if (!is_channel(ev, x->channel))
+        return true;
+    uint32_t n = (uint32_t)ev->datalen;
+    uint8_t len[4] = { (uint8_t)(n >> 24), (uint8_t)(n >> 16), (uint8_t)(n >> 8), (uint8_t)n };
+    if (fwrite(len, 1, 4, x->out) != 4 || fwrite(ev->data, 1, n, x->out) != n)
+        return snprintf(why, HL_BUS_WHY_LEN, "write error: %s", strerror(errno)), false;
+    return true;
+}
+
+static int cmd_extract(const char *log, const char *channel, const char *file)
+{
+    extract_t x = { channel, fopen(file, "wb") };
+    if (!x.out)
+        return fprintf(stderr, "hl-eval: %s: %s\n", file, strerror(errno)), 1;
+    int rc = each_event(log, on_extract, &x);
+    if (fclose(x.out) != 0 && rc == 0) {
+        fprintf(stderr, "hl-eval: %s: %s\n", file, strerror(errno));
+        rc = 1;
+    }
+    return rc;
+}
+
+/* ---- writing logs: split and garble ---------------------------------------------------- */
+
+typedef struct writer {
+    lcm_eventlog_t *out[2];
+    int which;              /* split: 0 until the N-th scan, then 1 */
+    long scans, split_at;
+    uint32_t rng;
+    uint8_t *prev_sonar;    /* garble: the previous scan, to replay */
+    int32_t prev_sonar_len;
+    int64_t n;
+} writer_t;
+
+static bool put(writer_t *w, lcm_eventlog_t *log, const lcm_eventlog_event_t *ev,
+                const char *channel, const void *data, int32_t len, char *why)
+{
+    lcm_eventlog_event_t e = *ev;
+    e.eventnum = w->n++;
+    e.channel = (char *)channel;
+    e.channellen = (int32_t)strlen(channel);
+    e.data = (void *)data;
+    e.datalen = len;
+    if (lcm_eventlog_write_event(log, &e) != 0)
+        return snprintf(why, HL_BUS_WHY_LEN, "write error: %s", strerror(errno)), false;
+    return true;
+}
+
+static bool on_split(void *user, const lcm_eventlog_event_t *ev, char *why)
+{
+    writer_t *w = user;
+    if (is_channel(ev, HL_CHANNEL_SONAR) && w->scans++ == w->split_at)
+        w->which = 1;
+    char channel[HL_LOG_CHANNEL_MAX + 1];
+    snprintf(channel, sizeof channel, "%.*s", (int)ev->channellen, ev->channel);
+    return put(w, w->out[w->which], ev, channel, ev->data, ev->datalen, why);
+}
+
+static uint32_t next_rand(writer_t *w)
+{
+    w->rng = w->rng * 1664525u + 1013904223u;
+    return w->rng >> 8;
+}
+
+static bool on_garble(void *user, const lcm_eventlog_event_t *ev, char *why)
+{
+    writer_t *w = user;
+    static const char *const inputs[] = { HL_CHANNEL_SONAR, HL_CHANNEL_ODOMETRY,
+                                          HL_CHANNEL_DESTINATION, HL_CHANNEL_COMMAND };
+    char channel[HL_LOG_CHANNEL_MAX + 1];
+    snprintf(channel, sizeof channel, "%.*s", (int)ev->channellen, ev->channel);
+    if (!put(w, w->out[0], ev, channel, ev->data, ev->datalen, why))
+        return false;
+    uint8_t junk[700];
+    uint32_t r = next_rand(w);
+    const char *target = inputs[r % 4];
+    bool ok = true;
+    switch ((r >> 4) % 4) {
+    case 0: /* random bytes */
+        for (size_t i = 0; i < sizeof junk; i++)
+            junk[i] = (uint8_t)next_rand(w);
+        ok = put(w, w->out[0], ev, target, junk, (int32_t)(next_rand(w) % sizeof junk), why);
+        break;
+    case 1: /* this event truncated, on its own channel */
+        ok = put(w, w->out[0], ev, channel, ev->data, ev->datalen / 2, why);
+        break;
+    case 2: /* this event's bytes on another input channel: the wrong type */
+        ok = put(w, w->out[0], ev, target, ev->data, ev->datalen, why);
+        break;
+    default: /* the previous scan again: out of order */
+        if (w->prev_sonar)
+            ok = put(w, w->out[0], ev, HL_CHANNEL_SONAR, w->prev_sonar, w->prev_sonar_len, why);
+        break;
+    }
+    if (is_channel(ev, HL_CHANNEL_SONAR)) {
+        free(w->prev_sonar);
+        w->prev_sonar = malloc((size_t)ev->datalen);
+        if (!w->prev_sonar)
+            return snprintf(why, HL_BUS_WHY_LEN, "out of memory"), false;
+        memcpy(w->prev_sonar, ev->data, (size_t)ev->datalen);
+        w->prev_sonar_len = ev->datalen;
+    }
+    return ok;
+}
+
+static int cmd_write(const char *in, event_fn fn, writer_t *w, const char *out0, const char *out1)
+{
+    const char *paths[2] = { out0, out1 };
+    int rc = 0;
+    for (int i = 0; i < 2 && paths[i]; i++) {
+        w->out[i] = lcm_eventlog_create(paths[i], "w");
+        if (!w->out[i]) {
+            fprintf(stderr, "hl-eval: %s: cannot create: %s\n", paths[i], strerror(errno));
+            rc = 1;
+        }
+    }
+    if (rc == 0)
+        rc = each_event(in, fn, w);
+    for (int i = 0; i < 2; i++)
+        if (w->out[i])
+            lcm_eventlog_destroy(w->out[i]);
+    free(w->prev_sonar);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0))
+        return fputs(usage, stdout), 0;
+    bool quiet = argc >= 3 && strcmp(argv[2], "--quiet") == 0;
+    if (argc == 3 && strcmp(argv[1], "start") == 0)
+        return cmd_start(argv[2]);
+    if (argc == 4 + quiet && strcmp(argv[1], "score") == 0)
+        return cmd_score(argv[2 + quiet], argv[3 + quiet], quiet);
+    if (argc == 5 && strcmp(argv[1], "extract") == 0)
+        return cmd_extract(argv[2], argv[3], argv[4]);
+    if (argc == 6 && strcmp(argv[1], "split") == 0) {
+        char *end;
+        long n = strtol(argv[3], &end, 10);
+        if (*end || end == argv[3] || n < 0)
+            return fprintf(stderr, "hl-eval: split: '%s' is not a scan count\n", argv[3]), 2;
+        writer_t w = { .split_at = n };
+        return cmd_write(argv[2], on_split, &w, argv[4], argv[5]);
+    }
+    if (argc == 4 && strcmp(argv[1], "garble") == 0) {
+        writer_t w = { .rng = 12345 };
+        return cmd_write(argv[2], on_garble, &w, argv[3], NULL);
+    }
+    fprintf(stderr, "hl-eval: expected start, score, extract, split or garble with their "
+            "arguments (try --help)\n");
+    return 2;
+}
