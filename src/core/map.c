@@ -2,6 +2,7 @@
 #include "houghloc/map.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "houghloc/rng.h"
 
@@ -44,7 +45,7 @@ void hl_map_clear(hl_map_t *map)
     map->version++;
 }
 
-static bool vector_in_range(const hl_vector_t *v)
+bool hl_vector_in_range(const hl_vector_t *v)
 {
     return v->x_mm >= -HL_COORD_MAX_MM && v->x_mm <= HL_COORD_MAX_MM &&
            v->y_mm >= -HL_COORD_MAX_MM && v->y_mm <= HL_COORD_MAX_MM &&
@@ -55,7 +56,7 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
 {
     if (!map || !v)
         return HL_ERR_ARG;
-    if (!vector_in_range(v))
+    if (!hl_vector_in_range(v))
         return HL_ERR_RANGE;
     map->version++;
     if (map->count < map->capacity) {
@@ -135,6 +136,31 @@ uint32_t hl_map_version(const hl_map_t *map)
 const hl_vector_t *hl_map_vectors(const hl_map_t *map)
 {
     return map->vectors;
+}
+
+hl_rng_t hl_map_rng(const hl_map_t *map)
+{
+    return map->rng;
+}
+
+hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n,
+                           uint32_t version, hl_rng_t rng)
+{
+    if (!map || (!vectors && n > 0))
+        return HL_ERR_ARG;
+    if (n > map->capacity)
+        return HL_ERR_CAPACITY;
+    /* Check everything before the first write, so that a refused restore leaves the map
+     * as it was. */
+    for (uint32_t i = 0; i < n; i++)
+        if (!hl_vector_in_range(&vectors[i]))
+            return HL_ERR_RANGE;
+    if (n > 0)   /* memmove: the caller may hand back this map's own vectors */
+        memmove(map->vectors, vectors, (size_t)n * sizeof *vectors);
+    map->count = n;
+    map->version = version;
+    map->rng = rng;
+    return HL_OK;
 }
 
 size_t hl_map_mem_bytes(const hl_map_t *map)

@@ -2,6 +2,7 @@
 #include "houghloc/slam.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 struct hl_slam {
     hl_slam_params_t p;
@@ -115,13 +116,12 @@ static bool plausible(const hl_slam_t *s, hl_pose_t pose, hl_pose_t predicted,
            high_enough;
 }
 
-/* Exponential moving average over about four localizations. */
-static void track_peak(hl_slam_t *s, uint32_t peak)
+/* Exponential moving average over about four localizations: the average after @p peak. */
+static uint32_t tracked_peak(uint32_t avg, uint32_t peak)
 {
-    if (s->peak_avg == 0)
-        s->peak_avg = peak;
-    else
-        s->peak_avg = (uint32_t)((int64_t)s->peak_avg + ((int64_t)peak - s->peak_avg) / 4);
+    if (avg == 0)
+        return peak;
+    return (uint32_t)((int64_t)avg + ((int64_t)peak - avg) / 4);
 }
 
 /* The scan as the localizer and the map see it. */
@@ -159,6 +159,9 @@ hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pred
     return localize(s, prepared(s, scan), predicted, loc, pose);
 }
 
+/* Computes the whole cycle into locals first and commits at the end, so that every error
+ * return leaves the slam as it was (slam.h). The scratch buffers (s->echoed, the
+ * localizer's raster, the refiner's hash) are not state: each use rewrites them. */
 hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
                          hl_slam_step_t *out)
 {
@@ -171,24 +174,22 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
         predicted = hl_pose_compose(s->pose, hl_pose_between(s->odom, odometry));
     if (!hl_pose_in_range(predicted))
         return HL_ERR_RANGE;
-    *out = (hl_slam_step_t){ .pose = predicted, .predicted = predicted,
-                             .status = HL_SLAM_ODOMETRY_ONLY };
-    s->started = true;
-    s->odom = odometry;
-    s->pose = predicted;
+    hl_slam_step_t step = { .pose = predicted, .predicted = predicted,
+                            .status = HL_SLAM_ODOMETRY_ONLY };
+    uint32_t peak_avg = s->peak_avg;
     scan = prepared(s, scan);
 
     hl_pose_t found;
-    hl_status_t st = localize(s, scan, predicted, &out->loc, &found);
+    hl_status_t st = localize(s, scan, predicted, &step.loc, &found);
     bool extend = true;
     if (st == HL_OK) {
-        bool accept = !s->p.guarded || plausible(s, found, predicted, &out->loc);
-        track_peak(s, out->loc.peak);
+        bool accept = !s->p.guarded || plausible(s, found, predicted, &step.loc);
+        peak_avg = tracked_peak(s->peak_avg, step.loc.peak);
         if (accept) {
-            out->status = HL_SLAM_ACCEPTED;
-            out->pose = s->pose = found;
+            step.status = HL_SLAM_ACCEPTED;
+            step.pose = found;
         } else {
-            out->status = HL_SLAM_REJECTED_WILD;
+            step.status = HL_SLAM_REJECTED_WILD;
             extend = false;
         }
     } else if (st == HL_ERR_EMPTY) {
@@ -199,8 +200,75 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
     } else {
         return st;
     }
-    if (extend)
-        return hl_map_add_scan(s->map, scan, out->pose, &out->added);
+    /* A local window at the edge of the coordinate range can put the peak (or the
+     * refinement) outside it. hl_map_add_scan refuses only such a pose (the scan passed
+     * hl_scan_check above, and every vector it makes is in range by construction), so
+     * after this check it cannot fail. */
+    if (extend && !hl_pose_in_range(step.pose))
+        return HL_ERR_RANGE;
+
+    /* Commit. */
+    if (extend) {
+        st = hl_map_add_scan(s->map, scan, step.pose, &step.added);
+        if (st != HL_OK)    /* unreachable (above); the map is unchanged if it happens */
+            return st;
+    }
+    s->started = true;
+    s->odom = odometry;
+    s->pose = step.pose;
+    s->peak_avg = peak_avg;
+    *out = step;
+    return HL_OK;
+}
+
+hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry)
+{
+    if (!s)
+        return HL_ERR_ARG;
+    if (!hl_pose_in_range(pose) || !hl_pose_in_range(odometry))
+        return HL_ERR_RANGE;
+    s->pose = pose;
+    /* Before the first scan there is no reference yet: the first scan's odometry
+     * becomes it, at this pose. */
+    if (s->started)
+        s->odom = odometry;
+    return HL_OK;
+}
+
+hl_pose_t hl_slam_pose(const hl_slam_t *s)
+{
+    return s->pose;
+}
+
+void hl_slam_get_state(const hl_slam_t *s, hl_slam_state_t *out)
+{
+    memset(out, 0, sizeof *out);    /* zero padding: callers may compare bytes */
+    out->started = s->started;
+    out->pose = s->pose;
+    out->odom = s->odom;
+    out->peak_avg = s->peak_avg;
+    out->map_version = hl_map_version(s->map);
+    out->cull_rng = hl_map_rng(s->map);
+}
+
+hl_status_t hl_slam_restore(hl_slam_t *s, const hl_slam_state_t *state,
+                            const hl_vector_t *vectors, uint32_t n)
+{
+    if (!s || !state || (!vectors && n > 0))
+        return HL_ERR_ARG;
+    if (n > hl_map_capacity(s->map))
+        return HL_ERR_CAPACITY;
+    if (!hl_pose_in_range(state->pose) || !hl_pose_in_range(state->odom))
+        return HL_ERR_RANGE;
+    /* The map checks the vectors before it changes anything; the rest cannot fail. */
+    hl_status_t st = hl_map_restore(s->map, vectors, n, state->map_version,
+                                    state->cull_rng);
+    if (st != HL_OK)
+        return st;
+    s->started = state->started;
+    s->pose = state->pose;
+    s->odom = state->odom;
+    s->peak_avg = state->peak_avg;
     return HL_OK;
 }
 

@@ -54,3 +54,9 @@ INTEGRATION_TESTS += tests/integration/test_daemon.sh
 .PHONY: crash-trials
 crash-trials: $(BUILD)/bin/houghlocd
 	$(Q)BUILD=$(BUILD) sh tests/integration/crash_trials.sh 100
+
+# test_alloc counts the allocations of houghloc's own code (see the test).
+$(BUILD)/tests/daemon/test_alloc: $(BUILD)/asan/tests/daemon/test_alloc.o $(DAEMON_ASAN_LIB) $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD-SAN  $@"
+	$(Q)$(CC) $(SAN) -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o $@ $< $(DAEMON_ASAN_LIB) $(DAEMON_ASAN_LDLIBS) $(CMOCKA_LIBS)

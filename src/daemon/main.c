@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <systemd/sd-daemon.h>
 #include <unistd.h>
 
@@ -273,9 +274,12 @@ static int run(const hl_config_t *cfg, const options_t *o)
         hl_cycle_set_state(cycle, HL_BUS_STATE_IDLE, 0);
         rc = hl_loop_run(loop, cycle);
         const hl_cycle_counts_t *n = hl_cycle_counts(cycle);
+        struct rusage ru;
+        getrusage(RUSAGE_SELF, &ru);
         hl_log(HL_LOG_INFO, "stopped: %d scans (%d accepted, %d rejected, %d odometry only), "
-               "%d bad messages, %d requests refused, %d saves", n->scans, n->accepted,
-               n->rejected_wild, n->odometry_only, n->bad_messages, n->rejected_requests, n->saves);
+               "%d bad messages, %d requests refused, %d saves; peak memory %ld KiB",
+               n->scans, n->accepted, n->rejected_wild, n->odometry_only, n->bad_messages,
+               n->rejected_requests, n->saves, ru.ru_maxrss);
     }
     hl_cycle_destroy(cycle);
     hl_loop_destroy(loop);

@@ -1,5 +1,5 @@
 /* Tests for src/core/map.c and src/core/scan.c: tangent vectors, capacity and random
- * culling, extreme coordinates, pose algebra. */
+ * culling, extreme coordinates, pose algebra, saving and restoring a map. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -7,6 +7,7 @@
 #include <cmocka.h>
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "houghloc/map.h"
 
@@ -161,6 +162,102 @@ static void test_pose_algebra_round_trip(void **state)
     assert_false(hl_pose_in_range(far));
 }
 
+static void test_vector_in_range_bounds(void **state)
+{
+    (void)state;
+    hl_vector_t v = { HL_COORD_MAX_MM, -HL_COORD_MAX_MM, 65535, HL_RANGE_MAX_MM };
+    assert_true(hl_vector_in_range(&v));
+    v.range_mm = HL_RANGE_MAX_MM + 1;
+    assert_false(hl_vector_in_range(&v));
+    v = vec(-HL_COORD_MAX_MM - 1, 0);
+    assert_false(hl_vector_in_range(&v));
+    v = vec(0, HL_COORD_MAX_MM + 1);
+    assert_false(hl_vector_in_range(&v));
+    v = vec(0, INT32_MIN);
+    assert_false(hl_vector_in_range(&v));
+}
+
+/* A map restored from another's vectors, version and culling state culls exactly as
+ * the original from then on; a fresh map with the same seed would not (its generator
+ * has not advanced). */
+static void test_restore_continues_culling(void **state)
+{
+    (void)state;
+    hl_map_t *a = hl_map_create(40, 11), *b = hl_map_create(40, 99);
+    hl_map_t *c = hl_map_create(40, 11);
+    for (int i = 0; i < 300; i++) {
+        hl_vector_t v = vec(i, -i);
+        assert_int_equal(hl_map_add(a, &v), HL_OK);
+    }
+    hl_vector_t saved[40];
+    memcpy(saved, hl_map_vectors(a), sizeof saved);
+    hl_rng_t rng = hl_map_rng(a);
+    assert_int_equal(hl_map_restore(b, saved, 40, hl_map_version(a), rng), HL_OK);
+    assert_int_equal(hl_map_restore(c, saved, 40, hl_map_version(a), rng), HL_OK);
+    hl_rng_seed(&rng, 11);
+    assert_int_equal(hl_map_restore(c, saved, 40, 7, rng), HL_OK);  /* a fresh generator */
+    assert_int_equal(hl_map_count(b), 40);
+    assert_int_equal(hl_map_version(b), hl_map_version(a));
+    assert_int_equal(hl_map_version(c), 7);
+    assert_memory_equal(hl_map_vectors(b), saved, sizeof saved);
+    for (int i = 0; i < 200; i++) {
+        hl_vector_t v = vec(1000 + i, i);
+        hl_map_add(a, &v);
+        hl_map_add(b, &v);
+        hl_map_add(c, &v);
+    }
+    assert_memory_equal(hl_map_vectors(a), hl_map_vectors(b), 40 * sizeof(hl_vector_t));
+    assert_int_equal(hl_map_version(a), hl_map_version(b));
+    hl_rng_t ra = hl_map_rng(a), rb = hl_map_rng(b);
+    assert_true(ra.state == rb.state && ra.inc == rb.inc);
+    assert_memory_not_equal(hl_map_vectors(a), hl_map_vectors(c), 40 * sizeof(hl_vector_t));
+    /* fewer than the capacity, zero, and the map's own vectors handed back */
+    assert_int_equal(hl_map_restore(b, saved, 3, 5, ra), HL_OK);
+    assert_int_equal(hl_map_count(b), 3);
+    assert_int_equal(hl_map_restore(b, hl_map_vectors(b) + 1, 2, 6, ra), HL_OK);
+    assert_int_equal(hl_map_vectors(b)[0].x_mm, saved[1].x_mm);
+    assert_int_equal(hl_map_vectors(b)[1].x_mm, saved[2].x_mm);
+    assert_int_equal(hl_map_restore(b, NULL, 0, 8, ra), HL_OK);
+    assert_int_equal(hl_map_count(b), 0);
+    assert_int_equal(hl_map_version(b), 8);
+    hl_map_destroy(a);
+    hl_map_destroy(b);
+    hl_map_destroy(c);
+}
+
+/* Too many vectors, or one out of range anywhere in the list: refused, nothing changes
+ * (vectors, count, version, culling state). */
+static void test_restore_refuses_and_changes_nothing(void **state)
+{
+    (void)state;
+    hl_map_t *m = hl_map_create(8, 5);
+    for (int i = 0; i < 20; i++) {
+        hl_vector_t v = vec(i, i);
+        hl_map_add(m, &v);
+    }
+    hl_vector_t before[8];
+    memcpy(before, hl_map_vectors(m), sizeof before);
+    uint32_t version = hl_map_version(m);
+    hl_rng_t rng = hl_map_rng(m), other = { 1, 3 };
+    hl_vector_t in[9];
+    for (int i = 0; i < 9; i++)
+        in[i] = vec(-5000 - i, 5000 + i);
+    assert_int_equal(hl_map_restore(m, in, 9, 1, other), HL_ERR_CAPACITY);
+    in[7].y_mm = HL_COORD_MAX_MM + 1;   /* the last one, after seven good ones */
+    assert_int_equal(hl_map_restore(m, in, 8, 1, other), HL_ERR_RANGE);
+    in[7] = vec(0, 0);
+    in[0].range_mm = HL_RANGE_MAX_MM + 1;
+    assert_int_equal(hl_map_restore(m, in, 8, 1, other), HL_ERR_RANGE);
+    assert_int_equal(hl_map_restore(m, NULL, 1, 1, other), HL_ERR_ARG);
+    assert_int_equal(hl_map_restore(NULL, in, 1, 1, other), HL_ERR_ARG);
+    assert_int_equal(hl_map_count(m), 8);
+    assert_int_equal(hl_map_version(m), version);
+    assert_memory_equal(hl_map_vectors(m), before, sizeof before);
+    hl_rng_t now = hl_map_rng(m);
+    assert_true(now.state == rng.state && now.inc == rng.inc);
+    hl_map_destroy(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -171,6 +268,9 @@ int main(void)
         cmocka_unit_test(test_culling_is_deterministic_by_seed),
         cmocka_unit_test(test_scan_add_and_check),
         cmocka_unit_test(test_pose_algebra_round_trip),
+        cmocka_unit_test(test_vector_in_range_bounds),
+        cmocka_unit_test(test_restore_continues_culling),
+        cmocka_unit_test(test_restore_refuses_and_changes_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

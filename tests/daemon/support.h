@@ -27,7 +27,7 @@ typedef struct event {
 static event_t tour[MAX_EVENTS];
 static size_t n_tour;
 
-static void load_tour(void)
+static inline void load_tour(void)
 {
     if (n_tour)
         return;
@@ -69,7 +69,7 @@ typedef struct capture {
     int64_t clock_step_us;      /* added on every read */
 } capture_t;
 
-static void capture_emit(void *ctx, hl_chan_t ch, const void *data, size_t len)
+static inline void capture_emit(void *ctx, hl_chan_t ch, const void *data, size_t len)
 {
     capture_t *c = ctx;
     if (c->n >= MAX_OUT)
@@ -81,21 +81,21 @@ static void capture_emit(void *ctx, hl_chan_t ch, const void *data, size_t len)
     memcpy(m->data, data, len);
 }
 
-static int64_t capture_clock(void *ctx)
+static inline int64_t capture_clock(void *ctx)
 {
     capture_t *c = ctx;
     c->clock_us += c->clock_step_us;
     return c->clock_us;
 }
 
-static void capture_clear(capture_t *c)
+static inline void capture_clear(capture_t *c)
 {
     for (size_t i = 0; i < c->n; i++)
         free(c->msgs[i].data);
     c->n = 0;
 }
 
-static size_t capture_count(const capture_t *c, hl_chan_t ch)
+static inline size_t capture_count(const capture_t *c, hl_chan_t ch)
 {
     size_t n = 0;
     for (size_t i = 0; i < c->n; i++)
@@ -104,7 +104,7 @@ static size_t capture_count(const capture_t *c, hl_chan_t ch)
 }
 
 /* The k-th captured message on ch, or NULL. */
-static const out_msg_t *capture_nth(const capture_t *c, hl_chan_t ch, size_t k)
+static inline const out_msg_t *capture_nth(const capture_t *c, hl_chan_t ch, size_t k)
 {
     for (size_t i = 0; i < c->n; i++)
         if (c->msgs[i].ch == ch && k-- == 0)
@@ -112,7 +112,7 @@ static const out_msg_t *capture_nth(const capture_t *c, hl_chan_t ch, size_t k)
     return NULL;
 }
 
-static hl_cycle_params_t test_params(void)
+static inline hl_cycle_params_t test_params(void)
 {
     hl_cycle_params_t p = { .save_every = 0, .map_period_ms = 0, .idle_after_ms = 5000,
                             .compute_window = 100 };
@@ -121,14 +121,14 @@ static hl_cycle_params_t test_params(void)
     return p;
 }
 
-static hl_cycle_t *capture_cycle(capture_t *cap, const hl_cycle_params_t *p)
+static inline hl_cycle_t *capture_cycle(capture_t *cap, const hl_cycle_params_t *p)
 {
     hl_cycle_io_t io = { .emit = capture_emit, .now_us = capture_clock, .ctx = cap };
     return hl_cycle_create(p, &io);
 }
 
 /* Feeds the tour's first @p n_scans scans (and the odometry between them). */
-static void feed_tour(hl_cycle_t *c, size_t n_scans)
+static inline void feed_tour(hl_cycle_t *c, size_t n_scans)
 {
     load_tour();
     size_t scans = 0;

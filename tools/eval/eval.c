@@ -8,6 +8,7 @@
  *   hl-eval extract LOG CHANNEL FILE    the payloads of every event on CHANNEL, each as
  *                                       a 4-byte big-endian length and the bytes, so that
  *                                       two runs compare with cmp(1)
+ *   hl-eval status LOG                  the last STATUS in LOG as one line of key=value
  *   hl-eval split LOG N FIRST REST      FIRST gets the events before the N-th SONAR scan
  *                                       (counting from 0), REST the others
  *   hl-eval garble LOG OUT              OUT is LOG with hostile events between the real
@@ -33,6 +34,7 @@ static const char usage[] =
     "Usage: hl-eval start IN.lcmlog\n"
     "       hl-eval score [--quiet] IN.lcmlog OUT.lcmlog\n"
     "       hl-eval extract LOG CHANNEL FILE\n"
+    "       hl-eval status LOG\n"
     "       hl-eval split LOG N FIRST REST\n"
     "       hl-eval garble LOG OUT\n"
     "Scores houghlocd's POSE output (OUT) against the GROUND_TRUTH of its input (IN),\n"
@@ -254,6 +256,33 @@ static int cmd_extract(const char *log, const char *channel, const char *file)
     return rc;
 }
 
+static bool on_status(void *user, const lcm_eventlog_event_t *ev, char *why)
+{
+    hl_bus_status_t *s = user;
+    if (!is_channel(ev, HL_CHANNEL_STATUS))
+        return true;
+    if (hl_bus_decode_status(ev->data, ev->datalen, s, why) != HL_OK)
+        return false;
+    s->utime = s->utime ? s->utime : 1;     /* mark "seen" even for utime 0 */
+    return true;
+}
+
+static int cmd_status(const char *log)
+{
+    hl_bus_status_t s = { 0 };
+    if (each_event(log, on_status, &s) != 0)
+        return 1;
+    if (s.utime == 0)
+        return fprintf(stderr, "hl-eval: %s: no STATUS message\n", log), 1;
+    printf("status state=%d scans=%d accepted=%d rejected_wild=%d odometry_only=%d "
+           "bad_messages=%d rejected_requests=%d map_vectors=%d map_version=%d saves=%d "
+           "compute_median_us=%d compute_p99_us=%d compute_samples=%d\n",
+           s.state, s.scans, s.accepted, s.rejected_wild, s.odometry_only, s.bad_messages,
+           s.rejected_requests, s.map_vectors, s.map_version, s.saves, s.compute_median_us,
+           s.compute_p99_us, s.compute_samples);
+    return 0;
+}
+
 /* ---- writing logs: split and garble ---------------------------------------------------- */
 
 typedef struct writer {
@@ -368,6 +397,8 @@ int main(int argc, char **argv)
         return cmd_score(argv[2 + quiet], argv[3 + quiet], quiet);
     if (argc == 5 && strcmp(argv[1], "extract") == 0)
         return cmd_extract(argv[2], argv[3], argv[4]);
+    if (argc == 3 && strcmp(argv[1], "status") == 0)
+        return cmd_status(argv[2]);
     if (argc == 6 && strcmp(argv[1], "split") == 0) {
         char *end;
         long n = strtol(argv[3], &end, 10);
@@ -380,7 +411,7 @@ int main(int argc, char **argv)
         writer_t w = { .rng = 12345 };
         return cmd_write(argv[2], on_garble, &w, argv[3], NULL);
     }
-    fprintf(stderr, "hl-eval: expected start, score, extract, split or garble with their "
+    fprintf(stderr, "hl-eval: expected start, score, extract, status, split or garble with their "
             "arguments (try --help)\n");
     return 2;
 }

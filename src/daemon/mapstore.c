@@ -1,0 +1,427 @@
+/*
+ * mapstore.c - the map file (mapstore.h; layout and crash analysis in docs/mapfile.md).
+ *
+ * Both directions stream through fixed buffers on the stack: no allocation, whatever
+ * the map's size. Every number is written byte by byte in little-endian order, so the
+ * file is the same on every host and the header needs no padding.
+ */
+#include "mapstore.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <inttypes.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
+
+static const uint8_t MAGIC[8] = { 'H', 'L', 'M', 'A', 'P', '\r', '\n', 0x1a };
+
+enum {
+    HDR_LEN = 93,       /* header bytes, version 1 (offsets in docs/mapfile.md) */
+    VEC_LEN = 12,       /* x i32, y i32, normal u16, range u16 */
+    CRC_LEN = 4,
+    IO_LEN = 4092,      /* the stream buffer: 341 whole vectors */
+    BAD_MAX = 1000,     /* move_aside gives up after PATH.bad-1000 */
+};
+
+/* ---- messages ------------------------------------------------------------------------ */
+
+/* Writes "PATH: text" into @p why (may be NULL) as one line: control characters (a
+ * newline in the path, say) become '?'. Keeps errno. @return @p st. */
+static hl_status_t __attribute__((format(printf, 4, 5)))
+fail(hl_status_t st, char *why, const char *path, const char *fmt, ...)
+{
+    if (!why)
+        return st;
+    int saved = errno;
+    int n = snprintf(why, HL_MAPSTORE_WHY_LEN / 2, "%s: ", path ? path : "(null)");
+    if (n < 0 || n >= HL_MAPSTORE_WHY_LEN / 2)  /* a very long path: keep its start */
+        n = (int)strlen(why);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why + n, HL_MAPSTORE_WHY_LEN - (size_t)n, fmt, ap);
+    va_end(ap);
+    for (unsigned char *p = (unsigned char *)why; *p; p++)
+        if (*p < 0x20 || *p == 0x7f)
+            *p = '?';
+    errno = saved;
+    return st;
+}
+
+/* Success: an empty reason. */
+static hl_status_t done(char *why)
+{
+    if (why)
+        why[0] = '\0';
+    return HL_OK;
+}
+
+/* ---- little-endian fields ------------------------------------------------------------ */
+
+static void put(uint8_t *b, uint64_t v, int bytes)
+{
+    for (int i = 0; i < bytes; i++)
+        b[i] = (uint8_t)(v >> (8 * i));
+}
+
+static uint64_t get(const uint8_t *b, int bytes)
+{
+    uint64_t v = 0;
+    for (int i = 0; i < bytes; i++)
+        v |= (uint64_t)b[i] << (8 * i);
+    return v;
+}
+
+/* A pose as x i32, y i32, theta u16 (10 bytes). A vector is laid out as a pose (x, y,
+ * normal) and its range u16 (12 bytes). Two's complement: the casts keep every bit. */
+static void put_pose(uint8_t *b, hl_pose_t p)
+{
+    put(b, (uint32_t)p.x_mm, 4);
+    put(b + 4, (uint32_t)p.y_mm, 4);
+    put(b + 8, p.theta, 2);
+}
+
+static hl_pose_t get_pose(const uint8_t *b)
+{
+    return (hl_pose_t){ (hl_mm_t)(uint32_t)get(b, 4), (hl_mm_t)(uint32_t)get(b + 4, 4),
+                        (hl_bam_t)get(b + 8, 2) };
+}
+
+/* The header; the offsets are the table in docs/mapfile.md. */
+static void put_header(uint8_t *h, const hl_mapfile_t *m)
+{
+    memcpy(h, MAGIC, sizeof MAGIC);
+    put(h + 8, HL_MAPSTORE_VERSION, 4);
+    put(h + 12, HDR_LEN, 4);
+    put(h + 16, m->capacity, 4);
+    put(h + 20, m->count, 4);
+    put(h + 24, m->state.map_version, 4);
+    h[28] = m->state.started ? 1 : 0;
+    put_pose(h + 29, m->state.pose);
+    put_pose(h + 39, m->state.odom);
+    put(h + 49, m->state.peak_avg, 4);
+    put(h + 53, m->state.cull_rng.state, 8);
+    put(h + 61, m->state.cull_rng.inc, 8);
+    put(h + 69, (uint64_t)m->last_request_seq, 8);
+    put(h + 77, (uint64_t)m->last_scan_utime, 8);
+    put(h + 85, m->scans, 8);
+}
+
+/* Reads every field but the magic, version and header length (checked by the caller). */
+static void get_header(const uint8_t *h, hl_mapfile_t *m)
+{
+    m->capacity = (uint32_t)get(h + 16, 4);
+    m->count = (uint32_t)get(h + 20, 4);
+    m->state.map_version = (uint32_t)get(h + 24, 4);
+    m->state.started = h[28] != 0;
+    m->state.pose = get_pose(h + 29);
+    m->state.odom = get_pose(h + 39);
+    m->state.peak_avg = (uint32_t)get(h + 49, 4);
+    m->state.cull_rng.state = get(h + 53, 8);
+    m->state.cull_rng.inc = get(h + 61, 8);
+    m->last_request_seq = (int64_t)get(h + 69, 8);
+    m->last_scan_utime = (int64_t)get(h + 77, 8);
+    m->scans = get(h + 85, 8);
+}
+
+/* The ranges a loadable file keeps, shared by save (never write what load refuses) and
+ * load. The started byte is checked separately on load (a bool cannot hold 2). */
+static const char *header_error(const hl_mapfile_t *m)
+{
+    if (m->capacity < 1 || m->capacity > HL_MAP_MAX_CAPACITY)
+        return "capacity out of 1..HL_MAP_MAX_CAPACITY";
+    if (m->count > m->capacity)
+        return "more vectors than the capacity";
+    if (!hl_pose_in_range(m->state.pose))
+        return "pose out of range";
+    if (!hl_pose_in_range(m->state.odom))
+        return "odometry reference out of range";
+    if ((m->state.cull_rng.inc & 1u) == 0)  /* hl_rng_seed always makes it odd */
+        return "culling generator increment is even";
+    return NULL;
+}
+
+/* ---- POSIX calls, through EINTR ------------------------------------------------------ */
+
+#define RETRY(r, call)                      \
+    do                                      \
+        (r) = (call);                       \
+    while ((r) < 0 && errno == EINTR)
+
+/* Writes all of @p n bytes, through short writes. @return false with errno. */
+static bool write_all(int fd, const uint8_t *b, size_t n)
+{
+    while (n > 0) {
+        ssize_t w;
+        RETRY(w, write(fd, b, n));
+        if (w == 0)     /* not expected from a regular file; do not spin */
+            errno = EIO;
+        if (w <= 0)
+            return false;
+        b += w;
+        n -= (size_t)w;
+    }
+    return true;
+}
+
+/* Reads up to @p n bytes, through short reads. @return bytes read (fewer only at the end
+ * of the file), or -1 with errno. */
+static ssize_t read_full(int fd, uint8_t *b, size_t n)
+{
+    size_t got = 0;
+    while (got < n) {
+        ssize_t r;
+        RETRY(r, read(fd, b + got, n - got));
+        if (r < 0)
+            return -1;
+        if (r == 0)
+            break;
+        got += (size_t)r;
+    }
+    return (ssize_t)got;
+}
+
+static int fsync_retry(int fd)
+{
+    int r;
+    RETRY(r, fsync(fd));
+    return r;
+}
+
+/* close() keeping errno; not retried on EINTR (Linux has closed the fd anyway). */
+static void close_quietly(int fd)
+{
+    int saved = errno;
+    close(fd);
+    errno = saved;
+}
+
+/* fsyncs the folder holding @p path, so that a rename or link in it is durable. */
+static bool sync_folder(const char *path)
+{
+    char dir[PATH_MAX];
+    const char *slash = strrchr(path, '/');
+    int len = !slash ? 1 : slash == path ? 1 : (int)(slash - path);
+    snprintf(dir, sizeof dir, "%.*s", len, !slash ? "." : path);
+    int fd;
+    RETRY(fd, open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    if (fd < 0)
+        return false;
+    bool ok = fsync_retry(fd) == 0;
+    close_quietly(fd);
+    return ok;
+}
+
+/* ---- saving -------------------------------------------------------------------------- */
+
+/* Header, vectors and checksum into @p fd through one buffer. @return false with errno. */
+static bool write_map(int fd, const hl_mapfile_t *m)
+{
+    uint8_t buf[IO_LEN];
+    uLong crc = crc32(0L, Z_NULL, 0);
+    put_header(buf, m);
+    size_t n = HDR_LEN;
+    for (uint32_t i = 0; i <= m->count; i++) {
+        if (i == m->count || n + VEC_LEN > sizeof buf) {
+            crc = crc32(crc, buf, (uInt)n);
+            if (!write_all(fd, buf, n))
+                return false;
+            n = 0;
+        }
+        if (i < m->count) {
+            const hl_vector_t *v = &m->vectors[i];
+            put_pose(buf + n, (hl_pose_t){ v->x_mm, v->y_mm, v->normal });
+            put(buf + n + 10, v->range_mm, 2);
+            n += VEC_LEN;
+        }
+    }
+    put(buf, crc, 4);
+    return write_all(fd, buf, CRC_LEN);
+}
+
+hl_status_t hl_mapstore_save(const char *path, const hl_mapfile_t *m, char *why)
+{
+    if (!path || !m || (!m->vectors && m->count > 0))
+        return fail(HL_ERR_ARG, why, path, "save: no path or no map");
+    /* Never write a file that load would refuse. */
+    const char *bad = header_error(m);
+    for (uint32_t i = 0; !bad && i < m->count; i++)
+        if (!hl_vector_in_range(&m->vectors[i]))
+            bad = "a vector is out of range";
+    if (bad)
+        return fail(HL_ERR_RANGE, why, path, "not saved: %s", bad);
+    char tmp[PATH_MAX];
+    if ((size_t)snprintf(tmp, sizeof tmp, "%s.tmp", path) >= sizeof tmp) {
+        errno = ENAMETOOLONG;
+        return fail(HL_ERR_OS, why, path, "not saved: the path is too long");
+    }
+    /* O_NOFOLLOW: a symlink planted at PATH.tmp must not redirect the write. A stale
+     * PATH.tmp (a crash mid-save) is simply truncated. */
+    int fd;
+    RETRY(fd, open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644));
+    if (fd < 0)
+        return fail(HL_ERR_OS, why, path, "not saved: cannot create %s: %s", tmp,
+                    strerror(errno));
+    const char *step = NULL;
+    if (!write_map(fd, m))
+        step = "write";
+    else if (fsync_retry(fd) != 0)
+        step = "fsync";
+    if (step)
+        close_quietly(fd);
+    else if (close(fd) != 0)    /* late write-back errors (NFS): the file may be short */
+        step = "close";
+    else if (rename(tmp, path) != 0)
+        step = "rename";
+    if (step) {
+        int saved = errno;
+        unlink(tmp);
+        errno = saved;
+        return fail(HL_ERR_OS, why, path, "not saved: %s of %s failed: %s", step, tmp,
+                    strerror(saved));
+    }
+    /* The new file is whole under PATH; only the folder entry may not be on disk yet. */
+    if (!sync_folder(path))
+        return fail(HL_ERR_OS, why, path, "saved, but syncing its folder failed: %s",
+                    strerror(errno));
+    return done(why);
+}
+
+/* ---- loading ------------------------------------------------------------------------- */
+
+/* Everything after open: the fd is the caller's to close. */
+static hl_status_t load_fd(int fd, const char *path, hl_mapfile_t *out, char *why)
+{
+    struct stat sb;
+    if (fstat(fd, &sb) != 0)
+        return fail(HL_ERR_OS, why, path, "cannot stat: %s", strerror(errno));
+    if (!S_ISREG(sb.st_mode))
+        return fail(HL_ERR_PARSE, why, path, "not a regular file");
+    long long size = (long long)sb.st_size;
+    uint8_t hdr[HDR_LEN], buf[IO_LEN];
+    ssize_t got = read_full(fd, hdr, HDR_LEN);
+    if (got < 0)
+        return fail(HL_ERR_OS, why, path, "read failed: %s", strerror(errno));
+    size_t have = (size_t)got;
+    if (memcmp(hdr, MAGIC, have < sizeof MAGIC ? have : sizeof MAGIC) != 0)
+        return fail(HL_ERR_PARSE, why, path, "not a houghloc map file (no HLMAP magic)");
+    uint32_t version = have >= 12 ? (uint32_t)get(hdr + 8, 4) : HL_MAPSTORE_VERSION;
+    if (version != HL_MAPSTORE_VERSION)
+        return fail(HL_ERR_PARSE, why, path,
+                    "map file format version %" PRIu32 "; this program reads version %u",
+                    version, HL_MAPSTORE_VERSION);
+    if (have < HDR_LEN)
+        return fail(HL_ERR_PARSE, why, path,
+                    "truncated: %zu bytes, shorter than the %d-byte header", have, HDR_LEN);
+    if (get(hdr + 12, 4) != HDR_LEN)
+        return fail(HL_ERR_PARSE, why, path, "header length %" PRIu32 ", version %u has %d",
+                    (uint32_t)get(hdr + 12, 4), HL_MAPSTORE_VERSION, HDR_LEN);
+    hl_mapfile_t m = { .vectors = out->vectors, .max_vectors = out->max_vectors };
+    get_header(hdr, &m);
+    long long expect = HDR_LEN + (long long)m.count * VEC_LEN + CRC_LEN;
+    if (size != expect)
+        return fail(HL_ERR_PARSE, why, path,
+                    "%s: %lld bytes where a map of %" PRIu32 " vectors has %lld",
+                    size < expect ? "truncated" : "trailing bytes", size, m.count, expect);
+    /* The body streams through the checksum into the caller's storage when it fits;
+     * the vectors' ranges are checked after the checksum. */
+    bool store = m.count <= m.max_vectors;
+    uLong crc = crc32(crc32(0L, Z_NULL, 0), hdr, HDR_LEN);
+    for (uint32_t k, n = 0; n < m.count; n += k) {
+        k = m.count - n < IO_LEN / VEC_LEN ? m.count - n : IO_LEN / VEC_LEN;
+        got = read_full(fd, buf, (size_t)k * VEC_LEN);
+        if (got < 0)
+            return fail(HL_ERR_OS, why, path, "read failed: %s", strerror(errno));
+        if ((size_t)got < (size_t)k * VEC_LEN)
+            return fail(HL_ERR_PARSE, why, path, "truncated while being read");
+        crc = crc32(crc, buf, (uInt)got);
+        for (uint32_t i = 0; store && i < k; i++) {
+            hl_pose_t p = get_pose(buf + (size_t)i * VEC_LEN);
+            m.vectors[n + i] = (hl_vector_t){ p.x_mm, p.y_mm, p.theta,
+                                              (uint16_t)get(buf + i * VEC_LEN + 10, 2) };
+        }
+    }
+    got = read_full(fd, buf, CRC_LEN + 1);  /* one byte more: the file must end here */
+    if (got < 0)
+        return fail(HL_ERR_OS, why, path, "read failed: %s", strerror(errno));
+    if (got != CRC_LEN)
+        return fail(HL_ERR_PARSE, why, path, "changed while being read");
+    if (get(buf, 4) != (uint32_t)crc)
+        return fail(HL_ERR_PARSE, why, path,
+                    "checksum mismatch (stored %08" PRIx32 ", computed %08" PRIx32 ")",
+                    (uint32_t)get(buf, 4), (uint32_t)crc);
+
+    /* Intact: now every field's range. */
+    const char *bad = hdr[28] > 1 ? "the started byte is not 0 or 1" : header_error(&m);
+    if (bad)
+        return fail(HL_ERR_RANGE, why, path, "%s", bad);
+    if (!store)
+        return fail(HL_ERR_CAPACITY, why, path,
+                    "holds %" PRIu32 " vectors, more than the %" PRIu32 " this map takes",
+                    m.count, m.max_vectors);
+    for (uint32_t i = 0; i < m.count; i++)
+        if (!hl_vector_in_range(&m.vectors[i]))
+            return fail(HL_ERR_RANGE, why, path, "vector %" PRIu32 " out of range", i);
+    *out = m;
+    return done(why);
+}
+
+hl_status_t hl_mapstore_load(const char *path, hl_mapfile_t *out, char *why)
+{
+    if (!path || !out || (!out->vectors && out->max_vectors > 0))
+        return fail(HL_ERR_ARG, why, path, "load: no path or no storage");
+    int fd;
+    /* O_NONBLOCK: a FIFO at PATH must not hang the start; no effect on a regular file. */
+    RETRY(fd, open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK));
+    if (fd < 0)
+        return fail(HL_ERR_OS, why, path, "cannot open: %s", strerror(errno));
+    hl_status_t st = load_fd(fd, path, out, why);
+    close_quietly(fd);
+    return st;
+}
+
+/* ---- moving a bad file aside --------------------------------------------------------- */
+
+hl_status_t hl_mapstore_move_aside(const char *path, char *moved_to, size_t cap, char *why)
+{
+    if (moved_to && cap > 0)
+        moved_to[0] = '\0';
+    if (!path)
+        return fail(HL_ERR_ARG, why, path, "move aside: no path");
+    char name[PATH_MAX];
+    for (int n = 1; n <= BAD_MAX; n++) {
+        if ((size_t)snprintf(name, sizeof name, "%s.bad-%d", path, n) >= sizeof name) {
+            errno = ENAMETOOLONG;
+            return fail(HL_ERR_OS, why, path, "cannot move aside: the path is too long");
+        }
+        /* link() fails with EEXIST where rename() would replace, so an older .bad-N is
+         * never overwritten, even by a concurrent mover; then the old name goes. */
+        if (link(path, name) != 0) {
+            if (errno == EEXIST)
+                continue;
+            return fail(HL_ERR_OS, why, path, "cannot move aside to %s: %s", name,
+                        strerror(errno));
+        }
+        if (unlink(path) != 0) {
+            int saved = errno;
+            unlink(name);
+            errno = saved;
+            return fail(HL_ERR_OS, why, path, "cannot move aside (unlink failed): %s",
+                        strerror(saved));
+        }
+        if (moved_to && cap > 0)
+            snprintf(moved_to, cap, "%s", name);
+        if (!sync_folder(path))
+            return fail(HL_ERR_OS, why, path,
+                        "moved to %s, but syncing its folder failed: %s", name,
+                        strerror(errno));
+        return done(why);
+    }
+    errno = EEXIST;
+    return fail(HL_ERR_OS, why, path, "cannot move aside: .bad-1 to .bad-%d all exist",
+                BAD_MAX);
+}
