@@ -175,7 +175,7 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
     if (!parse_double(v, &d))
         return REASON("'%s' is not a number", v), false;
     if (d < k->min || d > k->max)
-        return REASON("%s is outside %g..%g", v, k->min, k->max), false;
+        return REASON("%s is outside %.16g..%.16g", v, k->min, k->max), false;
     bool integral = k->type == HL_KEY_I32 || k->type == HL_KEY_U16 || k->type == HL_KEY_U32 ||
                     k->type == HL_KEY_U64;
     if (integral && d != floor(d))

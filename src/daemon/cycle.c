@@ -64,6 +64,9 @@ hl_status_t hl_cycle_restore(hl_cycle_t *c, const hl_mapfile_t *m)
         return st;
     c->last_request_seq = m->last_request_seq;
     c->scans_total = m->scans;
+    /* kept for the next save; the order check starts with this process's first scan, so
+     * a log replayed again on a kept map is not refused */
+    c->last_scan_utime = m->last_scan_utime;
     /* the loaded map is what the daemon has; publish it with the first scan */
     c->published_version = m->state.map_version - 1;
     c->map_changed_utime = m->last_scan_utime;

@@ -33,7 +33,7 @@ batch)
     ;;
 live)
     url="udpm://239.255.76.67:7671?ttl=0"
-    lcm-logger -q -f -l "$url" "$OUT/houghlocd.lcmlog" &
+    lcm-logger -q -f --lcm-url="$url" "$OUT/houghlocd.lcmlog" &  # no -l in 1.3.1
     logger=$!
     # shellcheck disable=SC2086
     "$BIN/houghlocd" --config /dev/null --fresh-map --map "$OUT/map.hlmap" $start \
