@@ -171,8 +171,9 @@ $(BUILD)/bin/hl-bench: $(call obj,tools/bench/bench_localize.c) $(TESTKIT_LIB) $
 	$(Q)$(CC) -o $@ $^ -lm
 
 bench: deps
-	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-bench OPT="-O2 -g"
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-bench $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval OPT="-O2 -g"
 	$(Q)$(BUILD)/bin/hl-bench
+	$(Q)BUILD=$(BUILD) sh tools/bench/bench_daemon.sh
 
 # The product on the built-in simulated robot: houghlocd replays the recorded tour,
 # hl-eval scores its POSE output (tools/demo/demo.sh; DEMO_MODE=live for lcm-logplayer).
