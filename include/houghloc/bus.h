@@ -12,9 +12,18 @@
  *   hl_status_t hl_bus_decode_X(const void *data, size_t len, hl_bus_X_t *out, char *why);
  *       decodes bytes as received (an lcm_recv_buf_t's data, an event log entry) without
  *       trusting them and without a heap allocation: HL_OK, or HL_ERR_PARSE (truncated,
- *       trailing bytes, wrong fingerprint) / HL_ERR_RANGE (a count or field outside its
- *       range, NaN or infinite) with a one-line reason in @p why (HL_BUS_WHY_LEN bytes;
- *       may be NULL). On failure *out is unspecified but holds no allocation.
+ *       trailing bytes, wrong fingerprint, a string whose length field is below 1 or
+ *       whose NUL is missing or not last) / HL_ERR_RANGE (a count or field outside its
+ *       range, NaN or infinite, a boolean byte other than 0 or 1, a string longer than
+ *       HL_BUS_TEXT_MAX - 1 characters or holding a control character) / HL_ERR_ARG
+ *       (@p data or @p out NULL) with a one-line reason in @p why naming the message and
+ *       the field (HL_BUS_WHY_LEN bytes; may be NULL). On failure *out is unspecified but
+ *       holds no allocation.
+ *
+ * Both directions check the same ranges, so whatever encodes decodes, and whatever
+ * decodes re-encodes to the same bytes (except a scan's embedded odometry extras, see
+ * hl_bus_scan_t). Every utime is >= 0. The fingerprint of each type is lcm-gen's, taken
+ * from the generated code, so a changed .lcm file cannot desynchronize the codecs.
  *
  * Only src/bus sees the generated LCM code; everything else goes through this header.
  * Channel names are the base names below; a deployment may put a prefix in front of
@@ -52,8 +61,10 @@ extern "C" {
 
 /**
  * Writes @p prefix followed by @p base into @p out (HL_BUS_CHANNEL_MAX bytes).
- * @return false when the prefix is longer than HL_BUS_PREFIX_MAX or holds a character
- *         other than letters, digits, '_', '-', '.' and '/'.
+ * @p prefix may be NULL or "" (no prefix); @p base and @p out must not be NULL.
+ * @return false (out untouched) when the prefix is longer than HL_BUS_PREFIX_MAX, the
+ *         base is empty, the name does not fit in HL_BUS_CHANNEL_MAX - 1 characters, or
+ *         either holds a character other than letters, digits, '_', '-', '.' and '/'.
  */
 bool hl_bus_channel(const char *prefix, const char *base, char *out);
 
@@ -67,6 +78,13 @@ typedef struct hl_bus_odometry {
     bool stopped;
 } hl_bus_odometry_t;
 
+/**
+ * A scan as it travels on SONAR. Every reading's range_mm is 0..HL_RANGE_MAX_MM, valid
+ * or not (hl_scan_add guarantees it), and its transducer -1..127; seq >= 0.
+ * scan_t embeds a whole odometry_t; only its pose is kept here. The encoder writes the
+ * scan's utime, velocity 0 and stopped true around it; the decoder checks those fields
+ * (odometry utime >= 0, stopped 0 or 1) and drops them.
+ */
 typedef struct hl_bus_scan {
     int64_t utime;
     int32_t seq;
@@ -74,8 +92,8 @@ typedef struct hl_bus_scan {
     hl_scan_t scan;
 } hl_bus_scan_t;
 
-/** Largest encoded scan (HL_SCAN_MAX_READINGS readings). */
-#define HL_BUS_SCAN_MAX_BYTES (8 + 8 + 4 + 29 + 2 + 8 * HL_SCAN_MAX_READINGS)
+/** Largest encoded scan (HL_SCAN_MAX_READINGS readings); a nested struct has no hash. */
+#define HL_BUS_SCAN_MAX_BYTES (8 + 8 + 4 + 21 + 2 + 8 * HL_SCAN_MAX_READINGS)
 
 hl_status_t hl_bus_decode_scan(const void *data, size_t len, hl_bus_scan_t *out, char *why);
 int hl_bus_encode_scan(const hl_bus_scan_t *in, void *buf, size_t cap);
@@ -98,7 +116,7 @@ typedef struct hl_bus_pose {
     int32_t peak;               /* >= 0 */
     int32_t second_peak;        /* >= 0 */
     int32_t votes;              /* >= 0 */
-} hl_bus_pose_t;
+} hl_bus_pose_t;                /* scan_seq >= 0; position within +-HL_COORD_MAX_MM */
 
 #define HL_BUS_POSE_BYTES (8 + 8 + 4 + 4 + 4 + 2 + 1 + 4 + 4 + 4 + 4)
 hl_status_t hl_bus_decode_pose(const void *data, size_t len, hl_bus_pose_t *out, char *why);
@@ -106,9 +124,10 @@ int hl_bus_encode_pose(const hl_bus_pose_t *in, void *buf, size_t cap);
 
 /* ---- MAP --------------------------------------------------------------------------- */
 
+/** Each vector's position is within +-HL_COORD_MAX_MM, its range 0..HL_RANGE_MAX_MM. */
 typedef struct hl_bus_map {
     int64_t utime;
-    int32_t version;
+    int32_t version;            /* >= 0 */
     int32_t capacity;           /* 1..HL_MAP_MAX_CAPACITY */
     uint32_t count;             /* 0..capacity */
     hl_vector_t *vectors;       /* encode: count vectors to send; decode: caller's
@@ -116,8 +135,10 @@ typedef struct hl_bus_map {
     uint32_t max_vectors;       /* decode only: the storage's size; more is HL_ERR_RANGE */
 } hl_bus_map_t;
 
-/** Encoded size of a map of @p count vectors. */
+/** Encoded size of a map of @p count vectors: 28 + 12 * count. */
 size_t hl_bus_map_bytes(uint32_t count);
+/** Decode: nvectors above out->max_vectors is HL_ERR_RANGE; vectors NULL with
+ *  nvectors > 0 is HL_ERR_ARG. utime, version, capacity, count are written on success. */
 hl_status_t hl_bus_decode_map(const void *data, size_t len, hl_bus_map_t *out, char *why);
 int hl_bus_encode_map(const hl_bus_map_t *in, void *buf, size_t cap);
 
@@ -126,13 +147,13 @@ int hl_bus_encode_map(const hl_bus_map_t *in, void *buf, size_t cap);
 typedef struct hl_bus_status {
     int64_t utime;
     int8_t state;               /* HL_BUS_STATE_* */
-    int64_t destination_seq;    /* -1 when none */
-    int32_t scans, accepted, rejected_wild, odometry_only;
+    int64_t destination_seq;    /* -1 when none, else > 0 */
+    int32_t scans, accepted, rejected_wild, odometry_only;     /* all counters >= 0 */
     int32_t bad_packets, bad_messages, rejected_requests;
-    int32_t map_vectors, map_version, saves;
-    hl_pose_t pose;             /* current estimate */
-    int32_t compute_median_us, compute_p99_us, compute_samples;
-    char last_error[HL_BUS_TEXT_MAX];
+    int32_t map_vectors, map_version, saves;    /* map_vectors <= HL_MAP_MAX_CAPACITY */
+    hl_pose_t pose;             /* current estimate, within +-HL_COORD_MAX_MM */
+    int32_t compute_median_us, compute_p99_us, compute_samples;    /* >= 0 */
+    char last_error[HL_BUS_TEXT_MAX];   /* one line: NUL-terminated, no control char */
 } hl_bus_status_t;
 
 enum {
@@ -176,7 +197,8 @@ typedef struct hl_bus_command {
     int64_t utime;
     int64_t seq;                /* > 0 */
     int8_t kind;                /* HL_BUS_COMMAND_* */
-    hl_pose_t pose;             /* SET_POSE; position within +-HL_COORD_MAX_MM */
+    hl_pose_t pose;             /* SET_POSE; position within +-HL_COORD_MAX_MM (checked
+                                   for every kind: send zeros when unused) */
     uint8_t mac[HL_BUS_MAC_BYTES];
 } hl_bus_command_t;
 
@@ -198,9 +220,9 @@ enum {
 
 typedef struct hl_bus_reply {
     int64_t utime;
-    int64_t seq;
+    int64_t seq;                /* the request's, as it came: any value */
     int8_t result;              /* HL_BUS_REPLY_* */
-    char message[HL_BUS_TEXT_MAX];
+    char message[HL_BUS_TEXT_MAX];      /* as status last_error */
 } hl_bus_reply_t;
 
 #define HL_BUS_REPLY_MAX_BYTES (8 + 8 + 8 + 1 + 4 + HL_BUS_TEXT_MAX)

@@ -17,6 +17,8 @@ TEST_BINS += $(BUS_TESTS)
 $(BUS_LIB): $(BUS_OBJS)
 $(BUS_ASAN_LIB): $(BUS_ASAN_OBJS)
 
+# Every bus test links with $(SAN): test_codec_noalloc counts allocations through
+# AddressSanitizer's malloc hook, so it needs no link rule of its own.
 $(BUILD)/tests/bus/%: $(BUILD)/asan/tests/bus/%.o $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"

@@ -33,7 +33,8 @@ const hl_config_key_t hl_config_keys[] = {
     { "daemon.log_level", HL_KEY_LEVEL, F(log_level), 0, 0,
       "error, warning, notice, info or debug" },
     { "auth.key_file", HL_KEY_STR, F(key_file), 0, 0,
-      "a file of 64 hex digits, mode 0600; when set, DESTINATION and COMMAND must carry its MAC" },
+      "a file of 64 hex digits, mode 0600; when set, DESTINATION and COMMAND must carry its MAC "
+      "(under systemd: /run/credentials/houghlocd.service/key, see docs/service.md)" },
     { "start.x_m", HL_KEY_METRES, F(start.x_mm), -4194, 4194,
       "where the first scan is placed, metres (this defines the map frame)" },
     { "start.y_m", HL_KEY_METRES, F(start.y_mm), -4194, 4194, "metres" },

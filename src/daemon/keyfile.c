@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -17,6 +18,16 @@ static hl_status_t refuse(char *why, hl_status_t st, const char *path, const cha
     return st;
 }
 
+/* systemd's credentials folder ($CREDENTIALS_DIRECTORY, private to the service) may grant
+ * the service's group read access through an ACL where it cannot use ramfs: allow that
+ * there, and nowhere else. */
+static bool in_credentials(const char *path)
+{
+    const char *dir = getenv("CREDENTIALS_DIRECTORY");
+    size_t n = dir ? strlen(dir) : 0;
+    return n > 0 && strncmp(path, dir, n) == 0 && path[n] == '/' && !strstr(path + n, "..");
+}
+
 /* Checks the open file, not the path, so that nothing can be swapped in between. */
 static hl_status_t check_file(int fd, const char *path, char *why)
 {
@@ -27,7 +38,7 @@ static hl_status_t check_file(int fd, const char *path, char *why)
         return refuse(why, HL_ERR_RANGE, path, "is a directory, not a key file");
     if (!S_ISREG(st.st_mode))
         return refuse(why, HL_ERR_RANGE, path, "is not a regular file");
-    if (st.st_mode & 077) {
+    if (st.st_mode & (in_credentials(path) ? 027 : 077)) {
         if (why)
             snprintf(why, HL_KEYFILE_WHY_LEN,
                      "key file %s: mode %04o lets group or others read or write the key: "

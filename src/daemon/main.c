@@ -12,12 +12,13 @@
 #include "config.h"
 #include "cycle.h"
 #include "houghloc/logcheck.h"
+#include "houghloc/version.h"
 #include "keyfile.h"
 #include "log.h"
 #include "loop.h"
 #include "mapstore.h"
 
-#define HL_VERSION "0.2.0"
+
 #define HOST_ONLY_URL "udpm://239.255.76.67:7667?ttl=0"
 
 static const char usage[] =

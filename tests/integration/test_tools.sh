@@ -59,6 +59,22 @@ rejects "truncated log" "lab28.lcmlog" "$BIN/hl-experiments" --logs "$tmp/trunc"
 mkdir -p "$tmp/garbage"
 head -c 20000 /dev/urandom >"$tmp/garbage/lab28.lcmlog"
 rejects "random bytes as a log" "lab28.lcmlog" "$BIN/hl-experiments" --logs "$tmp/garbage" --only table1 --out "$tmp/x" --no-figures
+# A valid first event, then a header declaring 0x7fffffff data bytes and a few of them:
+# liblcm would trust that length and crash; the log check refuses the file first, naming
+# the byte where the bad header starts, and the program exits 1 (not on a signal).
+od_first=$(od -An -tu1 -j20 -N8 logs/lab28.lcmlog)
+first=$(echo "$od_first" | awk '{ print 28 + $1 * 16777216 + $2 * 65536 + $3 * 256 + $4 + $5 * 16777216 + $6 * 65536 + $7 * 256 + $8 }')
+mkdir -p "$tmp/huge"
+{
+    head -c "$first" logs/lab28.lcmlog
+    printf '\355\241\332\001\0\0\0\0\0\0\0\1\0\0\0\0\0\0\0\2\0\0\0\005\177\377\377\377'
+    printf 'SONARsome data bytes'
+} >"$tmp/huge/lab28.lcmlog"
+"$BIN/hl-experiments" --logs "$tmp/huge" --only table1 --out "$tmp/x" --no-figures >"$tmp/out" 2>"$tmp/err"
+rc=$?
+check "data length 0x7fffffff after a valid event: exit 1, one line naming byte $first" \
+    sh -c '[ "$1" -eq 1 ] && [ "$(wc -l <"$2")" -eq 1 ] &&
+           grep -q "lab28.lcmlog: byte $3: event data length 2147483647" "$2"' - "$rc" "$tmp/err" "$first"
 rejects "bad --reps" "--reps" "$BIN/hl-experiments" --reps 0
 rejects "bad --set" "unknown parameter" "$BIN/hl-experiments" --set improved.nonsense=1
 rejects "bad --only" "--only" "$BIN/hl-experiments" --only nonsense

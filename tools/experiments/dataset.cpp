@@ -1,13 +1,14 @@
 // dataset.cpp - LCM event log -> soundings with ground truth (see dataset.hpp).
 #include "dataset.hpp"
 
-#include <cstdio>
+#include <cerrno>
+#include <cstdint>
 #include <cstring>
-
-#include <sys/types.h>
 #include <map>
 
 #include <lcm/eventlog.h>
+
+#include "houghloc/logcheck.h"
 
 namespace hlexp {
 
@@ -27,6 +28,14 @@ std::string where(const std::string &path, long eventnum)
 
 bool read_soundings(const std::string &path, Soundings *out, std::string *err)
 {
+    // liblcm trusts every length field (a huge one crashes it) and stops silently at the
+    // first event it cannot read: walk the framing first, and report the bad byte.
+    hl_log_info_t info;
+    char check_why[HL_LOG_WHY_LEN];
+    if (hl_log_check(path.c_str(), &info, check_why) != HL_OK) {
+        *err = check_why;
+        return false;
+    }
     EventLog f;
     f.log = lcm_eventlog_create(path.c_str(), "r");
     if (!f.log) {
@@ -35,7 +44,6 @@ bool read_soundings(const std::string &path, Soundings *out, std::string *err)
     }
     std::map<int32_t, hl_pose_t> truth;
     long n = 0;
-    off_t good_end = 0;     // where the last complete event ended
     char why[HL_BUS_WHY_LEN];
     for (;;) {
         lcm_eventlog_event_t *ev = lcm_eventlog_read_next_event(f.log);
@@ -63,13 +71,12 @@ bool read_soundings(const std::string &path, Soundings *out, std::string *err)
             *err = where(path, n) + channel + ": " + why;
             return false;
         }
-        good_end = ftello(f.log->f);
     }
-    // liblcm stops at the first event it cannot read whole and says nothing: anything
-    // left after the last complete event is a truncated or corrupt log, not a short one.
-    if (fseeko(f.log->f, 0, SEEK_END) != 0 || ftello(f.log->f) != good_end) {
-        *err = path + ": truncated or corrupt after event " + std::to_string(n) + " (byte " +
-               std::to_string(static_cast<long long>(good_end)) + ")";
+    // liblcm also stops at an allocation failure, and the file may have changed since
+    // the check: every event the check counted must have been read.
+    if (static_cast<uint64_t>(n) != info.events) {
+        *err = path + ": read " + std::to_string(n) + " of " + std::to_string(info.events) +
+               " events";
         return false;
     }
     if (out->empty()) {

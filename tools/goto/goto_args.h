@@ -5,7 +5,8 @@
 #include <stdbool.h>
 
 #define PROG "houghloc-goto"
-#define GOTO_VERSION "0.1"
+#include "houghloc/version.h"
+#define GOTO_VERSION HL_VERSION
 #define DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0"
 
 /* The exit codes, as --help lists them. */

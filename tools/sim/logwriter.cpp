@@ -1,13 +1,14 @@
-// logwriter.cpp - LCM event log output of the simulator.
+// logwriter.cpp - LCM event log output of the simulator. Messages are encoded by the
+// validating codecs of houghloc/bus.h, the same code the daemon publishes with.
 #include "logwriter.hpp"
 
 #include <cmath>
+#include <memory>
 #include <lcm/eventlog.h>
 
+#include "houghloc/bus.h"
 #include "houghloc/fixed.h"
-#include "houghloc_odometry_t.h"
-#include "houghloc_pose_t.h"
-#include "houghloc_scan_t.h"
+#include "houghloc/slam.h"
 
 namespace hlsim {
 
@@ -18,21 +19,9 @@ int32_t mm(double v)
     return static_cast<int32_t>(std::lround(v));
 }
 
-int16_t bam(double rad)
+hl_pose_t to_pose(const Pose &p)
 {
-    return static_cast<int16_t>(hl_bam_from_rad(rad));
-}
-
-houghloc_odometry_t odo_msg(int64_t utime, const Pose &p, double velocity, bool stopped)
-{
-    houghloc_odometry_t m{};
-    m.utime = utime;
-    m.x_mm = mm(p.x);
-    m.y_mm = mm(p.y);
-    m.heading_bam = bam(p.theta);
-    m.velocity_mm_s = static_cast<int16_t>(std::lround(velocity));
-    m.stopped = stopped ? 1 : 0;
-    return m;
+    return hl_pose_t{ mm(p.x), mm(p.y), hl_bam_from_rad(p.theta) };
 }
 
 }  // namespace
@@ -89,10 +78,18 @@ void LogWriter::write(const std::string &channel, int64_t utime, const std::vect
 void LogWriter::odometry(const std::vector<OdoSample> &samples, const std::string &channel)
 {
     for (const OdoSample &s : samples) {
-        houghloc_odometry_t m = odo_msg(s.utime, s.odom, s.velocity_mm_s, s.stopped);
-        std::vector<uint8_t> buf(static_cast<std::size_t>(houghloc_odometry_t_encoded_size(&m)));
-        if (houghloc_odometry_t_encode(buf.data(), 0, static_cast<int>(buf.size()), &m) < 0)
+        hl_bus_odometry_t m{};
+        m.utime = s.utime;
+        m.pose = to_pose(s.odom);
+        m.velocity_mm_s = static_cast<int16_t>(std::lround(s.velocity_mm_s));
+        m.stopped = s.stopped;
+        std::vector<uint8_t> buf(HL_BUS_ODOMETRY_BYTES);
+        int len = hl_bus_encode_odometry(&m, buf.data(), buf.size());
+        if (len < 0) {
             ok_ = false;
+            continue;
+        }
+        buf.resize(static_cast<std::size_t>(len));
         write(channel, s.utime, buf);
         stats_.odometry++;
     }
@@ -102,47 +99,52 @@ void LogWriter::sounding(const Sounding &s, int32_t seq, const hl_calib_t &calib
                          const std::string &channel)
 {
     std::size_t n = s.readings.size();
-    std::vector<int8_t> transducer(n), valid(n);
-    std::vector<int16_t> bearing(n);
-    std::vector<int32_t> range(n);
+    if (n > HL_SCAN_MAX_READINGS) {
+        ok_ = false;
+        return;
+    }
+    // hl_bus_scan_t holds HL_SCAN_MAX_READINGS readings: too large for the stack.
+    auto m = std::make_unique<hl_bus_scan_t>();
+    m->utime = s.utime;
+    m->seq = seq;
+    m->odometry = to_pose(s.odom);
+    m->scan.count = static_cast<uint32_t>(n);
     for (std::size_t i = 0; i < n; i++) {
         const RingReading &r = s.readings[i];
-        transducer[i] = static_cast<int8_t>(r.transducer);
-        bearing[i] = static_cast<int16_t>(r.bearing_bam);
-        bool ok = hl_calib_apply(&calib, r.sonar.raw, &range[i]);
-        valid[i] = ok ? 1 : 0;
+        hl_reading_t &out = m->scan.readings[i];
+        out.transducer = static_cast<int8_t>(r.transducer);
+        out.bearing = static_cast<hl_bam_t>(r.bearing_bam);
+        bool ok = hl_calib_apply(&calib, r.sonar.raw, &out.range_mm);  // clamped to 0..32767
+        out.valid = ok;
         stats_.readings++;
         stats_.valid += ok ? 1 : 0;
         stats_.cable += r.sonar.kind == Echo::Cable ? 1 : 0;
         stats_.sentinel += r.sonar.raw >= calib.sentinel_raw ? 1 : 0;
         stats_.multipath += r.sonar.kind == Echo::Multipath ? 1 : 0;
     }
-    houghloc_scan_t m{};
-    m.utime = s.utime;
-    m.seq = seq;
-    m.odometry = odo_msg(s.utime, s.odom, 0.0, true);
-    m.nreadings = static_cast<int16_t>(n);
-    m.transducer = transducer.data();
-    m.bearing_bam = bearing.data();
-    m.range_mm = range.data();
-    m.valid = valid.data();
-    std::vector<uint8_t> buf(static_cast<std::size_t>(houghloc_scan_t_encoded_size(&m)));
-    if (houghloc_scan_t_encode(buf.data(), 0, static_cast<int>(buf.size()), &m) < 0)
+    std::vector<uint8_t> buf(HL_BUS_SCAN_MAX_BYTES);
+    int len = hl_bus_encode_scan(m.get(), buf.data(), buf.size());
+    if (len < 0) {
         ok_ = false;
+        return;
+    }
+    buf.resize(static_cast<std::size_t>(len));
     write(channel, s.utime, buf);
     stats_.scans++;
 
-    houghloc_pose_t g{};
+    hl_bus_pose_t g{};
     g.utime = s.utime;
     g.scan_seq = seq;
-    g.x_mm = mm(s.truth.x);
-    g.y_mm = mm(s.truth.y);
-    g.heading_bam = bam(s.truth.theta);
-    g.status = HOUGHLOC_POSE_T_ACCEPTED;
-    std::vector<uint8_t> gbuf(static_cast<std::size_t>(houghloc_pose_t_encoded_size(&g)));
-    if (houghloc_pose_t_encode(gbuf.data(), 0, static_cast<int>(gbuf.size()), &g) < 0)
+    g.pose = to_pose(s.truth);
+    g.status = HL_SLAM_ACCEPTED;
+    std::vector<uint8_t> gbuf(HL_BUS_POSE_BYTES);
+    len = hl_bus_encode_pose(&g, gbuf.data(), gbuf.size());
+    if (len < 0) {
         ok_ = false;
-    write("GROUND_TRUTH", s.utime, gbuf);
+        return;
+    }
+    gbuf.resize(static_cast<std::size_t>(len));
+    write(HL_CHANNEL_GROUND_TRUTH, s.utime, gbuf);
 }
 
 }  // namespace hlsim

@@ -12,8 +12,9 @@ SIM_LIB      := $(BUILD)/lib/libhoughloc_sim.a
 SIM_ASAN_LIB := $(BUILD)/lib/libhoughloc_sim_asan.a
 SIM_OBJS      := $(call obj,$(SIM_SRCS)) $(BUILD)/obj/gen/sim_lab_world.o
 SIM_ASAN_OBJS := $(patsubst %.cpp,$(BUILD)/asan/%.o,$(SIM_SRCS)) $(BUILD)/asan/gen/sim_lab_world.o
-# What a program linking $(SIM_LIB) also needs, after it on the command line.
-SIM_LDLIBS := $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) -lm
+# What a program linking $(SIM_LIB) also needs, after it on the command line (the log
+# writer encodes through the bus codecs, src/bus/bus.mk).
+SIM_LDLIBS := $(BUS_LIB) $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) -lm
 
 SIM_TESTS := $(patsubst tests/sim/%.cpp,$(BUILD)/tests/sim/%,$(wildcard tests/sim/test_*.cpp))
 SIM_LOGS  := logs/lab28.lcmlog logs/orientation.lcmlog logs/tour.lcmlog
@@ -59,7 +60,7 @@ $(BUILD)/asan/tests/sim/%.o: tests/sim/%.cpp | $(LCM_STAMP)
 $(SIM_LIB): $(SIM_OBJS)
 $(SIM_ASAN_LIB): $(SIM_ASAN_OBJS)
 
-$(BUILD)/bin/hl-sim-logs: $(call obj,tools/sim/make_logs.cpp) $(SIM_LIB) $(LCM_LIB) $(CORE_LIB)
+$(BUILD)/bin/hl-sim-logs: $(call obj,tools/sim/make_logs.cpp) $(SIM_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $^ $(PKG_LIBS) -lm
