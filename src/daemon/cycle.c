@@ -87,6 +87,17 @@ void hl_cycle_fault(hl_cycle_t *c, int32_t *counter, const char *kind, const cha
            what);
 }
 
+bool hl_cycle_decoded(hl_cycle_t *c, hl_status_t st, const char *channel, const char *kind,
+                      const char *why)
+{
+    if (st == HL_OK)
+        return true;
+    char what[HL_BUS_TEXT_MAX];
+    snprintf(what, sizeof what, "%s: %s", channel, why);
+    hl_cycle_fault(c, &c->n.bad_messages, kind, what);
+    return false;
+}
+
 void hl_cycle_note_error(hl_cycle_t *c, const char *what)
 {
     snprintf(c->last_error, sizeof c->last_error, "%s", what);
@@ -166,11 +177,9 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
 {
     char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
     hl_bus_scan_t *in = &c->scan;
-    if (hl_bus_decode_scan(data, len, in, why) != HL_OK) {
-        snprintf(what, sizeof what, "SONAR: %s", why);
-        hl_cycle_fault(c, &c->n.bad_messages, "sonar decode", what);
+    if (!hl_cycle_decoded(c, hl_bus_decode_scan(data, len, in, why), HL_CHANNEL_SONAR,
+                          "sonar decode", why))
         return;
-    }
     if (c->have_scan && (in->seq <= c->last_scan_seq || in->utime <= c->last_scan_utime)) {
         snprintf(what, sizeof what, "SONAR: scan seq %d at %lld is not after seq %d at %lld",
                  in->seq, (long long)in->utime, c->last_scan_seq, (long long)c->last_scan_utime);
@@ -227,11 +236,9 @@ static void on_odometry(hl_cycle_t *c, const void *data, size_t len)
 {
     char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
     hl_bus_odometry_t o;
-    if (hl_bus_decode_odometry(data, len, &o, why) != HL_OK) {
-        snprintf(what, sizeof what, "ODOMETRY: %s", why);
-        hl_cycle_fault(c, &c->n.bad_messages, "odometry decode", what);
+    if (!hl_cycle_decoded(c, hl_bus_decode_odometry(data, len, &o, why), HL_CHANNEL_ODOMETRY,
+                          "odometry decode", why))
         return;
-    }
     if (c->have_odometry && o.utime <= c->last_odometry_utime) {
         snprintf(what, sizeof what, "ODOMETRY: time %lld is not after %lld",
                  (long long)o.utime, (long long)c->last_odometry_utime);

@@ -54,6 +54,11 @@ struct hl_cycle {
  *  if no fault of the same @p kind (a constant string) was logged before. */
 void hl_cycle_fault(hl_cycle_t *c, int32_t *counter, const char *kind, const char *what);
 
+/** @return true when @p st is HL_OK; else counts a bad message on @p channel with the
+ *  decoder's reason @p why, as a fault of @p kind. */
+bool hl_cycle_decoded(hl_cycle_t *c, hl_status_t st, const char *channel, const char *kind,
+                      const char *why);
+
 void hl_cycle_on_destination(hl_cycle_t *c, const void *data, size_t len, int64_t now_us);
 void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t now_us);
 void hl_cycle_reply(hl_cycle_t *c, int64_t seq, int8_t result, const char *message);

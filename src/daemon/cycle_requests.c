@@ -54,11 +54,9 @@ void hl_cycle_on_destination(hl_cycle_t *c, const void *data, size_t len, int64_
     (void)now_us;
     char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
     hl_bus_destination_t d;
-    if (hl_bus_decode_destination(data, len, &d, why) != HL_OK) {
-        snprintf(what, sizeof what, "DESTINATION: %s", why);
-        hl_cycle_fault(c, &c->n.bad_messages, "destination decode", what);
+    if (!hl_cycle_decoded(c, hl_bus_decode_destination(data, len, &d, why),
+                          HL_CHANNEL_DESTINATION, "destination decode", why))
         return;
-    }
     bool mac_ok = c->p.authenticate && hl_auth_check_destination(&c->p.key, &d);
     if (!admit(c, HL_CHANNEL_DESTINATION, d.seq, mac_ok))
         return;
@@ -89,13 +87,11 @@ static void set_pose(hl_cycle_t *c, const hl_bus_command_t *cmd, int64_t now_us)
 
 void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t now_us)
 {
-    char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
+    char why[HL_BUS_WHY_LEN];
     hl_bus_command_t cmd;
-    if (hl_bus_decode_command(data, len, &cmd, why) != HL_OK) {
-        snprintf(what, sizeof what, "COMMAND: %s", why);
-        hl_cycle_fault(c, &c->n.bad_messages, "command decode", what);
+    if (!hl_cycle_decoded(c, hl_bus_decode_command(data, len, &cmd, why), HL_CHANNEL_COMMAND,
+                          "command decode", why))
         return;
-    }
     bool mac_ok = c->p.authenticate && hl_auth_check_command(&c->p.key, &cmd);
     if (!admit(c, HL_CHANNEL_COMMAND, cmd.seq, mac_ok))
         return;
