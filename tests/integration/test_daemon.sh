@@ -166,4 +166,12 @@ check "the daemon with a key stops cleanly" test $? -eq 0
 check "refused requests are logged" grep -q 'REJECTED_AUTH' "$tmp/k.err"
 rejects "goto with no daemon times out (exit 6)" 6 "no reply from houghlocd" $BIN/houghloc-goto --lcm-url "$url" --timeout 0.3 1 1
 
+# ---- a channel prefix: robots sharing one network hear only their own channels ----------
+$D --fresh-map --map "$tmp/p.map" --lcm-url "$url" --prefix robot7/ 2>"$tmp/p.err" &
+daemon=$!; pids="$pids $daemon"
+wait_ready "$tmp/p.err"
+rejects "the daemon answers on its prefixed channels" 4 "NO_ROBOT" $G --prefix robot7/ 1 1
+rejects "... and not on the bare ones" 6 "no reply from houghlocd" $BIN/houghloc-goto --lcm-url "$url" --timeout 0.5 1 1
+kill -TERM $daemon; wait $daemon
+
 [ $fail -eq 0 ]
