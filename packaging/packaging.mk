@@ -6,7 +6,7 @@
 #                  the jar that lets lcm-spy decode houghloc's channels
 #
 # Layout (every path under $(DESTDIR)):
-#   $(BINDIR)/houghlocd, $(BINDIR)/houghloc-goto          programs, 0755
+#   $(BINDIR)/houghlocd, houghloc-goto, houghloc-ctl       programs, 0755
 #   $(UNITDIR)/houghlocd.service                           0644, from houghlocd.service.in
 #   $(SYSCONFDIR)/houghloc/houghlocd.conf                  0644, never overwritten: a
 #                                                          changed one gets .dist beside it
@@ -26,7 +26,7 @@ SYSCONFDIR ?= /etc
 DATADIR    ?= $(PREFIX)/share/houghloc
 UNITDIR    ?= $(if $(filter /usr /usr/,$(PREFIX)),/lib/systemd/system,$(PREFIX)/lib/systemd/system)
 
-INSTALL_PROGS := $(BUILD)/bin/houghlocd $(BUILD)/bin/houghloc-goto
+INSTALL_PROGS := $(BUILD)/bin/houghlocd $(BUILD)/bin/houghloc-goto $(BUILD)/bin/houghloc-ctl
 UNIT_IN       := packaging/houghlocd.service.in
 CONF_SRC      := packaging/houghlocd.conf
 
@@ -106,7 +106,8 @@ install: $(INSTALL_PROGS) $(UNIT_IN) $(CONF_SRC) bindings
 # Removes what install added. The configuration goes only if it is still the shipped one;
 # the key (/etc/houghloc/key) and the state directory (the map) are never touched.
 uninstall:
-	rm -f $(DESTDIR)$(BINDIR)/houghlocd $(DESTDIR)$(BINDIR)/houghloc-goto
+	rm -f $(DESTDIR)$(BINDIR)/houghlocd $(DESTDIR)$(BINDIR)/houghloc-goto \
+	      $(DESTDIR)$(BINDIR)/houghloc-ctl
 	rm -f $(DESTDIR)$(UNITDIR)/houghlocd.service
 	rm -rf $(DESTDIR)$(DATADIR)/python/houghloc
 	rm -f $(DESTDIR)$(DATADIR)/java/houghloc_lcmtypes.jar

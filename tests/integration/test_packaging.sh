@@ -19,7 +19,7 @@ check() {   # check DESCRIPTION COMMAND...: the command must succeed
 hl_make() { # hl_make LOG TARGET VAR=VALUE...: make quietly, the output in LOG
     log=$1; shift
     make --no-print-directory -s BUILD="$BUILD" -o "$BUILD/bin/houghlocd" \
-        -o "$BUILD/bin/houghloc-goto" "$@" >"$log" 2>&1
+        -o "$BUILD/bin/houghloc-goto" -o "$BUILD/bin/houghloc-ctl" "$@" >"$log" 2>&1
     rc=$?
     [ $rc -eq 0 ] || { echo "make $*:"; head -20 "$log"; }
     return $rc
@@ -29,7 +29,7 @@ mode_is() { # mode_is MODE FILE
 }
 files_in() { (cd "$1" && find . -type f | sed 's|^\./||' | sort); }
 
-for p in houghlocd houghloc-goto; do
+for p in houghlocd houghloc-goto houghloc-ctl; do
     check "$BUILD/bin/$p is built" test -x "$BUILD/bin/$p"
 done
 [ $fail -eq 0 ] || exit 1
@@ -48,6 +48,7 @@ check "make install DESTDIR=... PREFIX=/usr succeeds" \
 {
     echo etc/houghloc/houghlocd.conf
     echo lib/systemd/system/houghlocd.service
+    echo usr/bin/houghloc-ctl
     echo usr/bin/houghloc-goto
     echo usr/bin/houghlocd
     [ -n "$have_java" ] && echo usr/share/houghloc/java/houghloc_lcmtypes.jar
@@ -62,6 +63,7 @@ cmp -s "$tmp/expected" "$tmp/got" || diff "$tmp/expected" "$tmp/got" | head -20
 
 check "programs are 0755" mode_is 755 "$root/usr/bin/houghlocd"
 check "houghloc-goto is 0755" mode_is 755 "$root/usr/bin/houghloc-goto"
+check "houghloc-ctl is 0755" mode_is 755 "$root/usr/bin/houghloc-ctl"
 check "the unit is 0644" mode_is 644 "$root/lib/systemd/system/houghlocd.service"
 check "the configuration is 0644" mode_is 644 "$root/etc/houghloc/houghlocd.conf"
 check "the Python types are 0644" mode_is 644 "$root/usr/share/houghloc/python/houghloc/pose_t.py"
@@ -136,7 +138,8 @@ if [ "$(id -u)" = 0 ]; then
         check "make install works as an ordinary user (nobody)" \
             setpriv --reuid=nobody --regid="$(id -g nobody)" --clear-groups \
             sh -c 'make --no-print-directory -s BUILD="$1" -o "$1/bin/houghlocd" \
-                -o "$1/bin/houghloc-goto" install DESTDIR="$2" PREFIX=/usr >"$2.log" 2>&1' \
+                -o "$1/bin/houghloc-goto" -o "$1/bin/houghloc-ctl" install DESTDIR="$2" \
+                PREFIX=/usr >"$2.log" 2>&1' \
             - "$BUILD" "$tmp/user/root"
         [ -f "$tmp/user/root/usr/bin/houghlocd" ] || head -20 "$tmp/user/root.log" 2>/dev/null
         check "... and installs the programs" test -x "$tmp/user/root/usr/bin/houghlocd"

@@ -1,15 +1,20 @@
-# tools/goto/goto.mk - houghloc-goto, the destination client: sends one DESTINATION to
-# houghlocd and waits for its REPLY. Included by the top Makefile.
+# tools/goto/goto.mk - the two clients of houghlocd's requests: houghloc-goto sends one
+# DESTINATION, houghloc-ctl one COMMAND (set-pose, save, relocalize); each waits for its
+# REPLY. Both are thin mains over request.c (options, signing, publishing, the wait).
+# Included by the top Makefile.
 #
-# Like the daemon it sees include/ and src/daemon (for keyfile.h), never the generated
+# Like the daemon they see include/ and src/daemon (for keyfile.h), never the generated
 # LCM headers: messages go through src/bus. keyfile.o is linked on its own rather than
-# through $(DAEMON_LIB), so the tool needs nothing else of the daemon.
+# through $(DAEMON_LIB), so the tools need nothing else of the daemon.
 
+REQUEST_OBJS := $(BUILD)/obj/tools/goto/request.o $(BUILD)/obj/src/daemon/keyfile.o
 GOTO_OBJS := $(BUILD)/obj/tools/goto/goto.o $(BUILD)/obj/tools/goto/goto_args.o \
-             $(BUILD)/obj/src/daemon/keyfile.o
+             $(REQUEST_OBJS)
+CTL_OBJS  := $(BUILD)/obj/tools/goto/ctl.o $(BUILD)/obj/tools/goto/ctl_args.o \
+             $(REQUEST_OBJS)
 
-BINS              += $(BUILD)/bin/houghloc-goto
-INTEGRATION_TESTS += tests/integration/test_goto.sh
+BINS              += $(BUILD)/bin/houghloc-goto $(BUILD)/bin/houghloc-ctl
+INTEGRATION_TESTS += tests/integration/test_goto.sh tests/integration/test_ctl.sh
 
 $(BUILD)/obj/tools/goto/%.o: tools/goto/%.c
 	@mkdir -p $(@D)
@@ -20,3 +25,8 @@ $(BUILD)/bin/houghloc-goto: $(GOTO_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
 	$(Q)$(CC) -o $@ $(GOTO_OBJS) $(BUS_LIB) $(BUS_LDLIBS)
+
+$(BUILD)/bin/houghloc-ctl: $(CTL_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD      $@"
+	$(Q)$(CC) -o $@ $(CTL_OBJS) $(BUS_LIB) $(BUS_LDLIBS)

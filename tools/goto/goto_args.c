@@ -1,17 +1,10 @@
 /* goto_args.c - houghloc-goto's command line: --help, options, X Y [HEADING]. */
 #include "goto_args.h"
 
-#include <errno.h>
-#include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
-#include "houghloc/bus.h"
-#include "houghloc/fixed.h"
-
-#define COORD_MAX_M (HL_COORD_MAX_MM / 1000.0)
+#include "houghloc/version.h"
 
 static const char usage_text[] =
     "Usage: " PROG " [options] X Y [HEADING]\n"
@@ -24,7 +17,7 @@ static const char usage_text[] =
     "\n"
     "Options:\n"
     "  --lcm-url URL  the LCM network (default $LCM_DEFAULT_URL, else\n"
-    "                 " DEFAULT_URL ")\n"
+    "                 " REQ_DEFAULT_URL ")\n"
     "  --prefix P     the daemon's channel prefix (default none: DESTINATION, REPLY)\n"
     "  --key FILE     sign the request with the key in FILE (64 hexadecimal digits,\n"
     "                 mode 600), as a daemon configured with a key requires;\n"
@@ -59,56 +52,18 @@ static const char usage_text[] =
     "  5  the daemon could not do it (FAILED)\n"
     "  6  no answer (or no ARRIVED) within the timeout\n";
 
-int goto_usage_error(const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    fputs(PROG ": ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputs("; try " PROG " --help\n", stderr);
-    va_end(ap);
-    return EXIT_USAGE;
-}
-
-/* The whole string is a number (possibly inf or nan: the caller checks). */
-static bool parse_number(const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0')
-        return false;
-    *out = v;
-    return true;
-}
-
 static const char *const pos_names[3] = { "X", "Y", "HEADING" };
 
 /* X, Y or HEADING. @return WAITING, or EXIT_USAGE after the message. */
 static int add_positional(goto_options_t *o, const char *arg)
 {
     if (o->npos == 3)
-        return goto_usage_error("too many arguments at \"%s\" (expected X Y [HEADING])", arg);
-    const char *name = pos_names[o->npos];
-    double v;
-    if (!parse_number(arg, &v))
-        return goto_usage_error("%s \"%s\" is not a number", name, arg);
-    if (!isfinite(v))
-        return goto_usage_error("%s \"%s\" is not a finite number", name, arg);
-    if (o->npos < 2 && fabs(round(v * 1000.0)) > HL_COORD_MAX_MM)
-        return goto_usage_error("%s %s m is outside +-%.3f m", name, arg, COORD_MAX_M);
-    o->pos[o->npos++] = v;
-    return WAITING;
-}
-
-/* "--name VALUE" or "--name=VALUE": the value, or NULL after a usage error. */
-static const char *option_value(int argc, char **argv, int *i, const char *eq)
-{
-    if (eq)
-        return eq + 1;
-    if (*i + 1 >= argc)
-        return NULL;
-    return argv[++*i];
+        return req_usage_error(PROG, "too many arguments at \"%s\" (expected X Y [HEADING])",
+                               arg);
+    int rc = req_parse_value(PROG, pos_names[o->npos], arg, o->npos < 2, &o->pos[o->npos]);
+    if (rc == WAITING)
+        o->npos++;
+    return rc;
 }
 
 int goto_parse_args(int argc, char **argv, goto_options_t *o)
@@ -118,7 +73,7 @@ int goto_parse_args(int argc, char **argv, goto_options_t *o)
         const char *a = argv[i];
         double ignored;
         if (options_done || a[0] != '-' || a[1] == '\0' ||
-            (a[1] != '-' && parse_number(a, &ignored))) {
+            (a[1] != '-' && req_parse_number(a, &ignored))) {
             int rc = add_positional(o, a);
             if (rc != WAITING)
                 return rc;
@@ -130,53 +85,25 @@ int goto_parse_args(int argc, char **argv, goto_options_t *o)
         }
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage_text, stdout);
-            return EXIT_ARRIVED;
+            return EXIT_DONE;
         }
         if (strcmp(a, "--version") == 0) {
-            printf("%s %s\n", PROG, GOTO_VERSION);
-            return EXIT_ARRIVED;
+            printf("%s %s\n", PROG, HL_VERSION);
+            return EXIT_DONE;
         }
         if (strcmp(a, "--no-wait") == 0) {
             o->no_wait = true;
             continue;
         }
-        const char *eq = strchr(a, '=');
-        size_t n = eq ? (size_t)(eq - a) : strlen(a);
-        const char *const with_value[] = { "--lcm-url", "--prefix", "--key", "--timeout" };
-        int which = -1;
-        for (int k = 0; k < 4; k++)
-            if (strlen(with_value[k]) == n && strncmp(a, with_value[k], n) == 0)
-                which = k;
-        if (which < 0)
-            return goto_usage_error("unknown option \"%s\"", a);
-        const char *v = option_value(argc, argv, &i, eq);
-        if (!v)
-            return goto_usage_error("%s needs a value", with_value[which]);
-        if (which == 0) {
-            if (!*v)
-                return goto_usage_error("--lcm-url is empty");
-            o->url = v;
-        } else if (which == 1) {
-            char channel[HL_BUS_CHANNEL_MAX];
-            if (!hl_bus_channel(v, HL_CHANNEL_DESTINATION, channel))
-                return goto_usage_error("--prefix \"%s\": at most %d letters, digits, "
-                                        "'_', '-', '.' or '/'",
-                                        v, HL_BUS_PREFIX_MAX);
-            o->prefix = v;
-        } else if (which == 2) {
-            if (!*v)
-                return goto_usage_error("--key is empty");
-            o->key_file = v;
-        } else {
-            double t;
-            if (!parse_number(v, &t) || !(t >= 0.1 && t <= 3600.0))
-                return goto_usage_error("--timeout \"%s\": give seconds from 0.1 to 3600", v);
-            o->timeout_s = t;
-        }
+        int rc = req_parse_option(PROG, argc, argv, &i, &o->req);
+        if (rc == REQ_NOT_MINE)
+            return req_usage_error(PROG, "unknown option \"%s\"", a);
+        if (rc != WAITING)
+            return rc;
     }
     if (o->npos == 0)
-        return goto_usage_error("missing X and Y");
+        return req_usage_error(PROG, "missing X and Y");
     if (o->npos == 1)
-        return goto_usage_error("missing Y");
+        return req_usage_error(PROG, "missing Y");
     return WAITING;
 }
