@@ -1,0 +1,86 @@
+/* carmen_scan.c - FLASER beams -> hl_scan_t: laser readings or a pseudo-sonar ring. */
+#include "carmen_scan.h"
+
+#include <math.h>
+#include <stddef.h>
+
+carmen_beam_t carmen_classify(const carmen_ranges_t *cfg, double r_m, int32_t *mm)
+{
+    if (r_m <= 0.0 || r_m >= cfg->no_return_m || (cfg->has_sentinel && r_m == cfg->sentinel_m))
+        return CARMEN_BEAM_NO_RETURN;
+    long long v = llround(r_m * 1000.0);
+    if (v > HL_RANGE_MAX_MM)
+        return CARMEN_BEAM_BEYOND;
+    if (v <= 0)     /* below half a millimetre: as good as nothing */
+        return CARMEN_BEAM_NO_RETURN;
+    *mm = (int32_t)v;
+    return CARMEN_BEAM_VALID;
+}
+
+int carmen_sonar_readings(double fov_deg)
+{
+    /* the tolerance (a thousandth of a step) keeps csail's PARAM of 3.14159 rad, 179.9998
+     * degrees, at the 64 readings of 180 degrees */
+    return (int)floor(fov_deg / CARMEN_SONAR_STEP_DEG + 1e-3);
+}
+
+static double beam_deg(int i, int n, double fov_deg)
+{
+    return -fov_deg / 2.0 + (double)i * fov_deg / (double)(n - 1);
+}
+
+hl_status_t carmen_make_scan(const carmen_flaser_t *f, double fov_deg, carmen_input_t mode,
+                             const carmen_ranges_t *cfg, hl_scan_t *out, carmen_counts_t *counts)
+{
+    if (!f || !cfg || !out || f->nbeams < 2)
+        return HL_ERR_ARG;
+    carmen_counts_t c = { 0 };
+    /* the classes of every beam, once: mm[i] >= 0 for a valid beam, -1 otherwise */
+    int32_t mm[CARMEN_MAX_BEAMS];     /* 32 KiB */
+    for (int i = 0; i < f->nbeams; i++) {
+        carmen_beam_t b = carmen_classify(cfg, f->ranges[i], &mm[i]);
+        if (b != CARMEN_BEAM_VALID)
+            mm[i] = -1;
+        c.valid += b == CARMEN_BEAM_VALID;
+        c.no_return += b == CARMEN_BEAM_NO_RETURN;
+        c.beyond += b == CARMEN_BEAM_BEYOND;
+    }
+    hl_scan_clear(out);
+    if (mode == CARMEN_INPUT_LASER) {
+        if (f->nbeams > HL_SCAN_MAX_READINGS)
+            return HL_ERR_CAPACITY;
+        for (int i = 0; i < f->nbeams; i++) {
+            hl_bam_t bearing = hl_bam_from_deg(beam_deg(i, f->nbeams, fov_deg));
+            hl_scan_add(out, bearing, mm[i] >= 0 ? mm[i] : 0, -1, mm[i] >= 0);
+        }
+    } else {
+        int n = carmen_sonar_readings(fov_deg);
+        if (n > 128)    /* transducer numbers are 0..127 */
+            return HL_ERR_CAPACITY;
+        for (int j = 0; j < n; j++) {
+            /* centred on the field of view: (j - (n - 1) / 2) steps, exact in BAM */
+            int32_t bam = (2 * j - (n - 1)) * (CARMEN_SONAR_STEP_BAM / 2);
+            double centre = (j - (n - 1) / 2.0) * CARMEN_SONAR_STEP_DEG;
+            int32_t nearest = -1;
+            for (int i = 0; i < f->nbeams; i++) {
+                if (mm[i] < 0 || fabs(beam_deg(i, f->nbeams, fov_deg) - centre) >
+                                     CARMEN_SONAR_HALF_CONE_DEG + 1e-9)
+                    continue;
+                if (nearest < 0 || mm[i] < nearest)
+                    nearest = mm[i];
+            }
+            hl_scan_add(out, (hl_bam_t)(uint16_t)bam, nearest >= 0 ? nearest : 0, (int8_t)j,
+                        nearest >= 0);
+        }
+    }
+    c.readings = out->count;
+    c.readings_valid = hl_scan_valid_count(out);
+    if (counts) {
+        counts->valid += c.valid;
+        counts->no_return += c.no_return;
+        counts->beyond += c.beyond;
+        counts->readings += c.readings;
+        counts->readings_valid += c.readings_valid;
+    }
+    return HL_OK;
+}
