@@ -335,11 +335,17 @@ static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
 
 /* The hot loop: every candidate votes under each heading whose normal gate it passes.
  * Those headings are a contiguous run of slices, found by division instead of a test
- * per slice. */
+ * per slice. What the loop reads besides the candidate is copied to locals first: the
+ * compiler cannot tell that the stores into the raster leave the context alone, and
+ * would reload it for every vote. */
 static void vote_candidates(const hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
                             hl_bam_t tn0, int32_t gate, int32_t step, uint16_t *votes)
 {
-    size_t plane = (size_t)c->nx * c->ny;
+    const size_t plane = (size_t)c->nx * c->ny;
+    const uint32_t width = c->width_q8, height = c->height_q8, nx = (uint32_t)c->nx;
+    const uint64_t recip = c->recip;
+    const int32_t *tx = c->tx, *ty = c->ty;
+    uint32_t nvotes = 0, npairs = 0;
     for (uint32_t k = 0; k < ncand; k++) {
         int32_t d0 = (int16_t)(uint16_t)(loc->cn[k] - tn0);  /* normal - test normal, slice 0 */
         int32_t lo = 0, hi = c->nt - 1;
@@ -353,20 +359,26 @@ static void vote_candidates(const hl_localizer_t *loc, vote_ctx_t *c, uint32_t n
         } else if (d0 > gate || d0 < -gate) {
             continue;
         }
-        for (int32_t it = lo; it <= hi; it++) {
-            c->pairs++;
-            uint32_t vx = (uint32_t)(loc->cx[k] - c->tx[it]);
-            uint32_t vy = (uint32_t)(loc->cy[k] - c->ty[it]);
-            if (vx >= c->width_q8 || vy >= c->height_q8)
+        if (lo > hi)
+            continue;
+        npairs += (uint32_t)(hi - lo + 1);
+        const int32_t x = loc->cx[k], y = loc->cy[k];
+        uint16_t *slice = votes + (size_t)lo * plane;
+        for (int32_t it = lo; it <= hi; it++, slice += plane) {
+            uint32_t vx = (uint32_t)(x - tx[it]);
+            uint32_t vy = (uint32_t)(y - ty[it]);
+            if (vx >= width || vy >= height)
                 continue;
             /* floor(v / (256 cell)) == floor(floor(v / 256) / cell) */
-            uint32_t ix = (uint32_t)(((uint64_t)(vx >> 8) * c->recip) >> 32);
-            uint32_t iy = (uint32_t)(((uint64_t)(vy >> 8) * c->recip) >> 32);
-            uint16_t *cell = &votes[it * plane + iy * (uint32_t)c->nx + ix];
+            uint32_t ix = (uint32_t)(((uint64_t)(vx >> 8) * recip) >> 32);
+            uint32_t iy = (uint32_t)(((uint64_t)(vy >> 8) * recip) >> 32);
+            uint16_t *cell = slice + iy * nx + ix;
             *cell += (*cell != HL_VOTE_MAX);
-            c->votes++;
+            nvotes++;
         }
     }
+    c->votes += nvotes;
+    c->pairs += npairs;
 }
 
 static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface_t *s,
@@ -462,7 +474,10 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
     s.votes = loc->votes;
     loc->surface = s;
 
-    hl_grid_t g = { .cells = loc->blurred, .nx = s.nx, .ny = s.ny, .nt = s.nt };
+    /* The blur's other buffer is free now: hl_peak_find keeps its row maxima there
+     * (ny * nt <= max_cells). */
+    hl_grid_t g = { .cells = loc->blurred, .nx = s.nx, .ny = s.ny, .nt = s.nt,
+                    .row_max = loc->blurred == loc->buf_a ? loc->buf_b : loc->buf_a };
     if (query->use_prior) {
         fill_prior(loc, query, &s);
         g.wx = loc->wx;

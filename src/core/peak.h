@@ -15,6 +15,9 @@ typedef struct hl_grid {
     const uint32_t *cells;  /* [nt][ny][nx] */
     int32_t nx, ny, nt;
     const uint32_t *wx, *wy, *wt;   /* Q8 prior weights, or all NULL for none */
+    uint32_t *row_max;      /* NULL, or nt * ny cells of scratch apart from `cells`:
+                               hl_peak_find keeps each row's best score there and then
+                               skips most of the second-peak search */
 } hl_grid_t;
 
 typedef struct hl_peak {

@@ -3,17 +3,35 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
+
+#include "cellhash.h"
 
 #define TWO_PI 6.28318530717958647692
 
+/*
+ * Speed (docs/performance.md). The results are those of the plain method: estimate every
+ * map vector's surface normal from its neighbours, then for each reading scan the 3 x 3
+ * hash cells of normal_radius_mm around it for the nearest facing vector. Two things
+ * make it cheaper without changing a bit of them:
+ *  - normals are computed lazily, only for the vectors a reading comes near (about one
+ *    in seven on the simulated tour), each exactly as the plain method computes it (same
+ *    neighbours, same summation order), and kept for the rest of the run;
+ *  - matching searches a second hash with cells of match_mm (on the tour 28 candidates
+ *    a reading instead of 76: map vectors lie along walls). Only the order of the
+ *    candidates differs from the plain scan, and that order matters only between
+ *    candidates at exactly the same distance: there the plain scan's order is
+ *    recomputed (plain_first) and decides.
+ */
 struct hl_refiner {
     hl_refine_params_t p;
     uint32_t capacity;      /* map vectors */
-    uint32_t buckets;       /* power of two, >= 2 * capacity */
-    int32_t cell_mm;        /* hash cell: the larger of normal_radius_mm and match_mm */
-    int32_t *head;          /* [buckets] first vector in the bucket, -1 if none */
-    int32_t *next;          /* [capacity] next vector in the same bucket */
-    double *nx, *ny;        /* [capacity] unit surface normal, towards the sensors */
+    hl_cellhash_t shape;    /* cells of the larger of normal_radius_mm and match_mm */
+    hl_cellhash_t near;     /* cells of match_mm */
+    double *nx, *ny;        /* [capacity] unit surface normal, towards the sensors ... */
+    uint32_t *stamp;        /* [capacity] ... valid when stamp == run */
+    uint32_t run;
+    double *px, *py;        /* [HL_SCAN_MAX_READINGS] valid readings in the robot frame */
 };
 
 void hl_refine_params_default(hl_refine_params_t *p)
@@ -53,15 +71,15 @@ hl_refiner_t *hl_refine_create(const hl_refine_params_t *p, uint32_t max_map_vec
         return NULL;
     r->p = *p;
     r->capacity = max_map_vectors;
-    r->buckets = 1;
-    while (r->buckets < 2 * max_map_vectors)
-        r->buckets <<= 1;
-    r->cell_mm = p->normal_radius_mm > p->match_mm ? p->normal_radius_mm : p->match_mm;
-    r->head = malloc(r->buckets * sizeof *r->head);
-    r->next = malloc(max_map_vectors * sizeof *r->next);
+    int32_t shape_cell = p->normal_radius_mm > p->match_mm ? p->normal_radius_mm : p->match_mm;
+    bool ok = hl_cellhash_init(&r->shape, shape_cell, max_map_vectors);
+    ok = hl_cellhash_init(&r->near, p->match_mm, max_map_vectors) && ok;
     r->nx = malloc(max_map_vectors * sizeof *r->nx);
     r->ny = malloc(max_map_vectors * sizeof *r->ny);
-    if (!r->head || !r->next || !r->nx || !r->ny) {
+    r->stamp = calloc(max_map_vectors, sizeof *r->stamp);
+    r->px = malloc(HL_SCAN_MAX_READINGS * sizeof *r->px);
+    r->py = malloc(HL_SCAN_MAX_READINGS * sizeof *r->py);
+    if (!ok || !r->nx || !r->ny || !r->stamp || !r->px || !r->py) {
         hl_refine_destroy(r);
         return NULL;
     }
@@ -72,65 +90,22 @@ void hl_refine_destroy(hl_refiner_t *r)
 {
     if (!r)
         return;
-    free(r->head);
-    free(r->next);
+    hl_cellhash_free(&r->shape);
+    hl_cellhash_free(&r->near);
     free(r->nx);
     free(r->ny);
+    free(r->stamp);
+    free(r->px);
+    free(r->py);
     free(r);
 }
 
 size_t hl_refine_mem_bytes(const hl_refiner_t *r)
 {
-    return sizeof *r + r->buckets * sizeof *r->head +
-           r->capacity * (sizeof *r->next + sizeof *r->nx + sizeof *r->ny);
-}
-
-/* ---- the spatial hash ------------------------------------------------------------ */
-
-static int32_t cell_of(const hl_refiner_t *r, double v)
-{
-    return (int32_t)floor(v / r->cell_mm);
-}
-
-static uint32_t bucket_of(const hl_refiner_t *r, int32_t cx, int32_t cy)
-{
-    uint32_t h = (uint32_t)cx * 73856093u ^ (uint32_t)cy * 19349663u;
-    return h & (r->buckets - 1);
-}
-
-static void index_map(hl_refiner_t *r, const hl_vector_t *map, uint32_t n)
-{
-    for (uint32_t b = 0; b < r->buckets; b++)
-        r->head[b] = -1;
-    for (uint32_t i = 0; i < n; i++) {
-        uint32_t b = bucket_of(r, cell_of(r, map[i].x_mm), cell_of(r, map[i].y_mm));
-        r->next[i] = r->head[b];
-        r->head[b] = (int32_t)i;
-    }
-}
-
-/* Calls visit(ctx, j) for every map vector in the 3 x 3 cells around (x, y). Vectors of
- * other cells that share a bucket are visited too; callers check the distance. */
-typedef void (*visit_fn)(void *ctx, uint32_t j);
-
-static void for_neighbours(const hl_refiner_t *r, double x, double y, visit_fn visit, void *ctx)
-{
-    int32_t cx = cell_of(r, x), cy = cell_of(r, y);
-    uint32_t seen[9];
-    int nseen = 0;
-    for (int dy = -1; dy <= 1; dy++) {
-        for (int dx = -1; dx <= 1; dx++) {
-            uint32_t b = bucket_of(r, cx + dx, cy + dy);
-            bool dup = false;
-            for (int k = 0; k < nseen; k++)
-                dup = dup || seen[k] == b;
-            if (dup)
-                continue;
-            seen[nseen++] = b;
-            for (int32_t j = r->head[b]; j >= 0; j = r->next[j])
-                visit(ctx, (uint32_t)j);
-        }
-    }
+    return sizeof *r + hl_cellhash_mem_bytes(&r->shape) +
+           hl_cellhash_mem_bytes(&r->near) +
+           r->capacity * (sizeof *r->nx + sizeof *r->ny + sizeof *r->stamp) +
+           HL_SCAN_MAX_READINGS * (sizeof *r->px + sizeof *r->py);
 }
 
 /* ---- surface normals ------------------------------------------------------------- */
@@ -141,80 +116,130 @@ static void unit_normal(hl_bam_t a, double *x, double *y)
     *y = sin(hl_bam_to_rad(a));
 }
 
-struct shape {
-    const hl_refiner_t *r;
-    const hl_vector_t *map;
-    uint32_t self;
-    double r2;
-    double n, sx, sy, sxx, sxy, syy;
-};
-
-static void add_to_shape(void *ctx, uint32_t j)
+/* Vector i's surface normal: across the principal axis of the neighbours within
+ * normal_radius_mm that face the same way (itself included), oriented towards its
+ * sensor; its own normal when fewer than three vectors shape it. The sums run over the
+ * 3 x 3 cells of the shape hash, each bucket once, in the plain method's order: they are
+ * floating point, so the order is part of the result. */
+static void compute_normal(hl_refiner_t *r, const hl_vector_t *map, uint32_t i)
 {
-    struct shape *s = ctx;
-    const hl_vector_t *a = &s->map[s->self], *b = &s->map[j];
-    double dx = (double)b->x_mm - a->x_mm, dy = (double)b->y_mm - a->y_mm;
-    if (dx * dx + dy * dy > s->r2 || abs(hl_bam_diff(a->normal, b->normal)) > 10923) /* 60 deg */
+    const hl_cellhash_t *g = &r->shape;
+    const hl_vector_t *a = &map[i];
+    double r2 = (double)r->p.normal_radius_mm * r->p.normal_radius_mm;
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+    int32_t cx = hl_cellhash_cell(g, a->x_mm), cy = hl_cellhash_cell(g, a->y_mm);
+    uint32_t seen[9];
+    int nseen = 0;
+    for (int ddy = -1; ddy <= 1; ddy++) {
+        for (int ddx = -1; ddx <= 1; ddx++) {
+            uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
+            bool dup = false;
+            for (int k = 0; k < nseen; k++)
+                dup = dup || seen[k] == b;
+            if (dup)
+                continue;
+            seen[nseen++] = b;
+            for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
+                double dx = (double)g->x[e] - a->x_mm, dy = (double)g->y[e] - a->y_mm;
+                if (dx * dx + dy * dy > r2 || abs(hl_bam_diff(a->normal, g->normal[e])) > 10923)
+                    continue;   /* 10923: 60 degrees */
+                n += 1;
+                sx += dx;
+                sy += dy;
+                sxx += dx * dx;
+                sxy += dx * dy;
+                syy += dy * dy;
+            }
+        }
+    }
+    double ox, oy;
+    unit_normal(a->normal, &ox, &oy);
+    r->nx[i] = ox;
+    r->ny[i] = oy;
+    if (n < 3)
         return;
-    s->n += 1;
-    s->sx += dx;
-    s->sy += dy;
-    s->sxx += dx * dx;
-    s->sxy += dx * dy;
-    s->syy += dy * dy;
+    double mx = sx / n, my = sy / n;
+    double cxx = sxx / n - mx * mx, cxy = sxy / n - mx * my, cyy = syy / n - my * my;
+    double axis = 0.5 * atan2(2 * cxy, cxx - cyy);
+    double nx = -sin(axis), ny = cos(axis);
+    if (nx * ox + ny * oy < 0) {
+        nx = -nx;
+        ny = -ny;
+    }
+    r->nx[i] = nx;
+    r->ny[i] = ny;
 }
 
-/* Each vector's surface normal: across the principal axis of the neighbours that face
- * the same way (itself included), oriented towards its sensor; its own normal when fewer
- * than three vectors shape it. */
-static void estimate_normals(hl_refiner_t *r, const hl_vector_t *map, uint32_t n)
+/* Makes vector i's normal valid for this run (computed at most once per run: it depends
+ * on the map only). */
+static void need_normal(hl_refiner_t *r, const hl_vector_t *map, uint32_t i)
 {
-    double r2 = (double)r->p.normal_radius_mm * r->p.normal_radius_mm;
-    for (uint32_t i = 0; i < n; i++) {
-        double ox, oy;
-        unit_normal(map[i].normal, &ox, &oy);
-        r->nx[i] = ox;
-        r->ny[i] = oy;
-        struct shape s = { .r = r, .map = map, .self = i, .r2 = r2 };
-        for_neighbours(r, map[i].x_mm, map[i].y_mm, add_to_shape, &s);
-        if (s.n < 3)
-            continue;
-        double mx = s.sx / s.n, my = s.sy / s.n;
-        double cxx = s.sxx / s.n - mx * mx, cxy = s.sxy / s.n - mx * my, cyy = s.syy / s.n - my * my;
-        double axis = 0.5 * atan2(2 * cxy, cxx - cyy);
-        double nx = -sin(axis), ny = cos(axis);
-        if (nx * ox + ny * oy < 0) {
-            nx = -nx;
-            ny = -ny;
-        }
-        r->nx[i] = nx;
-        r->ny[i] = ny;
+    if (r->stamp[i] != r->run) {
+        compute_normal(r, map, i);
+        r->stamp[i] = r->run;
     }
 }
 
-/* ---- alignment ------------------------------------------------------------------- */
+/* ---- matching -------------------------------------------------------------------- */
 
-struct match {
-    const hl_refiner_t *r;
-    const hl_vector_t *map;
-    double wx, wy;          /* the reading's point in the world */
-    double sx, sy;          /* the robot */
-    double best2;
-    int32_t best;
-};
-
-static void nearest_facing(void *ctx, uint32_t j)
+/* Where vector j's bucket comes in the plain method's scan around (x, y): the 3 x 3
+ * shape-hash cells row by row, each bucket at its first cell. 9 if not there. */
+static int plain_slot(const hl_refiner_t *r, double x, double y, const hl_vector_t *v)
 {
-    struct match *m = ctx;
-    const hl_vector_t *v = &m->map[j];
-    double dx = m->wx - v->x_mm, dy = m->wy - v->y_mm, d2 = dx * dx + dy * dy;
-    if (d2 >= m->best2)
-        return;
-    /* the surface must face the robot */
-    if (m->r->nx[j] * (m->sx - m->wx) + m->r->ny[j] * (m->sy - m->wy) <= 0)
-        return;
-    m->best2 = d2;
-    m->best = (int32_t)j;
+    const hl_cellhash_t *g = &r->shape;
+    uint32_t bj = hl_cellhash_bucket_of(g, v->x_mm, v->y_mm);
+    int32_t cx = hl_cellhash_cell(g, x), cy = hl_cellhash_cell(g, y);
+    int slot = 0;
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++, slot++)
+            if (hl_cellhash_bucket(g, cx + dx, cy + dy) == bj)
+                return slot;
+    return 9;
+}
+
+/* Would the plain method's scan around (x, y) meet vector a before vector b? Bucket by
+ * bucket, and within a bucket the higher index first. */
+static bool plain_first(const hl_refiner_t *r, const hl_vector_t *map, double x, double y,
+                        uint32_t a, uint32_t b)
+{
+    int sa = plain_slot(r, x, y, &map[a]), sb = plain_slot(r, x, y, &map[b]);
+    return sa != sb ? sa < sb : a > b;
+}
+
+/* The nearest map vector closer than match_mm to the world point (wx, wy) whose surface
+ * faces the robot at (sx, sy); -1 if none. Of several at the same distance, the one the
+ * plain scan meets first. Scans the 3 x 3 cells of match_mm around the point: a bucket
+ * that two of them share is scanned twice, which changes nothing. */
+static int32_t nearest_facing(hl_refiner_t *r, const hl_vector_t *map, double wx, double wy,
+                              double sx, double sy)
+{
+    const hl_cellhash_t *g = &r->near;
+    double best2 = (double)r->p.match_mm * r->p.match_mm;
+    int32_t best = -1;
+    int32_t cx = hl_cellhash_cell(g, wx), cy = hl_cellhash_cell(g, wy);
+    for (int ddy = -1; ddy <= 1; ddy++) {
+        for (int ddx = -1; ddx <= 1; ddx++) {
+            uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
+            for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
+                double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
+                if (d2 > best2)
+                    continue;
+                uint32_t j = g->index[e];
+                /* a tie with the gate itself never matches (strictly closer than
+                 * match_mm); a tie with a candidate goes to the plain scan's first */
+                if (d2 == best2 &&
+                    (best < 0 || !plain_first(r, map, wx, wy, j, (uint32_t)best)))
+                    continue;
+                need_normal(r, map, j);
+                /* the surface must face the robot */
+                if (r->nx[j] * (sx - wx) + r->ny[j] * (sy - wy) <= 0)
+                    continue;
+                best2 = d2;
+                best = (int32_t)j;
+            }
+        }
+    }
+    return best;
 }
 
 /* Solves the dim x dim system a * x = b (dim 2 or 3) by Gaussian elimination with
@@ -252,32 +277,24 @@ static bool solve(double a[3][3], double b[3], int dim, double x[3])
     return true;
 }
 
-/* One Gauss-Newton step of the weighted point-to-line problem at pose (x, y, th).
- * @return the number of matched readings; 0 leaves step untouched. */
-static uint32_t gauss_newton_step(const hl_refiner_t *r, const hl_vector_t *map,
-                                  const hl_scan_t *scan, const double pose[3], int dim,
-                                  double step[3])
+/* One Gauss-Newton step of the weighted point-to-line problem at pose (x, y, th) over
+ * the nread readings in px, py. @return the number of matched readings; 0 leaves step
+ * untouched. */
+static uint32_t gauss_newton_step(hl_refiner_t *r, const hl_vector_t *map, uint32_t nread,
+                                  const double pose[3], int dim, double step[3])
 {
     double a[3][3] = { { 0 } }, b[3] = { 0 };
     double c = cos(pose[2]), s = sin(pose[2]);
-    double gate2 = (double)r->p.match_mm * r->p.match_mm;
     uint32_t matched = 0;
-    for (uint32_t i = 0; i < scan->count; i++) {
-        const hl_reading_t *rd = &scan->readings[i];
-        if (!rd->valid)
+    for (uint32_t i = 0; i < nread; i++) {
+        double px = r->px[i], py = r->py[i];
+        double wx = pose[0] + c * px - s * py;
+        double wy = pose[1] + s * px + c * py;
+        int32_t best = nearest_facing(r, map, wx, wy, pose[0], pose[1]);
+        if (best < 0)
             continue;
-        double bx, by;
-        unit_normal(rd->bearing, &bx, &by);
-        double px = rd->range_mm * bx, py = rd->range_mm * by;
-        struct match m = { .r = r, .map = map, .sx = pose[0], .sy = pose[1], .best2 = gate2,
-                           .best = -1 };
-        m.wx = pose[0] + c * px - s * py;
-        m.wy = pose[1] + s * px + c * py;
-        for_neighbours(r, m.wx, m.wy, nearest_facing, &m);
-        if (m.best < 0)
-            continue;
-        double nx = r->nx[m.best], ny = r->ny[m.best];
-        double res = nx * (m.wx - map[m.best].x_mm) + ny * (m.wy - map[m.best].y_mm);
+        double nx = r->nx[best], ny = r->ny[best];
+        double res = nx * (wx - map[best].x_mm) + ny * (wy - map[best].y_mm);
         double j[3] = { nx, ny, nx * (-s * px - c * py) + ny * (c * px - s * py) };
         double w = fabs(res) <= r->p.huber_mm ? 1.0 : r->p.huber_mm / fabs(res);
         for (int k = 0; k < dim; k++) {
@@ -293,6 +310,23 @@ static uint32_t gauss_newton_step(const hl_refiner_t *r, const hl_vector_t *map,
     return matched;
 }
 
+/* The valid readings in the robot frame, in scan order (the same for every iteration). */
+static uint32_t gather_readings(hl_refiner_t *r, const hl_scan_t *scan)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < scan->count; i++) {
+        const hl_reading_t *rd = &scan->readings[i];
+        if (!rd->valid)
+            continue;
+        double bx, by;
+        unit_normal(rd->bearing, &bx, &by);
+        r->px[n] = rd->range_mm * bx;
+        r->py[n] = rd->range_mm * by;
+        n++;
+    }
+    return n;
+}
+
 hl_status_t hl_refine_run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
                           const hl_scan_t *scan, hl_pose_t start, bool heading,
                           hl_pose_t *out)
@@ -306,8 +340,14 @@ hl_status_t hl_refine_run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
         return HL_ERR_RANGE;
     if (n == 0)
         return HL_ERR_EMPTY;
-    index_map(r, map, n);
-    estimate_normals(r, map, n);
+    hl_cellhash_build(&r->shape, map, n);
+    hl_cellhash_build(&r->near, map, n);
+    /* A new run: every normal is stale (stamps restart before the counter wraps). */
+    if (++r->run == 0) {
+        memset(r->stamp, 0, r->capacity * sizeof *r->stamp);
+        r->run = 1;
+    }
+    uint32_t nread = gather_readings(r, scan);
 
     const double th0 = hl_bam_to_rad(start.theta);
     double pose[3] = { start.x_mm, start.y_mm, th0 };
@@ -315,7 +355,7 @@ hl_status_t hl_refine_run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
     uint32_t matched = 0;
     for (uint16_t it = 0; it < r->p.iterations; it++) {
         double step[3];
-        matched = gauss_newton_step(r, map, scan, pose, dim, step);
+        matched = gauss_newton_step(r, map, nread, pose, dim, step);
         if (matched == 0 || !isfinite(step[0]) || !isfinite(step[1]) || !isfinite(step[2]))
             return HL_ERR_EMPTY;
         pose[0] += step[0];

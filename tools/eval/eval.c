@@ -16,7 +16,8 @@
  *                                       scans and messages of the wrong type, on every
  *                                       input channel
  *
- * Every log is checked with hl_log_check before liblcm reads it.
+ * Every log is checked with hl_log_check before liblcm reads it (runlog.h, shared with
+ * houghloc-eval and houghloc-map).
  */
 #include <errno.h>
 #include <lcm/eventlog.h>
@@ -27,8 +28,7 @@
 
 #include "houghloc/bus.h"
 #include "houghloc/logcheck.h"
-
-#define MAX_STOPS 100000
+#include "runlog.h"
 
 static const char usage[] =
     "Usage: hl-eval start IN.lcmlog\n"
@@ -43,111 +43,16 @@ static const char usage[] =
     "  demo stops=<n> rmse_mm=<x> max_mm=<y> odometry_rmse_mm=<z>\n"
     "where the odometry error integrates the scans' odometry from the first true pose.\n";
 
-typedef struct stop {
-    int32_t seq;
-    hl_pose_t truth, odometry, pose;
-    bool has_truth, has_scan, has_pose;
-} stop_t;
+typedef hl_runlog_stop_t stop_t;
 
-typedef struct run {
-    stop_t *stops;
-    size_t n;
-} run_t;
-
-/* The stop with @p seq, appended if new. */
-static stop_t *stop_for(run_t *r, int32_t seq)
+static int each_event(const char *path, hl_runlog_event_fn fn, void *user)
 {
-    for (size_t i = r->n; i-- > 0;)     /* the newest first: logs come in order */
-        if (r->stops[i].seq == seq)
-            return &r->stops[i];
-    if (r->n >= MAX_STOPS)
-        return NULL;
-    r->stops[r->n] = (stop_t){ .seq = seq };
-    return &r->stops[r->n++];
-}
-
-typedef bool (*event_fn)(void *user, const lcm_eventlog_event_t *ev, char *why);
-
-/* Checks the log, then hands every event to @p fn. @return 0, or 1 after printing why. */
-static int each_event(const char *path, event_fn fn, void *user)
-{
-    char why[HL_LOG_WHY_LEN];
-    if (hl_log_check(path, NULL, why) != HL_OK) {
-        fprintf(stderr, "hl-eval: %s\n", why);
-        return 1;
-    }
-    lcm_eventlog_t *log = lcm_eventlog_create(path, "r");
-    if (!log) {
-        fprintf(stderr, "hl-eval: %s: %s\n", path, strerror(errno));
-        return 1;
-    }
-    int rc = 0;
-    lcm_eventlog_event_t *ev;
-    while (rc == 0 && (ev = lcm_eventlog_read_next_event(log)) != NULL) {
-        char bwhy[HL_BUS_WHY_LEN] = "";
-        if (!fn(user, ev, bwhy)) {
-            fprintf(stderr, "hl-eval: %s: event %lld on %.*s: %s\n", path, (long long)ev->eventnum,
-                    (int)ev->channellen, ev->channel, bwhy);
-            rc = 1;
-        }
-        lcm_eventlog_free_event(ev);
-    }
-    lcm_eventlog_destroy(log);
-    return rc;
+    return hl_runlog_each_event("hl-eval", path, fn, user);
 }
 
 static bool is_channel(const lcm_eventlog_event_t *ev, const char *name)
 {
-    return (size_t)ev->channellen == strlen(name) && memcmp(ev->channel, name, ev->channellen) == 0;
-}
-
-/* IN: scans (their odometry) and ground truth. */
-static bool on_input(void *user, const lcm_eventlog_event_t *ev, char *why)
-{
-    run_t *r = user;
-    if (is_channel(ev, HL_CHANNEL_SONAR)) {
-        static hl_bus_scan_t scan;  /* large: not on the stack */
-        if (hl_bus_decode_scan(ev->data, ev->datalen, &scan, why) != HL_OK)
-            return false;
-        stop_t *s = stop_for(r, scan.seq);
-        if (!s)
-            return snprintf(why, HL_BUS_WHY_LEN, "more than %d scans", MAX_STOPS), false;
-        s->odometry = scan.odometry;
-        s->has_scan = true;
-    } else if (is_channel(ev, HL_CHANNEL_GROUND_TRUTH)) {
-        hl_bus_pose_t p;
-        if (hl_bus_decode_pose(ev->data, ev->datalen, &p, why) != HL_OK)
-            return false;
-        stop_t *s = stop_for(r, p.scan_seq);
-        if (!s)
-            return snprintf(why, HL_BUS_WHY_LEN, "more than %d scans", MAX_STOPS), false;
-        s->truth = p.pose;
-        s->has_truth = true;
-    }
-    return true;
-}
-
-/* OUT: the daemon's poses. */
-static bool on_output(void *user, const lcm_eventlog_event_t *ev, char *why)
-{
-    run_t *r = user;
-    if (!is_channel(ev, HL_CHANNEL_POSE))
-        return true;
-    hl_bus_pose_t p;
-    if (hl_bus_decode_pose(ev->data, ev->datalen, &p, why) != HL_OK)
-        return false;
-    for (size_t i = 0; i < r->n; i++) {
-        if (r->stops[i].seq == p.scan_seq) {
-            if (r->stops[i].has_pose)
-                return snprintf(why, HL_BUS_WHY_LEN, "a second POSE for scan %d", p.scan_seq),
-                       false;
-            r->stops[i].pose = p.pose;
-            r->stops[i].has_pose = true;
-            return true;
-        }
-    }
-    return snprintf(why, HL_BUS_WHY_LEN, "POSE for scan %d, which the input lacks", p.scan_seq),
-           false;
+    return hl_runlog_is_channel(ev, name);
 }
 
 static double dist(hl_pose_t a, hl_pose_t b)
@@ -155,25 +60,10 @@ static double dist(hl_pose_t a, hl_pose_t b)
     return hypot((double)a.x_mm - b.x_mm, (double)a.y_mm - b.y_mm);
 }
 
-static int load_input(const char *path, run_t *r)
-{
-    r->stops = calloc(MAX_STOPS, sizeof *r->stops);
-    if (!r->stops)
-        return fprintf(stderr, "hl-eval: out of memory\n"), 1;
-    if (each_event(path, on_input, r) != 0)
-        return 1;
-    size_t first = 0;
-    while (first < r->n && !(r->stops[first].has_scan && r->stops[first].has_truth))
-        first++;
-    if (first == r->n)
-        return fprintf(stderr, "hl-eval: %s: no SONAR scan with a GROUND_TRUTH pose\n", path), 1;
-    return 0;
-}
-
 static int cmd_start(const char *in)
 {
-    run_t r = { 0 };
-    int rc = load_input(in, &r);
+    hl_runlog_t r = { .prog = "hl-eval" };
+    int rc = hl_runlog_load_input(&r, in);
     for (size_t i = 0; rc == 0 && i < r.n; i++) {
         if (r.stops[i].has_scan && r.stops[i].has_truth) {
             hl_pose_t t = r.stops[i].truth;
@@ -181,14 +71,14 @@ static int cmd_start(const char *in)
             break;
         }
     }
-    free(r.stops);
+    hl_runlog_free(&r);
     return rc;
 }
 
 static int cmd_score(const char *in, const char *out, bool quiet)
 {
-    run_t r = { 0 };
-    int rc = load_input(in, &r) || each_event(out, on_output, &r);
+    hl_runlog_t r = { .prog = "hl-eval" };
+    int rc = hl_runlog_load_input(&r, in) || hl_runlog_load_output(&r, out);
     const stop_t *first = NULL;
     double se = 0, se_odo = 0, max = 0;
     size_t n = 0, missing = 0;
@@ -222,7 +112,7 @@ static int cmd_score(const char *in, const char *out, bool quiet)
     if (rc == 0)
         printf("demo stops=%zu rmse_mm=%.1f max_mm=%.1f odometry_rmse_mm=%.1f\n", n,
                sqrt(se / (double)n), max, sqrt(se_odo / (double)n));
-    free(r.stops);
+    hl_runlog_free(&r);
     return rc;
 }
 
@@ -366,7 +256,8 @@ static bool on_garble(void *user, const lcm_eventlog_event_t *ev, char *why)
     return ok;
 }
 
-static int cmd_write(const char *in, event_fn fn, writer_t *w, const char *out0, const char *out1)
+static int cmd_write(const char *in, hl_runlog_event_fn fn, writer_t *w, const char *out0,
+                     const char *out1)
 {
     const char *paths[2] = { out0, out1 };
     int rc = 0;

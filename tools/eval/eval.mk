@@ -1,9 +1,12 @@
 # tools/eval/eval.mk - hl-eval: scores houghlocd's output against ground truth (make demo)
-# and extracts channels for the replay-determinism tests.
+# and extracts channels for the replay-determinism tests. Its log reading (runlog.c) is
+# shared with houghloc-eval (houghloc_eval.mk) and houghloc-map (tools/map/map.mk).
 
 BINS += $(BUILD)/bin/hl-eval
 
-$(BUILD)/bin/hl-eval: $(call obj,tools/eval/eval.c) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+RUNLOG_OBJ := $(BUILD)/obj/tools/eval/runlog.o
+
+$(BUILD)/bin/hl-eval: $(call obj,tools/eval/eval.c) $(RUNLOG_OBJ) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CC) -o $@ $(call obj,tools/eval/eval.c) $(BUS_LIB) $(BUS_LDLIBS)
+	$(Q)$(CC) -o $@ $(call obj,tools/eval/eval.c) $(RUNLOG_OBJ) $(BUS_LIB) $(BUS_LDLIBS)
