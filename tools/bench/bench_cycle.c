@@ -28,8 +28,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "timing.h"
 #include "houghloc/bus.h"
 #include "houghloc/slam.h"
 
@@ -40,18 +40,6 @@ typedef struct recorded {
     hl_scan_t scan;
 } recorded_t;
 
-static double now_us(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e6 + ts.tv_nsec / 1e3;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* Nearest-rank quantile of a sorted array. */
 static double quantile(const double *sorted, int n, double q)

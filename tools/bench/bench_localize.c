@@ -19,12 +19,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "houghloc/echo.h"
 #include "houghloc/localize.h"
 #include "houghloc/refine.h"
 #include "../testkit/ref_localize.h"
+#include "timing.h"
 #include "../testkit/synthroom.h"
 
 #define POSES 8
@@ -36,18 +36,6 @@ typedef struct workload {
     bool search_theta;
 } workload_t;
 
-static double now_us(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e6 + ts.tv_nsec / 1e3;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 static double quantile(double *v, int n, double q)
 {
