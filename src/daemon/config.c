@@ -220,6 +220,8 @@ typedef struct parse_ctx {
     FILE *file;
     int line;           /* the line being read: the one a handler call comes from */
     bool at_line_start;
+    int long_line;      /* the first line longer than libinih reads, 0 if none */
+    int max_line;
     int fail_line;
 } parse_ctx_t;
 
@@ -231,6 +233,10 @@ static char *read_line(char *str, int num, void *stream)
     if (r && p->at_line_start)
         p->line++;
     p->at_line_start = r && strchr(r, '\n');
+    if (r && !p->at_line_start && !feof(p->file) && !p->long_line) {
+        p->long_line = p->line;     /* libinih would read the rest as another line */
+        p->max_line = num - 1;
+    }
     return r;
 }
 
@@ -271,14 +277,16 @@ static bool parse_file(hl_config_t *c, const char *path, bool mode_only, char *w
         return WHY("%s: read error", path), false;
     if (rc == -2)
         return WHY("%s: out of memory while reading", path), false;
+    if (p.long_line && (rc == 0 || rc >= p.long_line))
+        return WHY("%.300s:%d: longer than %d characters, the longest line the reader takes",
+                   path, p.long_line, p.max_line), false;
     if (rc == 0)
         return true;
     /* libinih reports the first bad line, ours or a syntax error before it */
     if (p.failed && (rc < 0 || rc >= p.fail_line))
         WHY("%.300s:%d: %s", path, p.fail_line, reason);
     else
-        WHY("%s:%d: not a 'key = value' line or a [section] (or longer than libinih reads)",
-            path, rc);
+        WHY("%.300s:%d: not a 'key = value' line or a [section]", path, rc);
     return false;
 }
 

@@ -42,8 +42,8 @@ const hl_config_key_t hl_config_keys[] = {
     { "fence.rect", HL_KEY_FENCE_RECT, F(fence), 0, 0,
       "destinations must lie in this rectangle: MIN_X,MIN_Y,MAX_X,MAX_Y in metres" },
     { "fence.polygon", HL_KEY_FENCE_POLYGON, F(fence), 0, 0,
-      "... or in this polygon: X,Y X,Y X,Y ... in metres (3 to 64 vertices); the last of "
-      "fence.rect and fence.polygon wins" },
+      "... or in this polygon: X,Y X,Y X,Y ... in metres (3 to 64 vertices, one line of at "
+      "most 199 characters); the last of fence.rect and fence.polygon wins" },
     { "slam.mode", HL_KEY_MODE, F(mode), 0, 0,
       "improved (echo bearings, refinement, guarded) or paper (the paper's method); a preset "
       "applied before every other key" },

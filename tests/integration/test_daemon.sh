@@ -41,6 +41,8 @@ printf 'this is not ini\n' >"$tmp/bad.conf"
 rejects "a line that is not key = value" 1 "bad.conf:1: not a 'key = value' line" $BIN/houghlocd --config "$tmp/bad.conf"
 printf '[fence]\npolygon = 0,0 1,1 0,1 1,0\n' >"$tmp/bad.conf"
 rejects "a crossed fence polygon" 1 "bad.conf:2: key 'fence.polygon'" $BIN/houghlocd --config "$tmp/bad.conf"
+awk 'BEGIN { printf "[fence]\npolygon ="; for (i = 0; i < 40; i++) printf " %d,%d", i, i * i; print "" }' >"$tmp/bad.conf"
+rejects "a line longer than the reader takes: its number, not a misread" 1 "bad.conf:2: longer than" $BIN/houghlocd --config "$tmp/bad.conf"
 rejects "--set of an unknown key" 1 "unknown key 'slam.nope'" $D --set slam.nope=1
 rejects "--set without =" 1 "expected SECTION.KEY=VALUE" $D --set slam.map_capacity
 rejects "a combination the core refuses" 1 "config: " $D --set slam.map_capacity=20000
