@@ -50,6 +50,7 @@ check "seeds.sh summarises two seeds" grep -q "^orientation, 2 seeds: mean |bias
 "$BIN/hl-bench" 3 >"$tmp/bench"
 check "hl-bench prints three parseable lines" test "$(grep -cE '^bench w[123]_[a-z0-9_]+ median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench")" -eq 3
 check "hl-bench times echo and refinement" grep -qE '^bench w4_echo_refine median_us=[0-9]+ p90_us=[0-9]+ echo_median_us=[0-9]+ refine_median_us=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench"
+check "hl-bench times a laser scan against 15,000 vectors" grep -qE '^bench w5_laser15k median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench"
 
 # Bad input: one line, non-zero exit.
 rejects "missing log folder" "cannot open" "$BIN/hl-experiments" --logs "$tmp/nowhere" --out "$tmp/x" --no-figures

@@ -14,6 +14,10 @@
  *
  *   bench w4_echo_refine median_us=<n> p90_us=<n> echo_median_us=<n> refine_median_us=<n>
  *         mem_bytes=<n>
+ *
+ * and a fifth a laser's scan: w5_laser15k (360 readings against 15,000 vectors in a
+ * +-1 m window, as w3), in the first line's format. The reference runs at most 20 times
+ * for w3 and 5 for w5 (it takes a quarter of a second and more per run there).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -34,6 +38,8 @@ typedef struct workload {
     uint32_t map_size;
     hl_mm_t window_mm;
     bool search_theta;
+    int readings;           /* per scan: 128 (the sonar ring) or 360 (a laser) */
+    int max_ref_runs;       /* the reference is slow: cap its runs */
 } workload_t;
 
 
@@ -53,11 +59,13 @@ static int run_workload(const workload_t *w, int runs, int ref_runs)
     double *t = malloc((size_t)runs * sizeof *t), *tr = malloc((size_t)ref_runs * sizeof *tr);
     if (!map || !scans || !t || !tr)
         return 1;
-    uint32_t n = sr_make_map(&room, w->map_size, 128, 8000, 10, map);
+    uint32_t n = sr_make_map(&room, w->map_size, w->readings, 8000, 10, map);
     for (int i = 0; i < POSES; i++) {
         truth[i] = sr_free_pose(&room, 500);
-        sr_sound(&room, truth[i], 128, 8000, 10, &scans[i]);
+        sr_sound(&room, truth[i], w->readings, 8000, 10, &scans[i]);
     }
+    if (ref_runs > w->max_ref_runs)
+        ref_runs = w->max_ref_runs;
 
     hl_loc_params_t p;
     hl_loc_params_default(&p);
@@ -176,12 +184,15 @@ int main(int argc, char **argv)
         runs = (int)v;
     }
     const workload_t w[] = {
-        { "w1_global_xy", 1500, 0, false },
-        { "w2_local_xyt", 1500, 1000, true },
-        { "w3_map15k", 15000, 1000, true },
+        { "w1_global_xy", 1500, 0, false, 128, 200 },
+        { "w2_local_xyt", 1500, 1000, true, 128, 200 },
+        { "w3_map15k", 15000, 1000, true, 128, 20 },
     };
     for (size_t i = 0; i < sizeof w / sizeof w[0]; i++)
         if (run_workload(&w[i], runs, runs))
             return 1;
-    return run_echo_refine(runs);
+    if (run_echo_refine(runs))
+        return 1;
+    const workload_t laser = { "w5_laser15k", 15000, 1000, true, 360, 5 };
+    return run_workload(&laser, runs, runs);
 }
