@@ -51,7 +51,8 @@ typedef struct hl_loc_params {
                                    24 mm needs 174k per heading; a +-1 m window with 17
                                    headings, 120k. Each raster side must also stay below
                                    2^21 mm. */
-    uint32_t max_map_vectors;   /* largest map to accept; default 16384 */
+    uint32_t max_map_vectors;   /* largest map to accept; default 16384. hl_slam sets it
+                                   to its map_capacity (slam.h) */
 } hl_loc_params_t;
 
 /** Fills @p p with the defaults above. */
@@ -70,17 +71,35 @@ typedef struct hl_loc_query {
     bool use_prior;         /* attenuate votes with distance from the prediction */
 } hl_loc_query_t;
 
+/*
+ * Two measures of a peak. Before the prior: how well the scan matches the map at the
+ * peak (peak) and at the best place at least peak_separation_mm away (second), in
+ * blurred votes; the guard's peak-ratio test reads this (slam.h), so that a good match
+ * is not taken for a bad one because the odometry drifted away from it. After the
+ * prior: what the search maximised (score, second_score), which tells how distinct the
+ * chosen pose is given the odometry; the confidence reads this. Without a prior the two
+ * pairs are equal.
+ */
 typedef struct hl_loc_result {
     hl_pose_t pose;         /* interpolated peak */
     hl_pose_t cell_pose;    /* centre of the peak cell, no interpolation */
     int32_t ix, iy, it;     /* peak cell */
-    uint32_t peak;          /* blurred votes x 256 at the peak (before the prior) */
-    uint32_t second;        /* best cell >= peak_separation_mm away, same units */
+    uint32_t peak;          /* blurred votes x 256 in the peak cell, before the prior */
+    uint32_t second;        /* the best cell >= peak_separation_mm from the peak cell in
+                               x and y, same units, before the prior */
+    uint32_t score;         /* the peak cell's score after the prior (the highest of the
+                               raster), votes x 256; = peak without a prior */
+    uint32_t second_score;  /* the best score >= peak_separation_mm from the peak cell,
+                               after the prior; = second without a prior */
     uint32_t votes;         /* votes that landed in the raster */
     uint32_t pairs;         /* pairs that passed the normal gate */
 } hl_loc_result_t;
 
-/** Confidence 0..1 from a result: 1 - second / peak (0 if there is no peak). */
+/**
+ * Confidence 0..1: 1 - second_score / score, how far the chosen pose stands out from the
+ * best one at least peak_separation_mm away, after the prior when the query used one
+ * (0 if there is no peak or @p r is NULL).
+ */
 double hl_loc_confidence(const hl_loc_result_t *r);
 
 /** The blurred vote surface of the last run, for figures and tests. */

@@ -43,8 +43,13 @@ typedef struct hl_scan {
 void hl_scan_clear(hl_scan_t *scan);
 
 /**
- * Appends one reading. A range outside 0..HL_RANGE_MAX_MM is stored as invalid.
- * @return HL_OK, HL_ERR_CAPACITY when the scan is full, HL_ERR_ARG on NULL.
+ * Appends one reading. A range outside 0..HL_RANGE_MAX_MM cannot be held: the reading
+ * is still appended (so that the scan keeps the ring's shape), as an invalid one with
+ * range 0, and the call says so. A caller counts and reports these: a laser return
+ * beyond 32.767 m is lost this way.
+ * @return HL_OK; HL_ERR_RANGE when @p valid was asked for a range outside
+ *         0..HL_RANGE_MAX_MM (appended as invalid); HL_ERR_CAPACITY when the scan is
+ *         full (nothing appended); HL_ERR_ARG on NULL.
  */
 hl_status_t hl_scan_add(hl_scan_t *scan, hl_bam_t bearing, int32_t range_mm,
                         int8_t transducer, bool valid);

@@ -21,7 +21,7 @@ hl_status_t hl_scan_add(hl_scan_t *scan, hl_bam_t bearing, int32_t range_mm,
     r->range_mm = in_range ? range_mm : 0;
     r->transducer = transducer;
     r->valid = valid && in_range;
-    return HL_OK;
+    return valid && !in_range ? HL_ERR_RANGE : HL_OK;
 }
 
 uint32_t hl_scan_valid_count(const hl_scan_t *scan)

@@ -11,7 +11,8 @@ struct hl_slam {
     bool started;       /* a scan has been seen since the last reset */
     hl_pose_t pose;     /* the last estimate (or the start pose) */
     hl_pose_t odom;     /* the odometry that went with it */
-    uint32_t peak_avg;  /* moving average of recent peaks (votes x 256), 0 = none yet */
+    uint32_t peak_avg;  /* average of recent peaks (votes x 256, before the prior), 0 = none
+                           yet: tracked_peak */
     hl_scan_t *echoed;  /* the scan at its echo bearings, when the params ask for it */
     hl_refiner_t *refiner;  /* when the params ask for refinement */
 };
@@ -39,11 +40,15 @@ void hl_slam_params_default(hl_slam_params_t *p)
 
 const char *hl_slam_params_error(const hl_slam_params_t *p)
 {
-    const char *e = hl_loc_params_error(&p->loc);
+    if (!p)
+        return "no slam parameters";
+    if (p->map_capacity < 1 || p->map_capacity > HL_MAP_MAX_CAPACITY)
+        return "map_capacity must be in 1..1048576";
+    hl_loc_params_t lp = p->loc;    /* as hl_slam_create makes the localizer */
+    lp.max_map_vectors = p->map_capacity;
+    const char *e = hl_loc_params_error(&lp);
     if (e)
         return e;
-    if (p->map_capacity < 1 || p->map_capacity > p->loc.max_map_vectors)
-        return "map capacity must be in 1..max_map_vectors";
     if (p->window_mm < 0 || p->window_mm > 1000000)
         return "window_mm must be in 0..1000000";
     if (p->window_mm > 0 &&
@@ -71,7 +76,11 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
         return NULL;
     s->p = *p;
     s->map = hl_map_create(p->map_capacity, p->seed);
-    s->loc = hl_loc_create(&p->loc);
+    /* The localizer only ever sees this map: one bound for both (slam.h). */
+    hl_loc_params_t lp = p->loc;
+    lp.max_map_vectors = p->map_capacity;
+    s->p.loc.max_map_vectors = p->map_capacity;
+    s->loc = hl_loc_create(&lp);
     s->echoed = p->echo_bearings ? malloc(sizeof *s->echoed) : NULL;
     s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
     if (!s->map || !s->loc || (p->echo_bearings && !s->echoed) || (p->refine && !s->refiner)) {
@@ -116,11 +125,33 @@ static bool plausible(const hl_slam_t *s, hl_pose_t pose, hl_pose_t predicted,
            high_enough;
 }
 
-/* Exponential moving average over about four localizations: the average after @p peak. */
-static uint32_t tracked_peak(uint32_t avg, uint32_t peak)
+/* floor(sqrt(a * b)), exactly, in integers. */
+static uint32_t geometric_mean(uint32_t a, uint32_t b)
+{
+    uint64_t p = (uint64_t)a * b;
+    uint64_t lo = 0, hi = a > b ? a : b;    /* sqrt(a b) <= max(a, b) */
+    while (lo < hi) {   /* the largest r with r * r <= p */
+        uint64_t mid = lo + (hi - lo + 1) / 2;
+        if (mid * mid <= p)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return (uint32_t)lo;
+}
+
+/* The recent-peak average after a localization with @p peak: a quarter of the way to an
+ * accepted peak (an exponential average over about four scans), the geometric mean with
+ * a rejected one. A scan entering unmapped space may have a peak ten or a hundred times
+ * below the average, and the peaks after it stay low; an arithmetic step of a quarter
+ * would take many scans to come down, and every one of them would be rejected and kept
+ * out of the map (slam.h). */
+static uint32_t tracked_peak(uint32_t avg, uint32_t peak, bool accepted)
 {
     if (avg == 0)
         return peak;
+    if (!accepted)
+        return geometric_mean(avg, peak);
     return (uint32_t)((int64_t)avg + ((int64_t)peak - avg) / 4);
 }
 
@@ -184,7 +215,7 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
     bool extend = true;
     if (st == HL_OK) {
         bool accept = !s->p.guarded || plausible(s, found, predicted, &step.loc);
-        peak_avg = tracked_peak(s->peak_avg, step.loc.peak);
+        peak_avg = tracked_peak(s->peak_avg, step.loc.peak, accept);
         if (accept) {
             step.status = HL_SLAM_ACCEPTED;
             step.pose = found;
@@ -193,10 +224,11 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
             extend = false;
         }
     } else if (st == HL_ERR_EMPTY) {
-        /* Nothing to vote against: the first scan, or a scan that overlaps nothing.
-         * The paper's robot starts its map this way; a guarded run adds such a scan only
-         * while the map is still empty. */
-        extend = !s->p.guarded || hl_map_count(s->map) == 0;
+        /* Nothing to vote against: the first scan, or a scan that overlaps nothing the
+         * map holds near the prediction. The paper's robot starts its map this way, and
+         * this is how the map follows the robot where it has nothing yet (slam.h): the
+         * scan goes in at the prediction. */
+        extend = true;
     } else {
         return st;
     }

@@ -242,13 +242,65 @@ static void test_prior_breaks_ambiguity(void **state)
     assert_int_equal(hl_loc_run(loc, twin, 2 * f->n, &f->scan, &q, &r), HL_OK);
     assert_within(r.pose.x_mm, f->truth.x_mm, p.cell_mm);
     assert_true(r.second * 10 >= r.peak * 9);   /* the twin peak is as high */
+    /* without a prior, both pairs are the same */
+    assert_int_equal(r.score, r.peak);
+    assert_int_equal(r.second_score, r.second);
     q.use_prior = true;
     assert_int_equal(hl_loc_run(loc, twin, 2 * f->n, &f->scan, &q, &r), HL_OK);
     assert_within(r.pose.x_mm, f->truth.x_mm + shift, p.cell_mm);
     assert_within(r.pose.y_mm, f->truth.y_mm, p.cell_mm);
-    assert_true(r.second * 2 < r.peak);         /* the prior suppressed the first copy */
+    /* after the prior the first copy is suppressed, and the pose is distinct ... */
+    assert_true(r.second_score * 2 < r.score);
+    assert_true(hl_loc_confidence(&r) > 0.5);
+    /* ... but before it, the first copy matches as well as the second (localize.h) */
+    assert_true(r.second * 10 >= r.peak * 9);
     hl_loc_destroy(loc);
     free(twin);
+    free_fixture(f);
+}
+
+/* peak is the blurred cell the search chose, unweighted; score the same cell weighted
+ * by the prior, so lower the farther the prediction is; the second place before the
+ * prior is the best unweighted cell at least peak_separation_mm away, found here by a
+ * plain scan of the surface. */
+static void test_peak_is_before_the_prior(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(0, 0, 61);
+    for (int off = 0; off <= 400; off += 400) {
+        hl_pose_t pred = f->truth;
+        pred.x_mm += off;
+        pred.y_mm -= off / 3;
+        hl_loc_query_t q = { .predicted = pred, .window_mm = 1000, .search_theta = true,
+                             .use_prior = true };
+        hl_loc_result_t r;
+        assert_int_equal(hl_loc_run(f->loc, f->map, f->n, &f->scan, &q, &r), HL_OK);
+        assert_within(r.pose.x_mm, f->truth.x_mm, off == 0 ? f->p.cell_mm : 150);
+        assert_within(r.pose.y_mm, f->truth.y_mm, off == 0 ? f->p.cell_mm : 150);
+        hl_loc_surface_t sf;
+        hl_loc_get_surface(f->loc, &sf);
+        assert_int_equal(r.peak, sf.cells[((size_t)r.it * sf.ny + r.iy) * sf.nx + r.ix]);
+        uint32_t want_second = 0;
+        int64_t sep2 = (int64_t)f->p.peak_separation_mm * f->p.peak_separation_mm;
+        for (int32_t it = 0; it < sf.nt; it++)
+            for (int32_t iy = 0; iy < sf.ny; iy++)
+                for (int32_t ix = 0; ix < sf.nx; ix++) {
+                    int64_t dx = (int64_t)(ix - r.ix) * sf.cell_mm;
+                    int64_t dy = (int64_t)(iy - r.iy) * sf.cell_mm;
+                    uint32_t c = sf.cells[((size_t)it * sf.ny + iy) * sf.nx + ix];
+                    if (dx * dx + dy * dy >= sep2 && c > want_second)
+                        want_second = c;
+                }
+        assert_int_equal(r.second, want_second);
+        assert_true(r.score <= r.peak && r.second_score <= r.second);
+        /* the prior weighs the chosen cell by its distance from the prediction: at the
+         * prediction, hardly; 400 mm away (1.3 sigma), to well under its height, which a
+         * peak-ratio test on score would take for a worse match */
+        if (off == 0)
+            assert_true(r.score * 10 >= r.peak * 9);
+        else
+            assert_true(r.score * 10 < r.peak * 7);
+    }
     free_fixture(f);
 }
 
@@ -264,6 +316,7 @@ int main(void)
         cmocka_unit_test(test_capacity_limits),
         cmocka_unit_test(test_params_validated),
         cmocka_unit_test(test_prior_breaks_ambiguity),
+        cmocka_unit_test(test_peak_is_before_the_prior),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -130,11 +130,24 @@ static void test_scan_add_and_check(void **state)
     for (int i = 0; i < HL_SCAN_MAX_READINGS; i++)
         assert_int_equal(hl_scan_add(s, 0, 100, 0, true), HL_OK);
     assert_int_equal(hl_scan_add(s, 0, 100, 0, true), HL_ERR_CAPACITY);
+    assert_int_equal(hl_scan_add(s, 0, 40000, 0, true), HL_ERR_CAPACITY);
     hl_scan_clear(s);
-    hl_scan_add(s, 0, -1, 0, true);
-    hl_scan_add(s, 0, HL_RANGE_MAX_MM + 1, 0, true);
-    hl_scan_add(s, 0, 5, 0, true);
-    assert_int_equal(hl_scan_valid_count(s), 1);
+    /* a range the format cannot hold: appended as an invalid reading, and said so */
+    assert_int_equal(hl_scan_add(s, 0, -1, 0, true), HL_ERR_RANGE);
+    assert_int_equal(hl_scan_add(s, 100, HL_RANGE_MAX_MM + 1, 1, true), HL_ERR_RANGE);
+    assert_int_equal(hl_scan_add(s, 200, 45000, 2, false), HL_OK);  /* nothing lost */
+    assert_int_equal(hl_scan_add(s, 300, HL_RANGE_MAX_MM, 3, true), HL_OK);
+    assert_int_equal(hl_scan_add(s, 400, 5, 4, true), HL_OK);
+    assert_int_equal(s->count, 5);
+    assert_false(s->readings[1].valid);
+    assert_int_equal(s->readings[1].range_mm, 0);
+    assert_int_equal(s->readings[1].bearing, 100);
+    assert_int_equal(s->readings[1].transducer, 1);
+    assert_false(s->readings[2].valid);
+    assert_int_equal(s->readings[2].range_mm, 0);
+    assert_true(s->readings[3].valid);
+    assert_int_equal(s->readings[3].range_mm, HL_RANGE_MAX_MM);
+    assert_int_equal(hl_scan_valid_count(s), 2);
     assert_int_equal(hl_scan_check(s), HL_OK);
     s->readings[0].valid = true;
     s->readings[0].range_mm = 40000;

@@ -45,7 +45,7 @@ awk 'BEGIN { printf "[fence]\npolygon ="; for (i = 0; i < 40; i++) printf " %d,%
 rejects "a line longer than the reader takes: its number, not a misread" 1 "bad.conf:2: longer than" $BIN/houghlocd --config "$tmp/bad.conf"
 rejects "--set of an unknown key" 1 "unknown key 'slam.nope'" $D --set slam.nope=1
 rejects "--set without =" 1 "expected SECTION.KEY=VALUE" $D --set slam.map_capacity
-rejects "a combination the core refuses" 1 "config: " $D --set slam.map_capacity=20000
+rejects "a combination the core refuses" 1 "config: the search window needs more raster cells than max_cells" $D --set localize.max_cells=1000
 rejects "a bad prefix" 1 "lcm.prefix" $D --prefix 'a b'
 rejects "a missing --config file" 1 "cannot open" $BIN/houghlocd --config "$tmp/none.conf"
 rejects "an unknown option" 2 "unknown option" $D --frobnicate
