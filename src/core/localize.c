@@ -419,44 +419,6 @@ static void fill_prior(hl_localizer_t *loc, const hl_loc_query_t *q, const hl_lo
     }
 }
 
-/* Largest of cells x0 .. x1 - 1 of a row (a plain loop: vectorized). */
-static uint32_t row_max_plain(const uint32_t *restrict row, int32_t x0, int32_t x1)
-{
-    uint32_t m = 0;
-    for (int32_t ix = x0; ix < x1; ix++)
-        m = row[ix] > m ? row[ix] : m;
-    return m;
-}
-
-/* The highest blurred cell, before the prior, at least sep_mm in x and y from the cell
- * (cx, cy): the second place as the votes alone see it. Each row skips its run of
- * cells inside the circle, as hl_peak_find's second search does. */
-static uint32_t second_before_prior(const hl_loc_surface_t *s, int32_t cx, int32_t cy,
-                                    int32_t sep_mm)
-{
-    int64_t cell2 = (int64_t)s->cell_mm * s->cell_mm;
-    int64_t sep2 = sep_mm > 0 ? (int64_t)sep_mm * sep_mm : 1;
-    uint32_t best = 0;
-    for (int32_t iy = 0; iy < s->ny; iy++) {
-        int64_t dy2 = (int64_t)(iy - cy) * (iy - cy) * cell2;
-        int32_t lo = s->nx, hi = s->nx;     /* [lo, hi): the cells too close */
-        if (dy2 < sep2) {
-            int32_t r = 0;
-            while ((int64_t)(r + 1) * (r + 1) * cell2 < sep2 - dy2)
-                r++;
-            lo = cx - r < 0 ? 0 : cx - r;
-            hi = cx + r + 1 > s->nx ? s->nx : cx + r + 1;
-        }
-        for (int32_t it = 0; it < s->nt; it++) {
-            const uint32_t *row = s->cells + ((size_t)it * s->ny + iy) * s->nx;
-            uint32_t a = row_max_plain(row, 0, lo), b = row_max_plain(row, hi, s->nx);
-            a = a > b ? a : b;
-            best = a > best ? a : best;
-        }
-    }
-    return best;
-}
-
 /* Interpolated offset along one axis of the grid, in units of `step`. */
 static int32_t axis_offset(const hl_grid_t *g, const hl_peak_t *pk, int axis, int32_t step)
 {
@@ -533,8 +495,10 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
     result->peak = pk.score;
     result->second = pk.second;
     if (query->use_prior) {     /* the same cells without the prior's weights */
-        result->peak = s.cells[((size_t)pk.it * s.ny + pk.iy) * s.nx + pk.ix];
-        result->second = second_before_prior(&s, pk.ix, pk.iy, loc->p.peak_separation_mm);
+        hl_grid_t votes_only = { .cells = s.cells, .nx = s.nx, .ny = s.ny, .nt = s.nt };
+        result->peak = hl_grid_score(&votes_only, pk.ix, pk.iy, pk.it);
+        result->second = hl_peak_second(&votes_only, s.cell_mm, loc->p.peak_separation_mm,
+                                        pk.ix, pk.iy);
     }
     result->cell_pose.x_mm = s.x0_mm + pk.ix * s.cell_mm + s.cell_mm / 2;
     result->cell_pose.y_mm = s.y0_mm + pk.iy * s.cell_mm + s.cell_mm / 2;

@@ -147,15 +147,28 @@ static uint32_t find_second(const rows_t *rw, int64_t cell2, int64_t sep2, int32
     return best;
 }
 
+static uint32_t second_of(const rows_t *r, int32_t cell_mm, int32_t sep_mm, int32_t cx,
+                          int32_t cy)
+{
+    int64_t sep2 = sep_mm > 0 ? (int64_t)sep_mm * sep_mm : 1;
+    return find_second(r, (int64_t)cell_mm * cell_mm, sep2, cx, cy);
+}
+
 int hl_peak_find(const hl_grid_t *g, int32_t cell_mm, int32_t sep_mm, hl_peak_t *out)
 {
     rows_t r = rows_of(g);
     find_best(&r, out);
     if (out->score == 0)
         return 0;
-    int64_t sep2 = sep_mm > 0 ? (int64_t)sep_mm * sep_mm : 1;
-    out->second = find_second(&r, (int64_t)cell_mm * cell_mm, sep2, out->ix, out->iy);
+    out->second = second_of(&r, cell_mm, sep_mm, out->ix, out->iy);
     return 1;
+}
+
+uint32_t hl_peak_second(const hl_grid_t *g, int32_t cell_mm, int32_t sep_mm, int32_t cx,
+                        int32_t cy)
+{
+    rows_t r = rows_of(g);
+    return second_of(&r, cell_mm, sep_mm, cx, cy);
 }
 
 int32_t hl_peak_offset(uint32_t l, uint32_t c, uint32_t r, int32_t step)

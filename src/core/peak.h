@@ -36,6 +36,14 @@ uint32_t hl_grid_score(const hl_grid_t *g, int32_t ix, int32_t iy, int32_t it);
 int hl_peak_find(const hl_grid_t *g, int32_t cell_mm, int32_t sep_mm, hl_peak_t *out);
 
 /**
+ * The best score at least @p sep_mm in xy from the cell (@p cx, @p cy), as
+ * hl_peak_find's second peak (for another grid over the same cells, e.g. without the
+ * prior's weights).
+ */
+uint32_t hl_peak_second(const hl_grid_t *g, int32_t cell_mm, int32_t sep_mm, int32_t cx,
+                        int32_t cy);
+
+/**
  * Offset of the vertex of the parabola through (-1, l), (0, c), (1, r), in units of
  * @p step (so within +-step/2 when c is the largest), rounded to nearest.
  */
