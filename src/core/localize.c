@@ -12,10 +12,9 @@
 #include "blur.h"
 #include "peak.h"
 
+#include "loc_params.h"
+
 #define NORMAL_BINS 256     /* map vectors bucketed by the top 8 bits of the normal */
-#define MAX_HALF_STEPS 256
-#define MAX_SIDE_MM (1 << 21)   /* keeps the reciprocal cell division exact */
-#define MAX_CELL_MM 1000
 
 struct hl_localizer {
     hl_loc_params_t p;
@@ -43,71 +42,6 @@ struct hl_localizer {
 
     hl_loc_surface_t surface;   /* geometry of the last run */
 };
-
-void hl_loc_params_default(hl_loc_params_t *p)
-{
-    memset(p, 0, sizeof *p);
-    p->cell_mm = 24;
-    p->theta_step = hl_bam_from_deg(1.1);
-    p->theta_half_steps = 8;
-    p->normal_gate = hl_bam_from_deg(30.0);
-    p->blur_sigma_mm = 60;
-    p->blur_sigma_theta = hl_bam_from_deg(0.75);
-    p->peak_separation_mm = 500;
-    p->prior_sigma_mm = 300;
-    /* Loose on purpose: odometry drifts in heading, and a tight prior pins the estimate
-     * to that drift, which the map then inherits (docs/experiments.md). */
-    p->prior_sigma_theta = hl_bam_from_deg(15.0);
-    p->max_cells = 1u << 20;
-    p->max_map_vectors = 16384;
-}
-
-const char *hl_loc_params_error(const hl_loc_params_t *p)
-{
-    if (!p)
-        return "no localizer parameters";
-    if (p->cell_mm < 1 || p->cell_mm > MAX_CELL_MM)
-        return "cell_mm must be in 1..1000";
-    if (p->theta_step == 0 && p->theta_half_steps > 0)
-        return "theta_step must be positive when theta_half_steps > 0";
-    if (p->theta_half_steps > MAX_HALF_STEPS)
-        return "theta_half_steps must be at most 256";
-    if ((uint32_t)p->theta_step * (2u * p->theta_half_steps + 1u) > 32768u)
-        return "the heading slice must span less than half a turn";
-    if (p->normal_gate > HL_BAM_HALF_TURN)
-        return "normal_gate must be at most 180 degrees";
-    if (p->blur_sigma_mm < 0 || p->blur_sigma_mm > 10 * p->cell_mm)
-        return "blur_sigma_mm must be in 0..10 cells";
-    if (p->peak_separation_mm < 0 || p->peak_separation_mm > HL_RANGE_MAX_MM)
-        return "peak_separation_mm must be in 0..32767";
-    if (p->prior_sigma_mm < 1 || p->prior_sigma_mm > HL_COORD_MAX_MM)
-        return "prior_sigma_mm must be positive";
-    if (p->prior_sigma_theta == 0)
-        return "prior_sigma_theta must be positive";
-    if (p->max_cells < 1 || p->max_cells > (1u << 26))
-        return "max_cells must be in 1..2^26";
-    if (p->max_map_vectors < 1 || p->max_map_vectors > HL_MAP_MAX_CAPACITY)
-        return "max_map_vectors must be in 1..2^20";
-    return NULL;
-}
-
-static int32_t slice_count(const hl_loc_params_t *p, bool search_theta)
-{
-    return search_theta ? 2 * p->theta_half_steps + 1 : 1;
-}
-
-static int32_t window_cells(const hl_loc_params_t *p, hl_mm_t window_mm)
-{
-    return (int32_t)((2 * (int64_t)window_mm + p->cell_mm - 1) / p->cell_mm);
-}
-
-uint32_t hl_loc_cells_for_window(const hl_loc_params_t *p, hl_mm_t window_mm,
-                                 bool search_theta)
-{
-    int64_t n = window_cells(p, window_mm);
-    int64_t cells = n * n * slice_count(p, search_theta);
-    return cells > UINT32_MAX ? UINT32_MAX : (uint32_t)cells;
-}
 
 void hl_loc_destroy(hl_localizer_t *loc)
 {
@@ -146,10 +80,10 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
     loc->p = *params;
     loc->mem_bytes = sizeof *loc;
     const hl_loc_params_t *p = &loc->p;
-    /* A raster side cannot exceed max_cells cells, nor MAX_SIDE_MM. */
-    int64_t side = MAX_SIDE_MM / p->cell_mm + 2;
+    /* A raster side cannot exceed max_cells cells, nor HL_LOC_MAX_SIDE_MM. */
+    int64_t side = HL_LOC_MAX_SIDE_MM / p->cell_mm + 2;
     loc->wlen = (int32_t)(side < p->max_cells ? side : p->max_cells);
-    int32_t max_nt = slice_count(p, true);
+    int32_t max_nt = hl_loc_slices(p, true);
 
     loc->votes = alloc_counted(loc, p->max_cells, sizeof *loc->votes);
     loc->buf_a = alloc_counted(loc, p->max_cells, sizeof *loc->buf_a);
@@ -218,7 +152,7 @@ static hl_status_t place_raster(hl_localizer_t *loc, const hl_vector_t *map, uin
 {
     int32_t cell = loc->p.cell_mm;
     if (q->window_mm > 0) {
-        s->nx = s->ny = window_cells(&loc->p, q->window_mm);
+        s->nx = s->ny = hl_loc_window_cells(&loc->p, q->window_mm);
         s->x0_mm = q->predicted.x_mm - s->nx * cell / 2;
         s->y0_mm = q->predicted.y_mm - s->ny * cell / 2;
     } else {
@@ -234,12 +168,12 @@ static hl_status_t place_raster(hl_localizer_t *loc, const hl_vector_t *map, uin
         s->x0_mm = x0;
         s->y0_mm = y0;
     }
-    s->nt = slice_count(&loc->p, q->search_theta);
+    s->nt = hl_loc_slices(&loc->p, q->search_theta);
     s->cell_mm = cell;
     s->theta_step = q->search_theta ? loc->p.theta_step : 0;
     int32_t half = q->search_theta ? loc->p.theta_half_steps : 0;
     s->theta0 = (hl_bam_t)(q->predicted.theta - half * loc->p.theta_step);
-    if ((int64_t)s->nx * cell >= MAX_SIDE_MM || (int64_t)s->ny * cell >= MAX_SIDE_MM ||
+    if ((int64_t)s->nx * cell >= HL_LOC_MAX_SIDE_MM || (int64_t)s->ny * cell >= HL_LOC_MAX_SIDE_MM ||
         (int64_t)s->nx * s->ny * s->nt > loc->p.max_cells)
         return HL_ERR_CAPACITY;
     return HL_OK;
@@ -285,7 +219,7 @@ typedef struct vote_ctx {
     uint32_t width_q8, height_q8;   /* raster size in 1/256 mm, < 2^29 */
     uint64_t recip;         /* floor(2^32 / cell) + 1: exact division below 2^21 mm */
     /* the reading's offset under each heading, 1/256 mm (hl_polar_to_xy_q8) */
-    int32_t tx[2 * MAX_HALF_STEPS + 1], ty[2 * MAX_HALF_STEPS + 1];
+    int32_t tx[2 * HL_LOC_MAX_HALF_STEPS + 1], ty[2 * HL_LOC_MAX_HALF_STEPS + 1];
     uint32_t votes, pairs;
 } vote_ctx_t;
 
@@ -441,7 +375,7 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
         return HL_ERR_ARG;
     memset(result, 0, sizeof *result);
     if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(query->predicted) ||
-        query->window_mm < 0 || query->window_mm > MAX_SIDE_MM / 2)
+        query->window_mm < 0 || query->window_mm > HL_LOC_MAX_SIDE_MM / 2)
         return HL_ERR_RANGE;
     if (n > loc->p.max_map_vectors)
         return HL_ERR_CAPACITY;

@@ -1,10 +1,8 @@
 /* ctl_args.c - houghloc-ctl's command line: --help, options, COMMAND [ARGS]. */
 #include "ctl_args.h"
 
-#include <stdio.h>
 #include <string.h>
 
-#include "houghloc/version.h"
 
 static const char usage_text[] =
     "Usage: " CTL_PROG " [options] COMMAND [ARGS]\n"
@@ -104,40 +102,26 @@ static int add_positional(ctl_options_t *o, const command_t **cmd, const char *a
     return rc;
 }
 
+typedef struct walk {
+    ctl_options_t *o;
+    const command_t *cmd;
+} walk_t;
+
+static int on_positional(void *user, const char *arg)
+{
+    walk_t *w = user;
+    return add_positional(w->o, &w->cmd, arg);
+}
+
 int ctl_parse_args(int argc, char **argv, ctl_options_t *o)
 {
-    const command_t *cmd = NULL;
-    bool options_done = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        double ignored;
-        /* As houghloc-goto: anything not starting with '-', "-" and negative numbers
-         * are arguments, and so is everything after "--". */
-        if (options_done || a[0] != '-' || a[1] == '\0' ||
-            (a[1] != '-' && req_parse_number(a, &ignored))) {
-            int rc = add_positional(o, &cmd, a);
-            if (rc != WAITING)
-                return rc;
-            continue;
-        }
-        if (strcmp(a, "--") == 0) {
-            options_done = true;
-            continue;
-        }
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(usage_text, stdout);
-            return EXIT_DONE;
-        }
-        if (strcmp(a, "--version") == 0) {
-            printf("%s %s\n", CTL_PROG, HL_VERSION);
-            return EXIT_DONE;
-        }
-        int rc = req_parse_option(CTL_PROG, argc, argv, &i, &o->req);
-        if (rc == REQ_NOT_MINE)
-            return req_usage_error(CTL_PROG, "unknown option \"%s\"", a);
-        if (rc != WAITING)
-            return rc;
-    }
+    walk_t w = { o, NULL };
+    const req_args_t args = { .prog = CTL_PROG, .usage = usage_text,
+                              .positional = on_positional, .user = &w };
+    int rc = req_walk_args(&args, argc, argv, &o->req);
+    if (rc != WAITING)
+        return rc;
+    const command_t *cmd = w.cmd;
     if (!cmd)
         return req_usage_error(CTL_PROG, "missing COMMAND (" COMMAND_LIST ")");
     if (o->nargs < cmd->nargs)

@@ -1,10 +1,8 @@
 /* goto_args.c - houghloc-goto's command line: --help, options, X Y [HEADING]. */
 #include "goto_args.h"
 
-#include <stdio.h>
 #include <string.h>
 
-#include "houghloc/version.h"
 
 static const char usage_text[] =
     "Usage: " PROG " [options] X Y [HEADING]\n"
@@ -66,41 +64,27 @@ static int add_positional(goto_options_t *o, const char *arg)
     return rc;
 }
 
+static int on_positional(void *user, const char *arg)
+{
+    return add_positional(user, arg);
+}
+
+static int on_option(void *user, const char *arg)
+{
+    goto_options_t *o = user;
+    if (strcmp(arg, "--no-wait") != 0)
+        return REQ_NOT_MINE;
+    o->no_wait = true;
+    return WAITING;
+}
+
 int goto_parse_args(int argc, char **argv, goto_options_t *o)
 {
-    bool options_done = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        double ignored;
-        if (options_done || a[0] != '-' || a[1] == '\0' ||
-            (a[1] != '-' && req_parse_number(a, &ignored))) {
-            int rc = add_positional(o, a);
-            if (rc != WAITING)
-                return rc;
-            continue;
-        }
-        if (strcmp(a, "--") == 0) {
-            options_done = true;
-            continue;
-        }
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(usage_text, stdout);
-            return EXIT_DONE;
-        }
-        if (strcmp(a, "--version") == 0) {
-            printf("%s %s\n", PROG, HL_VERSION);
-            return EXIT_DONE;
-        }
-        if (strcmp(a, "--no-wait") == 0) {
-            o->no_wait = true;
-            continue;
-        }
-        int rc = req_parse_option(PROG, argc, argv, &i, &o->req);
-        if (rc == REQ_NOT_MINE)
-            return req_usage_error(PROG, "unknown option \"%s\"", a);
-        if (rc != WAITING)
-            return rc;
-    }
+    const req_args_t args = { .prog = PROG, .usage = usage_text, .positional = on_positional,
+                              .option = on_option, .user = o };
+    int rc = req_walk_args(&args, argc, argv, &o->req);
+    if (rc != WAITING)
+        return rc;
     if (o->npos == 0)
         return req_usage_error(PROG, "missing X and Y");
     if (o->npos == 1)

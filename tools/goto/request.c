@@ -19,6 +19,7 @@
 
 #include "houghloc/auth.h"
 #include "houghloc/fixed.h"
+#include "houghloc/version.h"
 #include "keyfile.h"
 
 #define COORD_MAX_M (HL_COORD_MAX_MM / 1000.0)
@@ -98,6 +99,38 @@ int req_parse_option(const char *prog, int argc, char **argv, int *i, req_option
         if (!req_parse_number(v, &t) || !(t >= 0.1 && t <= 3600.0))
             return req_usage_error(prog, "--timeout \"%s\": give seconds from 0.1 to 3600", v);
         o->timeout_s = t;
+    }
+    return WAITING;
+}
+
+int req_walk_args(const req_args_t *a, int argc, char **argv, req_options_t *o)
+{
+    bool options_done = false;
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        double ignored;
+        int rc;
+        if (options_done || arg[0] != '-' || arg[1] == '\0' ||
+            (arg[1] != '-' && req_parse_number(arg, &ignored))) {
+            rc = a->positional(a->user, arg);
+        } else if (strcmp(arg, "--") == 0) {
+            options_done = true;
+            continue;
+        } else if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+            fputs(a->usage, stdout);
+            return EXIT_DONE;
+        } else if (strcmp(arg, "--version") == 0) {
+            printf("%s %s\n", a->prog, HL_VERSION);
+            return EXIT_DONE;
+        } else {
+            rc = a->option ? a->option(a->user, arg) : REQ_NOT_MINE;
+            if (rc == REQ_NOT_MINE)
+                rc = req_parse_option(a->prog, argc, argv, &i, o);
+            if (rc == REQ_NOT_MINE)
+                return req_usage_error(a->prog, "unknown option \"%s\"", arg);
+        }
+        if (rc != WAITING)
+            return rc;
     }
     return WAITING;
 }

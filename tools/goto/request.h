@@ -70,6 +70,26 @@ int req_parse_value(const char *prog, const char *name, const char *arg, bool co
  */
 int req_parse_option(const char *prog, int argc, char **argv, int *i, req_options_t *o);
 
+/* What a client adds to the common command line: its arguments and its own options. */
+typedef struct req_args {
+    const char *prog;
+    const char *usage;      /* printed by --help */
+    /** One positional argument. @return WAITING, or an exit code after a message. */
+    int (*positional)(void *user, const char *arg);
+    /** A client option (NULL if none). @return WAITING when taken, REQ_NOT_MINE if not. */
+    int (*option)(void *user, const char *arg);
+    void *user;
+} req_args_t;
+
+/**
+ * Walks the command line both clients share: --help, --version, the common options,
+ * "--", and positional arguments (anything not starting with '-', "-" itself and
+ * negative numbers, and everything after "--").
+ * @return WAITING when every argument was taken, else the exit code (EXIT_DONE after
+ *         --help or --version, EXIT_USAGE after a one-line message).
+ */
+int req_walk_args(const req_args_t *a, int argc, char **argv, req_options_t *o);
+
 /* ---- one request and its answers -------------------------------------------------- */
 
 typedef enum req_kind {

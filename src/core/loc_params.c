@@ -1,0 +1,71 @@
+/* loc_params.c - the localizer's parameters: defaults, validation, and the raster sizes
+ * they imply (localize.h). */
+#include <string.h>
+
+#include "houghloc/localize.h"
+#include "loc_params.h"
+
+void hl_loc_params_default(hl_loc_params_t *p)
+{
+    memset(p, 0, sizeof *p);
+    p->cell_mm = 24;
+    p->theta_step = hl_bam_from_deg(1.1);
+    p->theta_half_steps = 8;
+    p->normal_gate = hl_bam_from_deg(30.0);
+    p->blur_sigma_mm = 60;
+    p->blur_sigma_theta = hl_bam_from_deg(0.75);
+    p->peak_separation_mm = 500;
+    p->prior_sigma_mm = 300;
+    /* Loose on purpose: odometry drifts in heading, and a tight prior pins the estimate
+     * to that drift, which the map then inherits (docs/experiments.md). */
+    p->prior_sigma_theta = hl_bam_from_deg(15.0);
+    p->max_cells = 1u << 20;
+    p->max_map_vectors = 16384;
+}
+
+const char *hl_loc_params_error(const hl_loc_params_t *p)
+{
+    if (!p)
+        return "no localizer parameters";
+    if (p->cell_mm < 1 || p->cell_mm > HL_LOC_MAX_CELL_MM)
+        return "cell_mm must be in 1..1000";
+    if (p->theta_step == 0 && p->theta_half_steps > 0)
+        return "theta_step must be positive when theta_half_steps > 0";
+    if (p->theta_half_steps > HL_LOC_MAX_HALF_STEPS)
+        return "theta_half_steps must be at most 256";
+    if ((uint32_t)p->theta_step * (2u * p->theta_half_steps + 1u) > 32768u)
+        return "the heading slice must span less than half a turn";
+    if (p->normal_gate > HL_BAM_HALF_TURN)
+        return "normal_gate must be at most 180 degrees";
+    if (p->blur_sigma_mm < 0 || p->blur_sigma_mm > 10 * p->cell_mm)
+        return "blur_sigma_mm must be in 0..10 cells";
+    if (p->peak_separation_mm < 0 || p->peak_separation_mm > HL_RANGE_MAX_MM)
+        return "peak_separation_mm must be in 0..32767";
+    if (p->prior_sigma_mm < 1 || p->prior_sigma_mm > HL_COORD_MAX_MM)
+        return "prior_sigma_mm must be positive";
+    if (p->prior_sigma_theta == 0)
+        return "prior_sigma_theta must be positive";
+    if (p->max_cells < 1 || p->max_cells > (1u << 26))
+        return "max_cells must be in 1..2^26";
+    if (p->max_map_vectors < 1 || p->max_map_vectors > HL_MAP_MAX_CAPACITY)
+        return "max_map_vectors must be in 1..2^20";
+    return NULL;
+}
+
+int32_t hl_loc_slices(const hl_loc_params_t *p, bool search_theta)
+{
+    return search_theta ? 2 * p->theta_half_steps + 1 : 1;
+}
+
+int32_t hl_loc_window_cells(const hl_loc_params_t *p, hl_mm_t window_mm)
+{
+    return (int32_t)((2 * (int64_t)window_mm + p->cell_mm - 1) / p->cell_mm);
+}
+
+uint32_t hl_loc_cells_for_window(const hl_loc_params_t *p, hl_mm_t window_mm,
+                                 bool search_theta)
+{
+    int64_t n = hl_loc_window_cells(p, window_mm);
+    int64_t cells = n * n * hl_loc_slices(p, search_theta);
+    return cells > UINT32_MAX ? UINT32_MAX : (uint32_t)cells;
+}
