@@ -18,3 +18,16 @@ rejects() { # rejects DESCRIPTION EXIT_CODE EXPECTED_TEXT COMMAND...: that exit 
         fail=1
     fi
 }
+exits() {   # exits DESCRIPTION CODE EXPECTED_TEXT COMMAND...: that exit code, one line on
+            # stderr containing the text, nothing on stdout
+    desc=$1; want_rc=$2; want=$3; shift 3
+    "$@" >"$tmp/out" 2>"$tmp/err"
+    rc=$?
+    if [ $rc -eq "$want_rc" ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && [ ! -s "$tmp/out" ] &&
+        grep -q -F -- "$want" "$tmp/err"; then
+        echo "ok: $desc"
+    else
+        echo "FAIL: $desc (exit $rc, want $want_rc): $(head -c 300 "$tmp/err")"
+        fail=1
+    fi
+}

@@ -15,19 +15,6 @@ tmp=$(mktemp -d)
 pids=""
 trap 'for p in $pids; do kill -9 $p 2>/dev/null; done; rm -rf "$tmp"' EXIT
 . tests/integration/lib.sh
-exits() {   # exits DESCRIPTION CODE EXPECTED_TEXT COMMAND...: that exit code, one line on
-            # stderr containing the text, nothing on stdout
-    desc=$1; want_rc=$2; want=$3; shift 3
-    "$@" >"$tmp/out" 2>"$tmp/err"
-    rc=$?
-    if [ $rc -eq "$want_rc" ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && [ ! -s "$tmp/out" ] &&
-        grep -q -F -- "$want" "$tmp/err"; then
-        echo "ok: $desc"
-    else
-        echo "FAIL: $desc (exit $rc, want $want_rc): $(head -c 300 "$tmp/err")"
-        fail=1
-    fi
-}
 succeeds() {    # succeeds DESCRIPTION EXPECTED_TEXT COMMAND...: exit 0, one line on stdout
                 # containing the text, nothing on stderr
     desc=$1; want=$2; shift 2

@@ -11,24 +11,7 @@ GOTO=$BIN/houghloc-goto
 URL='udpm://239.255.76.67:7689?ttl=0'
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-fail=0
-check() {   # check DESCRIPTION COMMAND...: the command must succeed
-    desc=$1; shift
-    if "$@"; then echo "ok: $desc"; else echo "FAIL: $desc"; fail=1; fi
-}
-exits() {   # exits DESCRIPTION CODE EXPECTED_TEXT COMMAND...: that exit code, one line on
-            # stderr containing the text, nothing on stdout
-    desc=$1; want_rc=$2; want=$3; shift 3
-    "$@" >"$tmp/out" 2>"$tmp/err"
-    rc=$?
-    if [ $rc -eq "$want_rc" ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && [ ! -s "$tmp/out" ] &&
-        grep -q -F -- "$want" "$tmp/err"; then
-        echo "ok: $desc"
-    else
-        echo "FAIL: $desc (exit $rc, want $want_rc): $(head -c 300 "$tmp/err")"
-        fail=1
-    fi
-}
+. tests/integration/lib.sh
 
 # Bad usage: exit 2, one line naming the bad argument and pointing at --help.
 exits "missing Y" 2 "missing Y" "$GOTO" 1.5
