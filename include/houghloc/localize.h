@@ -51,6 +51,12 @@ typedef struct hl_loc_params {
                                    24 mm needs 174k per heading; a +-1 m window with 17
                                    headings, 120k. Each raster side must also stay below
                                    2^21 mm. */
+    hl_mm_t group_mm;           /* map vectors in one square of this side vote together,
+                                   from their centroid, with the weight of how many pass
+                                   the normal gate (vgroup.h in src/core): a dense map
+                                   costs writes per occupied square, not per vector;
+                                   0 = every vector votes alone (the paper); else
+                                   8..1000; default 48 (two cells) */
     uint32_t max_map_vectors;   /* largest map to accept; default 16384. hl_slam sets it
                                    to its map_capacity (slam.h) */
 } hl_loc_params_t;

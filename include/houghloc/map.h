@@ -25,6 +25,9 @@ extern "C" {
 
 #define HL_MAP_DEFAULT_CAPACITY 1500u
 #define HL_MAP_MAX_CAPACITY (1u << 20)
+#define HL_MAP_MAX_PER_PLACE 1000u
+#define HL_MAP_MIN_SQUARE_MM 10
+#define HL_MAP_MAX_SQUARE_MM 1000
 
 typedef struct hl_vector {
     hl_mm_t x_mm;       /* surface point, |x| <= HL_COORD_MAX_MM */
@@ -46,6 +49,20 @@ void hl_map_destroy(hl_map_t *map);
 
 /** Removes every vector; the culling generator keeps its state. */
 void hl_map_clear(hl_map_t *map);
+
+/**
+ * Bounds the map's density (not in the paper): at most @p per_place vectors of one
+ * place, a @p square_mm square seen from one side (normals in one eighth of a turn).
+ * A new vector for a full place takes the place of one of its vectors, or is dropped,
+ * chosen uniformly at random among them and it; the map's capacity then spans more of a
+ * building instead of holding the same wall many times over (a laser re-sees every
+ * wall on every scan). The choice depends only on the vectors and the generator, so a
+ * restored map continues exactly. Call right after hl_map_create (it allocates).
+ * @param per_place 0 (no bound, the default) .. HL_MAP_MAX_PER_PLACE
+ * @param square_mm HL_MAP_MIN_SQUARE_MM .. HL_MAP_MAX_SQUARE_MM when per_place > 0
+ * @return HL_OK, HL_ERR_RANGE, HL_ERR_NOMEM (the map then has no bound).
+ */
+hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place);
 
 /**
  * Adds one vector, culling at random when full.

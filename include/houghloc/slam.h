@@ -63,6 +63,10 @@ typedef struct hl_slam_params {
                                    is made for map_capacity vectors */
     uint32_t map_capacity;      /* vectors the map keeps, 1..HL_MAP_MAX_CAPACITY; the one
                                    bound on the map's size. Default 1500 (paper) */
+    uint32_t map_per_place;     /* the map's density bound (map.h, hl_map_set_density):
+                                   at most this many vectors of one map_square_mm square
+                                   seen from one side; 0 = none (paper); default 0 */
+    hl_mm_t map_square_mm;      /* default 50 */
     uint64_t seed;              /* map culling seed; default 1 */
     bool guarded;               /* false = paper mode; default true */
     bool interpolate;           /* sub-cell interpolation; default true */

@@ -13,8 +13,7 @@
 #include "peak.h"
 
 #include "loc_params.h"
-
-#define NORMAL_BINS 256     /* map vectors bucketed by the top 8 bits of the normal */
+#include "vgroup.h"
 
 struct hl_localizer {
     hl_loc_params_t p;
@@ -28,13 +27,10 @@ struct hl_localizer {
     uint32_t *wx, *wy, *wt;     /* prior weights, Q8 */
     int32_t wlen;               /* length of wx and wy */
 
-    /* the map, bucketed by normal, as structure-of-arrays for the vote loop */
-    int32_t *mx, *my;
-    hl_bam_t *mn;
-    uint32_t bin_start[NORMAL_BINS + 1];
-    /* the candidates of one reading (gather_candidates) */
-    int32_t *cx, *cy;
-    hl_bam_t *cn;
+    /* the map as the vote loop reads it, and the groups one reading can reach */
+    hl_vgroups_t groups;
+    uint32_t *cand;
+    int32_t slice_diff[2 * HL_LOC_MAX_HALF_STEPS + 2];  /* a group's weights, differenced */
 
     /* the valid readings of the scan */
     int32_t *range;
@@ -53,12 +49,8 @@ void hl_loc_destroy(hl_localizer_t *loc)
     free(loc->wx);
     free(loc->wy);
     free(loc->wt);
-    free(loc->mx);
-    free(loc->my);
-    free(loc->mn);
-    free(loc->cx);
-    free(loc->cy);
-    free(loc->cn);
+    hl_vgroups_free(&loc->groups);
+    free(loc->cand);
     free(loc->range);
     free(loc->bearing);
     free(loc);
@@ -91,16 +83,13 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
     loc->wx = alloc_counted(loc, (size_t)loc->wlen, sizeof *loc->wx);
     loc->wy = alloc_counted(loc, (size_t)loc->wlen, sizeof *loc->wy);
     loc->wt = alloc_counted(loc, (size_t)max_nt, sizeof *loc->wt);
-    loc->mx = alloc_counted(loc, p->max_map_vectors, sizeof *loc->mx);
-    loc->my = alloc_counted(loc, p->max_map_vectors, sizeof *loc->my);
-    loc->mn = alloc_counted(loc, p->max_map_vectors, sizeof *loc->mn);
-    loc->cx = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cx);
-    loc->cy = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cy);
-    loc->cn = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cn);
+    bool groups_ok = hl_vgroups_init(&loc->groups, p->max_map_vectors, p->group_mm);
+    loc->mem_bytes += hl_vgroups_mem_bytes(&loc->groups);
+    loc->cand = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cand);
     loc->range = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->range);
     loc->bearing = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->bearing);
     if (!loc->votes || !loc->buf_a || !loc->buf_b || !loc->wx || !loc->wy || !loc->wt ||
-        !loc->mx || !loc->my || !loc->mn || !loc->cx || !loc->cy || !loc->cn || !loc->range || !loc->bearing) {
+        !groups_ok || !loc->cand || !loc->range || !loc->bearing) {
         hl_loc_destroy(loc);
         return NULL;
     }
@@ -179,9 +168,9 @@ static hl_status_t place_raster(hl_localizer_t *loc, const hl_vector_t *map, uin
     return HL_OK;
 }
 
-/* Buckets the map vectors that can vote inside the raster by normal (counting sort). */
-static uint32_t bucket_map(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
-                           const hl_loc_surface_t *s, int32_t max_range)
+/* Groups the map vectors that can vote inside the raster (vgroup.h). */
+static void group_map(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
+                      const hl_loc_surface_t *s, int32_t max_range)
 {
     /* A vote lands at map point - reading, so only vectors within the longest range of
      * the raster can land in it. */
@@ -189,29 +178,7 @@ static uint32_t bucket_map(hl_localizer_t *loc, const hl_vector_t *map, uint32_t
     int64_t xhi = (int64_t)s->x0_mm + (int64_t)s->nx * s->cell_mm + max_range + 1;
     int64_t ylo = (int64_t)s->y0_mm - max_range - 1;
     int64_t yhi = (int64_t)s->y0_mm + (int64_t)s->ny * s->cell_mm + max_range + 1;
-    uint32_t count[NORMAL_BINS] = { 0 };
-    for (uint32_t i = 0; i < n; i++) {
-        const hl_vector_t *v = &map[i];
-        if (v->x_mm >= xlo && v->x_mm <= xhi && v->y_mm >= ylo && v->y_mm <= yhi)
-            count[v->normal >> 8]++;
-    }
-    uint32_t total = 0;
-    for (int b = 0; b < NORMAL_BINS; b++) {
-        loc->bin_start[b] = total;
-        total += count[b];
-        count[b] = loc->bin_start[b];
-    }
-    loc->bin_start[NORMAL_BINS] = total;
-    for (uint32_t i = 0; i < n; i++) {
-        const hl_vector_t *v = &map[i];
-        if (!(v->x_mm >= xlo && v->x_mm <= xhi && v->y_mm >= ylo && v->y_mm <= yhi))
-            continue;
-        uint32_t k = count[v->normal >> 8]++;
-        loc->mx[k] = v->x_mm;
-        loc->my[k] = v->y_mm;
-        loc->mn[k] = v->normal;
-    }
-    return total;
+    hl_vgroups_build(&loc->groups, map, n, xlo, xhi, ylo, yhi, s->x0_mm, s->y0_mm);
 }
 
 typedef struct vote_ctx {
@@ -224,10 +191,10 @@ typedef struct vote_ctx {
 } vote_ctx_t;
 
 /*
- * Map vectors that can pair with one reading under some heading of the slice: the
- * normal within the gate of the reading's normal at the first or last heading (or in
- * between), and the point close enough that map - reading lands in the raster for some
- * heading. Returns how many were copied to the candidate arrays.
+ * The groups that can pair with one reading under some heading of the slice: those
+ * whose centroid is close enough that centroid - reading lands in the raster for some
+ * heading. The normal gate is left to the vote loop, member by member. Returns how many
+ * were listed in loc->cand.
  */
 static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
                                   const hl_loc_surface_t *s, hl_bam_t tn0, int32_t gate)
@@ -239,77 +206,143 @@ static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
         ymin = c->ty[it] < ymin ? c->ty[it] : ymin;
         ymax = c->ty[it] > ymax ? c->ty[it] : ymax;
     }
-    /* Candidates are kept relative to the raster origin in 1/256 mm; a vote lands in
-     * the raster when map - origin - test is in [0, width) for some heading. */
+    /* Positions are relative to the raster origin in 1/256 mm; a vote lands in the
+     * raster when centroid - origin - test is in [0, width) for some heading. */
     int64_t bx0 = xmin, bx1 = (int64_t)xmax + c->width_q8;
     int64_t by0 = ymin, by1 = (int64_t)ymax + c->height_q8;
+    const hl_vgroups_t *g = &loc->groups;
+    if (g->ngroups == 0)
+        return 0;
+    int32_t r0 = hl_vgroups_row_y(g, by0), r1 = hl_vgroups_row_y(g, by1 - 1);
+    int32_t sq0 = hl_vgroups_square_x(g, bx0), sq1 = hl_vgroups_square_x(g, bx1 - 1);
+    r0 = r0 < 0 ? 0 : r0;
+    r1 = r1 >= g->nrows ? g->nrows - 1 : r1;
+    /* the normal sectors that some member passing the gate under some heading is in */
     uint32_t span = (uint32_t)(c->nt - 1) * s->theta_step + 2u * (uint32_t)gate;
-    uint32_t b0 = 0, b1 = NORMAL_BINS - 1;
-    if (span < 65536u - 512u) {
-        b0 = (uint16_t)(tn0 - gate) >> 8;
-        b1 = (uint16_t)(tn0 - gate + span) >> 8;
+    uint32_t sec0 = 0, nsec = HL_VGROUP_SECTORS;
+    if (span < 65536u - (1u << HL_VGROUP_SECTOR_SHIFT)) {
+        sec0 = (uint16_t)(tn0 - gate) >> HL_VGROUP_SECTOR_SHIFT;
+        uint32_t sec1 = (uint16_t)(tn0 - gate + span) >> HL_VGROUP_SECTOR_SHIFT;
+        nsec = (sec1 - sec0) % HL_VGROUP_SECTORS + 1;
     }
     uint32_t n = 0;
-    for (uint32_t b = b0;; b = (b + 1) % NORMAL_BINS) {
-        for (uint32_t k = loc->bin_start[b]; k < loc->bin_start[b + 1]; k++) {
-            int64_t x = (int64_t)(loc->mx[k] - s->x0_mm) * 256;
-            int64_t y = (int64_t)(loc->my[k] - s->y0_mm) * 256;
-            if (x < bx0 || x >= bx1 || y < by0 || y >= by1)
-                continue;
-            loc->cx[n] = (int32_t)x;    /* |x| < 2^21 mm + range: fits in Q8 */
-            loc->cy[n] = (int32_t)y;
-            loc->cn[n] = loc->mn[k];
-            n++;
+    for (uint32_t i = 0; i < nsec; i++) {
+        uint32_t sec = (sec0 + i) % HL_VGROUP_SECTORS;
+        for (int32_t r = r0; r <= r1; r++) {
+            uint32_t end = hl_vgroups_row_end(g, sec, r);
+            for (uint32_t k = hl_vgroups_seek(g, sec, r, sq0); k < end && g->gcx[k] <= sq1; k++) {
+                if (g->gx[k] >= bx0 && g->gx[k] < bx1 && g->gy[k] >= by0 && g->gy[k] < by1)
+                    loc->cand[n++] = k;
+            }
         }
-        if (b == b1)
-            break;
     }
     return n;
 }
 
-/* The hot loop: every candidate votes under each heading whose normal gate it passes.
- * Those headings are a contiguous run of slices, found by division instead of a test
- * per slice. What the loop reads besides the candidate is copied to locals first: the
- * compiler cannot tell that the stores into the raster leave the context alone, and
- * would reload it for every vote. */
-static void vote_candidates(const hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
-                            hl_bam_t tn0, int32_t gate, int32_t step, uint16_t *votes)
+/*
+ * The normal gate as slices: a normal d0 (BAM from the test normal of slice 0) passes
+ * under slice it when |d0 - it * step| <= gate, that is for it in
+ * ceil((d0 - gate) / step) .. floor((d0 + gate) / step). The divisions are done by
+ * multiplication with the same exact reciprocal as the cell index, on operands made
+ * non-negative by adding a multiple of the step.
+ */
+typedef struct gate {
+    int32_t gate, nt;
+    uint32_t step;          /* 0: one slice, heading known */
+    uint32_t offset;        /* k * step >= 2^15 + gate */
+    int32_t k;
+    uint64_t recip;         /* floor(2^32 / step) + 1 */
+} gate_t;
+
+static gate_t gate_make(int32_t gate, int32_t step, int32_t nt)
 {
+    gate_t g = { .gate = gate, .nt = nt, .step = (uint32_t)step };
+    if (step > 0) {
+        g.k = (int32_t)((32768u + (uint32_t)gate) / g.step + 1);
+        g.offset = (uint32_t)g.k * g.step;
+        g.recip = (1ull << 32) / g.step + 1;
+    }
+    return g;
+}
+
+static inline bool gated_slices(const gate_t *g, int32_t d0, int32_t *lo, int32_t *hi)
+{
+    if (g->step == 0) {
+        *lo = *hi = 0;
+        return d0 <= g->gate && d0 >= -g->gate;
+    }
+    /* both below 2^18: the reciprocal is exact there */
+    uint32_t a = (uint32_t)(d0 - g->gate + (int32_t)g->offset) + g->step - 1;
+    uint32_t b = (uint32_t)(d0 + g->gate + (int32_t)g->offset);
+    int32_t l = (int32_t)((a * g->recip) >> 32) - g->k;
+    int32_t h = (int32_t)((b * g->recip) >> 32) - g->k;
+    *lo = l > 0 ? l : 0;
+    *hi = h < g->nt - 1 ? h : g->nt - 1;
+    return *lo <= *hi;
+}
+
+/* The hot loop: every candidate group votes under each heading where some member passes
+ * the normal gate, with the weight of how many do. A lone vector (most groups of a
+ * sparse map) takes the short way. What the loop reads besides the candidate is copied
+ * to locals first: the compiler cannot tell that the stores into the raster leave the
+ * context alone, and would reload it for every vote. */
+static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
+                            hl_bam_t tn0, const gate_t *gate, uint16_t *votes)
+{
+    const hl_vgroups_t *g = &loc->groups;
     const size_t plane = (size_t)c->nx * c->ny;
     const uint32_t width = c->width_q8, height = c->height_q8, nx = (uint32_t)c->nx;
     const uint64_t recip = c->recip;
-    const int32_t *tx = c->tx, *ty = c->ty;
+    const int32_t *tx = c->tx, *ty = c->ty, nt = c->nt;
+    int32_t *diff = loc->slice_diff;
     uint32_t nvotes = 0, npairs = 0;
-    for (uint32_t k = 0; k < ncand; k++) {
-        int32_t d0 = (int16_t)(uint16_t)(loc->cn[k] - tn0);  /* normal - test normal, slice 0 */
-        int32_t lo = 0, hi = c->nt - 1;
-        if (step > 0) {
-            /* |d0 - it * step| <= gate  <=>  (d0 - gate) / step <= it <= (d0 + gate) / step */
-            int32_t a = d0 - gate, b = d0 + gate;
-            int32_t ceil_a = a >= 0 ? (a + step - 1) / step : -((-a) / step);
-            int32_t floor_b = b >= 0 ? b / step : -((-b + step - 1) / step);
-            lo = ceil_a > lo ? ceil_a : lo;
-            hi = floor_b < hi ? floor_b : hi;
-        } else if (d0 > gate || d0 < -gate) {
-            continue;
+    for (uint32_t i = 0; i < ncand; i++) {
+        uint32_t k = loc->cand[i];
+        uint32_t m0 = g->first[k], m1 = g->first[k + 1];
+        int32_t lo, hi;
+        if (m1 - m0 == 1) {
+            if (!gated_slices(gate, (int16_t)(uint16_t)(g->normal[m0] - tn0), &lo, &hi))
+                continue;
+        } else {
+            lo = nt;
+            hi = -1;
+            for (uint32_t j = m0; j < m1; j++) {
+                int32_t a, b;
+                if (!gated_slices(gate, (int16_t)(uint16_t)(g->normal[j] - tn0), &a, &b))
+                    continue;
+                diff[a]++;
+                diff[b + 1]--;
+                lo = a < lo ? a : lo;
+                hi = b > hi ? b : hi;
+            }
+            if (lo > hi)
+                continue;
         }
-        if (lo > hi)
-            continue;
-        npairs += (uint32_t)(hi - lo + 1);
-        const int32_t x = loc->cx[k], y = loc->cy[k];
+        const int32_t x = g->gx[k], y = g->gy[k];
         uint16_t *slice = votes + (size_t)lo * plane;
+        int32_t w = 0;
         for (int32_t it = lo; it <= hi; it++, slice += plane) {
+            if (m1 - m0 == 1) {
+                w = 1;
+            } else {
+                w += diff[it];
+                diff[it] = 0;
+            }
+            npairs += (uint32_t)w;
             uint32_t vx = (uint32_t)(x - tx[it]);
             uint32_t vy = (uint32_t)(y - ty[it]);
-            if (vx >= width || vy >= height)
+            if (w == 0 || vx >= width || vy >= height)
                 continue;
             /* floor(v / (256 cell)) == floor(floor(v / 256) / cell) */
             uint32_t ix = (uint32_t)(((uint64_t)(vx >> 8) * recip) >> 32);
             uint32_t iy = (uint32_t)(((uint64_t)(vy >> 8) * recip) >> 32);
             uint16_t *cell = slice + iy * nx + ix;
-            *cell += (*cell != HL_VOTE_MAX);
-            nvotes++;
+            uint32_t sum = *cell + (uint32_t)w;
+            *cell = (uint16_t)(sum < HL_VOTE_MAX ? sum : HL_VOTE_MAX);
+            nvotes += (uint32_t)w;
         }
+        if (m1 - m0 > 1)
+            diff[hi + 1] = 0;
     }
     c->votes += nvotes;
     c->pairs += npairs;
@@ -319,6 +352,9 @@ static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface
                        vote_ctx_t *c)
 {
     int32_t gate = loc->p.normal_gate;
+    /* step < 2^14 (a slice spans under half a turn, loc_params.c), so the reciprocal is
+     * exact for the operands below 2^18 */
+    gate_t g = gate_make(gate, s->theta_step, c->nt);
     for (uint32_t i = 0; i < nread; i++) {
         hl_bam_t a0 = (hl_bam_t)(s->theta0 + loc->bearing[i]);
         for (int32_t it = 0; it < c->nt; it++) {
@@ -330,7 +366,7 @@ static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface
         /* The test vector's normal points back at the robot, like the map's. */
         hl_bam_t tn0 = (hl_bam_t)(a0 + HL_BAM_HALF_TURN);
         uint32_t ncand = gather_candidates(loc, c, s, tn0, gate);
-        vote_candidates(loc, c, ncand, tn0, gate, s->theta_step, loc->votes);
+        vote_candidates(loc, c, ncand, tn0, &g, loc->votes);
     }
 }
 
@@ -390,7 +426,7 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
         return st;
     size_t cells = (size_t)s.nx * s.ny * s.nt;
     memset(loc->votes, 0, cells * sizeof *loc->votes);
-    bucket_map(loc, map, n, &s, max_range);
+    group_map(loc, map, n, &s, max_range);
 
     vote_ctx_t c = { .nx = s.nx, .ny = s.ny, .nt = s.nt,
                      .width_q8 = (uint32_t)(s.nx * s.cell_mm) * 256u,

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "houghloc/rng.h"
+#include "mapsq.h"
 
 struct hl_map {
     uint32_t capacity;
@@ -12,6 +13,8 @@ struct hl_map {
     uint32_t version;
     hl_rng_t rng;
     hl_vector_t *vectors;   /* [capacity] */
+    uint32_t per_place;     /* the density bound; 0: none (and `places` unallocated) */
+    hl_mapsq_t places;
 };
 
 hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed)
@@ -35,6 +38,7 @@ void hl_map_destroy(hl_map_t *map)
 {
     if (!map)
         return;
+    hl_mapsq_free(&map->places);
     free(map->vectors);
     free(map);
 }
@@ -43,6 +47,38 @@ void hl_map_clear(hl_map_t *map)
 {
     map->count = 0;
     map->version++;
+    if (map->per_place)
+        hl_mapsq_rebuild(&map->places, map->vectors, 0);
+}
+
+hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place)
+{
+    if (!map)
+        return HL_ERR_ARG;
+    if (per_place > HL_MAP_MAX_PER_PLACE ||
+        (per_place > 0 && (square_mm < HL_MAP_MIN_SQUARE_MM || square_mm > HL_MAP_MAX_SQUARE_MM)))
+        return HL_ERR_RANGE;
+    hl_mapsq_free(&map->places);
+    map->per_place = 0;
+    if (per_place == 0)
+        return HL_OK;
+    if (!hl_mapsq_init(&map->places, map->capacity, square_mm)) {
+        hl_mapsq_free(&map->places);
+        return HL_ERR_NOMEM;
+    }
+    hl_mapsq_rebuild(&map->places, map->vectors, map->count);
+    map->per_place = per_place;
+    return HL_OK;
+}
+
+/* Writes *v into slot `slot` (below count), keeping the place index in step. */
+static void replace(hl_map_t *map, uint32_t slot, const hl_vector_t *v)
+{
+    if (map->per_place)
+        hl_mapsq_unlink(&map->places, map->vectors, slot);
+    map->vectors[slot] = *v;
+    if (map->per_place)
+        hl_mapsq_link(&map->places, map->vectors, slot);
 }
 
 bool hl_vector_in_range(const hl_vector_t *v)
@@ -59,15 +95,29 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
     if (!hl_vector_in_range(v))
         return HL_ERR_RANGE;
     map->version++;
+    if (map->per_place) {
+        /* A full place: drop one of its vectors and the new one, uniformly at random,
+         * as the paper's culling does over the whole map. */
+        uint32_t c = hl_mapsq_count(&map->places, map->vectors, v);
+        if (c >= map->per_place) {
+            uint32_t victim = hl_rng_below(&map->rng, c + 1);
+            if (victim < c)
+                replace(map, hl_mapsq_nth(&map->places, map->vectors, v, victim), v);
+            return HL_OK;
+        }
+    }
     if (map->count < map->capacity) {
-        map->vectors[map->count++] = *v;
+        map->vectors[map->count] = *v;
+        if (map->per_place)
+            hl_mapsq_link(&map->places, map->vectors, map->count);
+        map->count++;
         return HL_OK;
     }
     /* Full: drop one of the capacity + 1 candidates uniformly at random (the paper's
      * culling). Index == capacity means the new vector itself is dropped. */
     uint32_t victim = hl_rng_below(&map->rng, map->capacity + 1);
     if (victim < map->capacity)
-        map->vectors[victim] = *v;
+        replace(map, victim, v);
     return HL_OK;
 }
 
@@ -160,10 +210,13 @@ hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n
     map->count = n;
     map->version = version;
     map->rng = rng;
+    if (map->per_place)
+        hl_mapsq_rebuild(&map->places, map->vectors, n);
     return HL_OK;
 }
 
 size_t hl_map_mem_bytes(const hl_map_t *map)
 {
-    return sizeof *map + (size_t)map->capacity * sizeof *map->vectors;
+    return sizeof *map + (size_t)map->capacity * sizeof *map->vectors +
+           hl_mapsq_mem_bytes(&map->places, map->capacity);
 }

@@ -21,6 +21,8 @@ void hl_slam_params_default(hl_slam_params_t *p)
 {
     hl_loc_params_default(&p->loc);
     p->map_capacity = HL_MAP_DEFAULT_CAPACITY;
+    p->map_per_place = 0;
+    p->map_square_mm = 50;
     p->seed = 1;
     p->guarded = true;
     p->interpolate = true;
@@ -44,6 +46,10 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "no slam parameters";
     if (p->map_capacity < 1 || p->map_capacity > HL_MAP_MAX_CAPACITY)
         return "map_capacity must be in 1..1048576";
+    if (p->map_per_place > HL_MAP_MAX_PER_PLACE)
+        return "map_per_place must be in 0..1000";
+    if (p->map_square_mm < HL_MAP_MIN_SQUARE_MM || p->map_square_mm > HL_MAP_MAX_SQUARE_MM)
+        return "map_square_mm must be in 10..1000";
     hl_loc_params_t lp = p->loc;    /* as hl_slam_create makes the localizer */
     lp.max_map_vectors = p->map_capacity;
     const char *e = hl_loc_params_error(&lp);
@@ -83,7 +89,8 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->loc = hl_loc_create(&lp);
     s->echoed = p->echo_bearings ? malloc(sizeof *s->echoed) : NULL;
     s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
-    if (!s->map || !s->loc || (p->echo_bearings && !s->echoed) || (p->refine && !s->refiner)) {
+    if (!s->map || hl_map_set_density(s->map, p->map_square_mm, p->map_per_place) != HL_OK ||
+        !s->loc || (p->echo_bearings && !s->echoed) || (p->refine && !s->refiner)) {
         hl_slam_destroy(s);
         return NULL;
     }

@@ -24,6 +24,7 @@ static void paper_preset(hl_slam_params_t *p)
     p->loc.cell_mm = 47;
     p->loc.blur_sigma_mm = 50;
     p->loc.max_cells = 1u << 22;
+    p->loc.group_mm = 0;         /* every pair votes, as in the paper */
     p->guarded = false;
     p->use_prior = false;
     p->interpolate = false;
@@ -355,6 +356,19 @@ bool hl_config_load(hl_config_t *c, const char *path, bool optional,
 
 /* ---- printing ------------------------------------------------------------------------ */
 
+/* The fewest decimals (up to 17 significant digits) that read back as @p v, in plain
+ * notation: 0.05, 30, 1.1 rather than 0.050000000000000003 or 3e+01. */
+static void print_double(FILE *out, double v)
+{
+    char buf[64];
+    for (int decimals = 0; decimals <= 17; decimals++) {
+        snprintf(buf, sizeof buf, "%.*f", decimals, v);
+        if (strtod(buf, NULL) == v)
+            break;
+    }
+    fprintf(out, "%s", buf);
+}
+
 static void print_value(const hl_config_t *c, const hl_config_key_t *k, FILE *out)
 {
     const char *field = (const char *)c + k->offset;
@@ -364,16 +378,16 @@ static void print_value(const hl_config_t *c, const hl_config_key_t *k, FILE *ou
     case HL_KEY_U16: fprintf(out, "%u", *(const uint16_t *)field); break;
     case HL_KEY_U32: fprintf(out, "%u", *(const uint32_t *)field); break;
     case HL_KEY_U64: fprintf(out, "%llu", (unsigned long long)*(const uint64_t *)field); break;
-    case HL_KEY_DOUBLE: fprintf(out, "%.17g", *(const double *)field); break;
+    case HL_KEY_DOUBLE: print_double(out, *(const double *)field); break;
     case HL_KEY_BOOL: fprintf(out, "%s", *(const bool *)field ? "true" : "false"); break;
     case HL_KEY_DEG: {
         hl_bam_t a = *(const hl_bam_t *)field;
-        /* shortest decimal that reads back as the same BAM */
-        for (int prec = 1; prec <= 17; prec++) {
-            char buf[40];
+        /* the fewest decimals that read back as the same BAM */
+        for (int decimals = 0; decimals <= 17; decimals++) {
+            char buf[64];
             double deg = k->min < 0 ? hl_bam_to_sdeg(a) : a == 32768 ? 180.0 : hl_bam_to_deg(a);
-            snprintf(buf, sizeof buf, "%.*g", prec, deg);
-            if (hl_bam_from_deg(strtod(buf, NULL)) == a || prec == 17) {
+            snprintf(buf, sizeof buf, "%.*f", decimals, deg);
+            if (hl_bam_from_deg(strtod(buf, NULL)) == a || decimals == 17) {
                 fprintf(out, "%s", buf);
                 break;
             }

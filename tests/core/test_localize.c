@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -180,6 +181,91 @@ static void test_vote_saturation(void **state)
     hl_loc_destroy(loc);
 }
 
+/* Run with group_mm = 0 (every vector alone) and with the default groups. */
+static void run_both(const hl_vector_t *map, uint32_t n, const hl_scan_t *scan,
+                     const hl_loc_query_t *q, hl_loc_result_t *alone, hl_loc_result_t *grouped,
+                     uint16_t *alone_votes, uint16_t *grouped_votes, size_t max_cells)
+{
+    hl_loc_params_t p;
+    hl_loc_params_default(&p);
+    p.max_cells = (uint32_t)max_cells;
+    hl_loc_surface_t s;
+    for (int g = 0; g < 2; g++) {
+        p.group_mm = g ? 48 : 0;
+        hl_localizer_t *loc = hl_loc_create(&p);
+        assert_non_null(loc);
+        assert_int_equal(hl_loc_run(loc, map, n, scan, q, g ? grouped : alone), HL_OK);
+        hl_loc_get_surface(loc, &s);
+        memcpy(g ? grouped_votes : alone_votes, s.votes,
+               (size_t)s.nx * s.ny * s.nt * sizeof *s.votes);
+        hl_loc_destroy(loc);
+    }
+}
+
+/* Vectors at one point vote together exactly: a map holding each vector three times
+ * gives, grouped, the raster of the plain method, vote for vote. */
+static void test_groups_of_one_point_are_exact(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(0, 0, 43);
+    hl_vector_t *map = malloc(3 * f->n * sizeof *map);
+    hl_loc_query_t q = local_query(f->truth);
+    size_t cells = hl_loc_cells_for_window(&f->p, q.window_mm, true);
+    uint16_t *a = malloc(cells * sizeof *a), *b = malloc(cells * sizeof *b);
+    hl_loc_result_t ra, rb;
+    /* squares of 48 mm hold several distinct points too: keep one point per square */
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < f->n; i++) {
+        bool alone = true;
+        for (uint32_t j = 0; j < n && alone; j++)
+            alone = !(map[j].x_mm / 48 == f->map[i].x_mm / 48 &&
+                      map[j].y_mm / 48 == f->map[i].y_mm / 48);
+        if (alone && f->map[i].x_mm > 0 && f->map[i].y_mm > 0)
+            map[n++] = f->map[i];
+    }
+    for (uint32_t i = n; i < 3 * n; i++)
+        map[i] = map[i % n];
+    run_both(map, 3 * n, &f->scan, &q, &ra, &rb, a, b, cells);
+    assert_true(ra.votes > 1000);
+    assert_int_equal(ra.votes, rb.votes);
+    assert_int_equal(ra.pairs, rb.pairs);
+    assert_memory_equal(a, b, cells * sizeof *a);
+    assert_int_equal(ra.pose.x_mm, rb.pose.x_mm);
+    assert_int_equal(ra.pose.y_mm, rb.pose.y_mm);
+    assert_int_equal(ra.pose.theta, rb.pose.theta);
+    free(a);
+    free(b);
+    free(map);
+    free_fixture(f);
+}
+
+/* A map ten times as dense as the fixture's: grouped, the scan's true pose is found as
+ * well as by the plain method, with the same number of votes up to the few groups at
+ * the window's edge, from far fewer writes. */
+static void test_groups_of_a_dense_map(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(0, 0, 44);
+    uint32_t big = 15000;
+    hl_vector_t *map = malloc(big * sizeof *map);
+    uint32_t n = sr_make_map(&f->room, big, 128, 8000, 10, map);
+    hl_loc_query_t q = local_query(f->truth);
+    size_t cells = hl_loc_cells_for_window(&f->p, q.window_mm, true);
+    uint16_t *a = malloc(cells * sizeof *a), *b = malloc(cells * sizeof *b);
+    hl_loc_result_t ra, rb;
+    run_both(map, n, &f->scan, &q, &ra, &rb, a, b, cells);
+    assert_within(labs((long)ra.votes - (long)rb.votes), 0, ra.votes / 50);
+    assert_within(rb.pose.x_mm, f->truth.x_mm, 30);
+    assert_within(rb.pose.y_mm, f->truth.y_mm, 30);
+    assert_within(hl_bam_diff(rb.pose.theta, f->truth.theta), 0, hl_bam_from_deg(1.1));
+    assert_within(rb.pose.x_mm, ra.pose.x_mm, 24);
+    assert_within(rb.pose.y_mm, ra.pose.y_mm, 24);
+    free(a);
+    free(b);
+    free(map);
+    free_fixture(f);
+}
+
 static void test_capacity_limits(void **state)
 {
     (void)state;
@@ -216,6 +302,13 @@ static void test_params_validated(void **state)
     p.theta_step = hl_bam_from_deg(20);
     assert_string_equal(hl_loc_params_error(&p),
                         "the heading slice must span less than half a turn");
+    hl_loc_params_default(&p);
+    p.group_mm = 7;
+    assert_string_equal(hl_loc_params_error(&p), "group_mm must be 0 or in 8..1000");
+    p.group_mm = 1001;
+    assert_non_null(hl_loc_params_error(&p));
+    p.group_mm = 0;
+    assert_null(hl_loc_params_error(&p));
     assert_non_null(hl_loc_params_error(NULL));
     hl_loc_destroy(NULL);
 }
@@ -314,6 +407,8 @@ int main(void)
         cmocka_unit_test(test_extreme_coordinates),
         cmocka_unit_test(test_vote_saturation),
         cmocka_unit_test(test_capacity_limits),
+        cmocka_unit_test(test_groups_of_one_point_are_exact),
+        cmocka_unit_test(test_groups_of_a_dense_map),
         cmocka_unit_test(test_params_validated),
         cmocka_unit_test(test_prior_breaks_ambiguity),
         cmocka_unit_test(test_peak_is_before_the_prior),

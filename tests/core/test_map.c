@@ -238,6 +238,92 @@ static void test_restore_continues_culling(void **state)
     hl_map_destroy(c);
 }
 
+/* How many of the map's vectors lie in the 50 mm square at (sx, sy) with normals in
+ * the eighth of a turn holding `normal`. */
+static uint32_t in_place(const hl_map_t *m, int32_t sx, int32_t sy, hl_bam_t normal)
+{
+    uint32_t n = 0;
+    const hl_vector_t *v = hl_map_vectors(m);
+    for (uint32_t i = 0; i < hl_map_count(m); i++)
+        n += v[i].x_mm / 50 == sx && v[i].y_mm / 50 == sy && v[i].normal >> 13 == normal >> 13;
+    return n;
+}
+
+/* The density bound: a place keeps at most per_place vectors however often it is seen,
+ * other places and the other side of the same place are unaffected, the newest vector
+ * gets in at the rate the paper's culling gives (per_place / (per_place + 1) of the
+ * time in a full place), and the map still fills to capacity elsewhere. */
+static void test_density_bound(void **state)
+{
+    (void)state;
+    hl_map_t *m = hl_map_create(1000, 5);
+    assert_int_equal(hl_map_set_density(m, 50, 3), HL_OK);
+    uint32_t newest_kept = 0;
+    for (int i = 0; i < 400; i++) {
+        hl_vector_t v = { 1000 + i % 40, 2010 + i % 30, (hl_bam_t)(1000 + i), 3000 };
+        assert_int_equal(hl_map_add(m, &v), HL_OK);
+        const hl_vector_t *w = hl_map_vectors(m);
+        for (uint32_t k = 0; k < hl_map_count(m); k++)
+            newest_kept += memcmp(&w[k], &v, sizeof v) == 0;
+    }
+    assert_int_equal(in_place(m, 20, 40, 1000), 3);
+    assert_int_equal(hl_map_count(m), 3);
+    assert_in_range(newest_kept, 260, 340);     /* 3/4 of 400, give or take */
+    /* the other side of the same square, and the next square */
+    hl_vector_t back = { 1000, 2010, 40000, 3000 }, next = { 1050, 2010, 1000, 3000 };
+    assert_int_equal(hl_map_add(m, &back), HL_OK);
+    assert_int_equal(hl_map_add(m, &next), HL_OK);
+    assert_int_equal(hl_map_count(m), 5);
+    /* distinct places fill the map to its capacity, then the global culling takes over */
+    for (int i = 0; i < 3000; i++) {
+        hl_vector_t v = vec(-20000 + 60 * i, 100);
+        hl_map_add(m, &v);
+    }
+    assert_int_equal(hl_map_count(m), 1000);
+    assert_in_range(in_place(m, 20, 40, 1000), 0, 3);
+    /* bad settings are refused and leave the bound as it was */
+    assert_int_equal(hl_map_set_density(m, 5, 3), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_density(m, 50, HL_MAP_MAX_PER_PLACE + 1), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_density(NULL, 50, 3), HL_ERR_ARG);
+    hl_map_destroy(m);
+}
+
+/* A bounded map saved and restored chooses exactly as the one that kept running: the
+ * places' chains are rebuilt in slot order, the order they are always kept in. */
+static void test_density_bound_restores_exactly(void **state)
+{
+    (void)state;
+    hl_map_t *a = hl_map_create(300, 21), *b = hl_map_create(300, 77);
+    assert_int_equal(hl_map_set_density(a, 40, 2), HL_OK);
+    assert_int_equal(hl_map_set_density(b, 40, 2), HL_OK);
+    hl_rng_t r;
+    hl_rng_seed(&r, 3);
+    for (int i = 0; i < 2000; i++) {
+        hl_vector_t v = { (hl_mm_t)hl_rng_below(&r, 2000), (hl_mm_t)hl_rng_below(&r, 2000),
+                          (hl_bam_t)hl_rng_below(&r, 65536), 1000 };
+        hl_map_add(a, &v);
+        if (i == 999)
+            assert_int_equal(hl_map_restore(b, hl_map_vectors(a), hl_map_count(a),
+                                            hl_map_version(a), hl_map_rng(a)), HL_OK);
+        if (i >= 1000)
+            hl_map_add(b, &v);
+    }
+    assert_int_equal(hl_map_count(a), hl_map_count(b));
+    assert_memory_equal(hl_map_vectors(a), hl_map_vectors(b),
+                        hl_map_count(a) * sizeof(hl_vector_t));
+    /* and the bound held: no 40 mm square holds more than 2 of one side */
+    const hl_vector_t *v = hl_map_vectors(a);
+    for (uint32_t i = 0; i < hl_map_count(a); i++) {
+        uint32_t same = 0;
+        for (uint32_t j = 0; j < hl_map_count(a); j++)
+            same += v[j].x_mm / 40 == v[i].x_mm / 40 && v[j].y_mm / 40 == v[i].y_mm / 40 &&
+                    v[j].normal >> 13 == v[i].normal >> 13;
+        assert_in_range(same, 1, 2);
+    }
+    hl_map_destroy(a);
+    hl_map_destroy(b);
+}
+
 /* Too many vectors, or one out of range anywhere in the list: refused, nothing changes
  * (vectors, count, version, culling state). */
 static void test_restore_refuses_and_changes_nothing(void **state)
@@ -284,6 +370,8 @@ int main(void)
         cmocka_unit_test(test_vector_in_range_bounds),
         cmocka_unit_test(test_restore_continues_culling),
         cmocka_unit_test(test_restore_refuses_and_changes_nothing),
+        cmocka_unit_test(test_density_bound),
+        cmocka_unit_test(test_density_bound_restores_exactly),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -6,7 +6,10 @@
  * surface has the reference's peak cell within 2/256 of a vote of its own peak, the
  * two cells are equal to the precision the blurred raster keeps (fixed.h), and either
  * is a correct answer. At most one scene in eight may be such a tie (measured: 4 of
- * 400 scenes). */
+ * 400 scenes).
+ *
+ * The default groups nearby map vectors into one vote (group_mm, localize.h): those
+ * runs are held to a pose within a cell of the reference's instead. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -40,6 +43,45 @@ static void make_scene(scene_t *s, uint64_t seed)
     s->n = sr_make_map(&s->room, 600 + 150 * (uint32_t)(seed % 7), 128, 8000, 5 + (double)(seed % 15), s->map);
     s->truth = sr_free_pose(&s->room, 600);
     sr_sound(&s->room, s->truth, 128, 8000, 10, &s->scan);
+}
+
+/* Grouped voting (group_mm > 0, localize.h) moves each vote by less than a group's
+ * half-diagonal: against the reference the pose stays within `tol_mm` and a heading
+ * step, and the votes within 3 %. With group_mm = 0 the checks above are exact. */
+static void compare_grouped(const hl_loc_params_t *p, bool local, double tol_mm)
+{
+    hl_localizer_t *loc = hl_loc_create(p);
+    ref_localizer_t *ref = ref_create(p);
+    scene_t *s = malloc(sizeof *s);
+    assert_non_null(loc);
+    assert_non_null(ref);
+    double worst = 0;
+    for (uint64_t seed = 1; seed <= SCENES; seed++) {
+        make_scene(s, seed + (local ? 100 : 0));
+        hl_loc_query_t q = { .predicted = s->truth, .window_mm = 0, .search_theta = false };
+        if (local) {
+            q.predicted.x_mm += 130;
+            q.predicted.y_mm -= 170;
+            q.predicted.theta = (hl_bam_t)(q.predicted.theta + hl_bam_from_deg(2.5));
+            q.window_mm = 800;
+            q.search_theta = true;
+        }
+        hl_loc_result_t r;
+        ref_result_t rr;
+        assert_int_equal(hl_loc_run(loc, s->map, s->n, &s->scan, &q, &r), HL_OK);
+        assert_int_equal(ref_run(ref, s->map, s->n, &s->scan, &q, &rr), 0);
+        double d = hypot(r.pose.x_mm - rr.x_mm, r.pose.y_mm - rr.y_mm);
+        worst = d > worst ? d : worst;
+        if (d > tol_mm)
+            fail_msg("scene %llu: grouped pose %.1f mm from the reference's", (unsigned long long)seed, d);
+        double dt = hl_bam_diff(r.pose.theta, (hl_bam_t)(int64_t)lround(rr.theta_bam));
+        assert_true(fabs(dt) <= p->theta_step + 1);
+        assert_true(labs((long)r.votes - rr.votes) <= rr.votes * 3 / 100 + 5);
+    }
+    print_message("grouped by %d mm: worst %.1f mm from the reference\n", p->group_mm, worst);
+    free(s);
+    ref_destroy(ref);
+    hl_loc_destroy(loc);
 }
 
 static void compare(const hl_loc_params_t *p, bool local)
@@ -88,12 +130,19 @@ static void compare(const hl_loc_params_t *p, bool local)
     hl_loc_destroy(loc);
 }
 
+/* The exact method: every vector votes alone. */
+static void exact_params(hl_loc_params_t *p)
+{
+    hl_loc_params_default(p);
+    p->group_mm = 0;
+    p->max_cells = 1u << 19;
+}
+
 static void test_global_xy_matches_reference(void **state)
 {
     (void)state;
     hl_loc_params_t p;
-    hl_loc_params_default(&p);
-    p.max_cells = 1u << 19;
+    exact_params(&p);
     compare(&p, false);
 }
 
@@ -101,16 +150,33 @@ static void test_local_xyt_matches_reference(void **state)
 {
     (void)state;
     hl_loc_params_t p;
+    exact_params(&p);
+    compare(&p, true);
+}
+
+static void test_grouped_global_near_reference(void **state)
+{
+    (void)state;
+    hl_loc_params_t p;
     hl_loc_params_default(&p);
     p.max_cells = 1u << 19;
-    compare(&p, true);
+    compare_grouped(&p, false, 24);
+}
+
+static void test_grouped_local_near_reference(void **state)
+{
+    (void)state;
+    hl_loc_params_t p;
+    hl_loc_params_default(&p);
+    p.max_cells = 1u << 19;
+    compare_grouped(&p, true, 24);
 }
 
 static void test_coarse_raster_matches_reference(void **state)
 {
     (void)state;
     hl_loc_params_t p;
-    hl_loc_params_default(&p);
+    exact_params(&p);
     p.cell_mm = 47;
     p.blur_sigma_mm = 60;
     p.max_cells = 1u << 19;
@@ -123,6 +189,8 @@ int main(void)
         cmocka_unit_test(test_global_xy_matches_reference),
         cmocka_unit_test(test_local_xyt_matches_reference),
         cmocka_unit_test(test_coarse_raster_matches_reference),
+        cmocka_unit_test(test_grouped_global_near_reference),
+        cmocka_unit_test(test_grouped_local_near_reference),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

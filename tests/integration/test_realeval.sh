@@ -6,7 +6,7 @@
 # odometry rows and the numbers everywhere else, the scan counts of both selections,
 # real.md's two tables with the peers' figures, the maps, that a second make reruns
 # nothing, that a bad log and a missing building stop it with one line naming the
-# building and the step, and that both configuration files leave the paper preset whole.
+# building and the step, and what the configuration files set.
 set -u
 BUILD=${BUILD:-build}
 BIN=$BUILD/bin
@@ -193,27 +193,28 @@ rc=$?
 check "a missing building: make fails with one line naming it" \
     sh -c 'test $1 -ne 0 && grep -q "^eval-real: nowhere-raw.log.gz: missing in " "$2"' - $rc "$tmp/none.err"
 
-# The configuration files leave slam.mode's paper preset whole but for the raster bound
-# (they write no other key that would override it) and give the laser thin beams in
-# both modes.
+# The paper files are the paper preset whole but for the raster bound; the improved
+# files keep the improved mode, the laser's with thin beams and a map for a building.
+"$BIN/houghlocd" --config /dev/null --set slam.mode=paper --print-config >"$tmp/paper" 2>&1
 for c in laser sonar; do
-    "$BIN/houghlocd" --config "tools/realeval/$c.conf" --set slam.mode=paper --print-config \
-        >"$tmp/$c.paper" 2>&1
-    "$BIN/houghlocd" --config /dev/null --set slam.mode=paper --print-config >"$tmp/paper" 2>&1
-    check "$c.conf in paper mode: the preset's values (47 mm cells, global search, no guard)" \
-        sh -c 'grep -q "^cell_mm = 47$" "$1" && grep -q "^window_mm = 0$" "$1" &&
-               grep -q "^guarded = false$" "$1" && grep -q "^echo_bearings = false$" "$1"' - "$tmp/$c.paper"
-    check "$c.conf in paper mode: [localize], [echo], [refine] as the bare preset, max_cells 64 Mi" sh -c '
-        sed -n "/^\[localize\]/,\$p" "$1" | grep -v "^max_cells = " >"$1.tail"
-        sed -n "/^\[localize\]/,\$p" "$2" | grep -v "^max_cells = " >"$2.tail"
+    "$BIN/houghlocd" --config "tools/realeval/$c-paper.conf" --print-config >"$tmp/$c.paper" 2>&1
+    check "$c-paper.conf: the preset's values (47 mm cells, global search, no guard)" \
+        sh -c 'grep -q "^mode = paper$" "$1" && grep -q "^cell_mm = 47$" "$1" &&
+               grep -q "^window_mm = 0$" "$1" && grep -q "^guarded = false$" "$1" &&
+               grep -q "^echo_bearings = false$" "$1" && grep -q "^group_mm = 0$" "$1" &&
+               grep -q "^map_per_place = 0$" "$1"' - "$tmp/$c.paper"
+    check "$c-paper.conf: [slam] .. [refine] as the bare preset but max_cells 64 Mi" sh -c '
+        sed -n "/^\[slam\]/,\$p" "$1" | grep -v "^max_cells = " >"$1.tail"
+        sed -n "/^\[slam\]/,\$p" "$2" | grep -v "^max_cells = " >"$2.tail"
         cmp -s "$1.tail" "$2.tail" && grep -q "^max_cells = 67108864$" "$1"' - "$tmp/$c.paper" "$tmp/paper"
 done
 "$BIN/houghlocd" --config tools/realeval/laser.conf --print-config >"$tmp/laser.improved" 2>&1
-check "laser.conf in improved mode: echo bearings off, the guard on" sh -c '
+check "laser.conf in improved mode: echo bearings off, the guard on, a bounded 15,000-vector map" sh -c '
     grep -q "^mode = improved$" "$1" && grep -q "^echo_bearings = false$" "$1" &&
-    grep -q "^guarded = true$" "$1"' - "$tmp/laser.improved"
+    grep -q "^guarded = true$" "$1" && grep -q "^map_capacity = 15000$" "$1" &&
+    grep -q "^map_per_place = 2$" "$1"' - "$tmp/laser.improved"
 "$BIN/houghlocd" --config tools/realeval/sonar.conf --print-config >"$tmp/sonar.improved" 2>&1
-check "sonar.conf in improved mode: echo bearings on" \
-    grep -q "^echo_bearings = true$" "$tmp/sonar.improved"
+check "sonar.conf in improved mode: echo bearings on" sh -c '
+    grep -q "^mode = improved$" "$1" && grep -q "^echo_bearings = true$" "$1"' - "$tmp/sonar.improved"
 
 exit $fail

@@ -20,6 +20,7 @@
  * for w3 and 5 for w5 (it takes a quarter of a second and more per run there).
  */
 #define _POSIX_C_SOURCE 200809L
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -174,11 +175,13 @@ static int run_echo_refine(int runs)
 int main(int argc, char **argv)
 {
     int runs = 200;
+    const char *only = argc > 2 ? argv[2] : NULL;   /* a workload's name, or its w<n> */
     if (argc > 1) {
         char *end;
         long v = strtol(argv[1], &end, 10);
-        if (*end || v < 1 || v > 100000) {
-            fprintf(stderr, "usage: hl-bench [RUNS]   (RUNS 1..100000, default 200)\n");
+        if (*end || v < 1 || v > 100000 || argc > 3) {
+            fprintf(stderr, "usage: hl-bench [RUNS [WORKLOAD]]   (RUNS 1..100000, default 200;"
+                            " WORKLOAD w1 .. w5, default all)\n");
             return 2;
         }
         runs = (int)v;
@@ -187,12 +190,22 @@ int main(int argc, char **argv)
         { "w1_global_xy", 1500, 0, false, 128, 200 },
         { "w2_local_xyt", 1500, 1000, true, 128, 200 },
         { "w3_map15k", 15000, 1000, true, 128, 20 },
+        { "w4_echo_refine", 0, 0, false, 0, 0 },
+        { "w5_laser15k", 15000, 1000, true, 360, 5 },
     };
-    for (size_t i = 0; i < sizeof w / sizeof w[0]; i++)
-        if (run_workload(&w[i], runs, runs))
+    bool any = false;
+    for (size_t i = 0; i < sizeof w / sizeof w[0]; i++) {
+        if (only && strcmp(only, w[i].name) != 0 &&
+            (strncmp(only, w[i].name, 2) != 0 || only[2] != '\0'))
+            continue;
+        any = true;
+        int bad = i == 3 ? run_echo_refine(runs) : run_workload(&w[i], runs, runs);
+        if (bad)
             return 1;
-    if (run_echo_refine(runs))
-        return 1;
-    const workload_t laser = { "w5_laser15k", 15000, 1000, true, 360, 5 };
-    return run_workload(&laser, runs, runs);
+    }
+    if (!any) {
+        fprintf(stderr, "hl-bench: no workload '%s' (w1 .. w5)\n", only);
+        return 2;
+    }
+    return 0;
 }

@@ -14,6 +14,7 @@ Mode paper_mode()
     m.loc.theta_step = hl_bam_from_deg(1.1);
     m.loc.theta_half_steps = 8;
     m.loc.max_cells = 1u << 22;     // global (x, y, theta) searches over the whole lab
+    m.loc.group_mm = 0;             // every pair votes alone
     m.interpolate = false;
     m.prior_sigma_mm = 0;
     hl_slam_params_default(&m.slam);

@@ -8,7 +8,7 @@
 # Every (building, input, mode, selection) is one file target, a row of the table in
 # EVAL_OUT/rows/, made by tools/realeval/run_one.sh: odometry alone (houghloc-eval
 # --odometry), or a replay through houghlocd's batch path (the daemon the robot runs,
-# configured by tools/realeval/INPUT.conf, --set slam.mode=MODE) scored by
+# configured by tools/realeval/INPUT.conf, or INPUT-paper.conf for the paper mode) scored by
 # houghloc-eval. Imports are cached in EVAL_OUT/input/, one per (building, input,
 # selection), shared by the modes. report.sh then writes EVAL_OUT/real.tsv and real.md
 # (the peers' figures from BASELINES beside ours); houghloc-map draws EVAL_OUT/B.png, the
@@ -59,7 +59,8 @@ endef
 # realeval_cell B INPUT MODE SELECTION
 define realeval_cell
 $(EVAL_OUT)/rows/$(1)_$(2)_$(3)_$(4).tsv: $(EVAL_OUT)/input/$(1)_$(2)_$(4).lcmlog \
-        $(REALEVAL_PROGS) tools/realeval/$(2).conf tools/realeval/run_one.sh
+        $(REALEVAL_PROGS) tools/realeval/$(2).conf tools/realeval/$(2)-paper.conf \
+        tools/realeval/run_one.sh
 	$$(Q)$$(REALEVAL_ENV) sh tools/realeval/run_one.sh cell $(1) $(2) $(4) $(3)
 endef
 

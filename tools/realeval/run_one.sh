@@ -8,7 +8,8 @@
 #   run_one.sh cell BUILDING INPUT SELECTION MODE
 #       imports if the import is missing, then for MODE odometry scores the odometry
 #       alone (houghloc-eval --odometry); for MODE paper or improved replays the import
-#       through houghlocd's batch path (tools/realeval/INPUT.conf, plus slam.mode=MODE)
+#       through houghlocd's batch path (tools/realeval/INPUT.conf for improved,
+#       INPUT-paper.conf for paper)
 #       and scores its POSE; writes the row EVAL_OUT/rows/BUILDING_INPUT_MODE_SELECTION.tsv
 #
 # INPUT is laser or sonar, SELECTION every or moved, MODE odometry, paper or improved.
@@ -120,7 +121,8 @@ if [ "$mode" = odometry ]; then
         die score "$(lasterr "$run/score.err")"
     secs=""
 else
-    conf=$HERE/$input.conf
+    conf=$HERE/$input.conf          # the improved mode
+    [ "$mode" = paper ] && conf=$HERE/$input-paper.conf
     [ -r "$conf" ] || die replay "no $conf"
     start=$("$BIN/hl-eval" start "$in_log" 2>"$run/start.err") ||
         die start "$(lasterr "$run/start.err")"
@@ -132,8 +134,7 @@ else
     t0=$(now_ms) || die replay "date +%s%N does not give nanoseconds"
     # The window of the compute-time median covers every scan (the longest building has
     # 4791), so STATUS's median is over the whole run.
-    "$BIN/houghlocd" --config "$conf" --set "slam.mode=$mode" \
-        --set daemon.compute_window=10000 \
+    "$BIN/houghlocd" --config "$conf" --set daemon.compute_window=10000 \
         --set "start.x_m=$1" --set "start.y_m=$2" --set "start.heading_deg=$3" \
         --fresh-map --map "$run/map.hlmap" \
         --lcm-url "file://$(abs "$in_log")?speed=0" \
