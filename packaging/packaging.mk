@@ -6,7 +6,8 @@
 #                  the jar that lets lcm-spy decode houghloc's channels
 #
 # Layout (every path under $(DESTDIR)):
-#   $(BINDIR)/houghlocd, houghloc-goto, houghloc-ctl       programs, 0755
+#   $(BINDIR)/houghlocd, houghloc-goto, houghloc-ctl,      programs, 0755
+#     houghloc-map, houghloc-import-carmen, houghloc-eval
 #   $(UNITDIR)/houghlocd.service                           0644, from houghlocd.service.in
 #   $(SYSCONFDIR)/houghloc/houghlocd.conf                  0644, never overwritten: a
 #                                                          changed one gets .dist beside it
@@ -26,7 +27,9 @@ SYSCONFDIR ?= /etc
 DATADIR    ?= $(PREFIX)/share/houghloc
 UNITDIR    ?= $(if $(filter /usr /usr/,$(PREFIX)),/lib/systemd/system,$(PREFIX)/lib/systemd/system)
 
-INSTALL_PROGS := $(BUILD)/bin/houghlocd $(BUILD)/bin/houghloc-goto $(BUILD)/bin/houghloc-ctl
+INSTALL_NAMES := houghlocd houghloc-goto houghloc-ctl houghloc-map houghloc-import-carmen \
+                 houghloc-eval
+INSTALL_PROGS := $(addprefix $(BUILD)/bin/,$(INSTALL_NAMES))
 UNIT_IN       := packaging/houghlocd.service.in
 CONF_SRC      := packaging/houghlocd.conf
 
@@ -106,8 +109,7 @@ install: $(INSTALL_PROGS) $(UNIT_IN) $(CONF_SRC) bindings
 # Removes what install added. The configuration goes only if it is still the shipped one;
 # the key (/etc/houghloc/key) and the state directory (the map) are never touched.
 uninstall:
-	rm -f $(DESTDIR)$(BINDIR)/houghlocd $(DESTDIR)$(BINDIR)/houghloc-goto \
-	      $(DESTDIR)$(BINDIR)/houghloc-ctl
+	rm -f $(addprefix $(DESTDIR)$(BINDIR)/,$(INSTALL_NAMES))
 	rm -f $(DESTDIR)$(UNITDIR)/houghlocd.service
 	rm -rf $(DESTDIR)$(DATADIR)/python/houghloc
 	rm -f $(DESTDIR)$(DATADIR)/java/houghloc_lcmtypes.jar

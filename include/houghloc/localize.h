@@ -55,8 +55,14 @@ typedef struct hl_loc_params {
                                    from their centroid, with the weight of how many pass
                                    the normal gate (vgroup.h in src/core): a dense map
                                    costs writes per occupied square, not per vector;
-                                   0 = every vector votes alone (the paper); else
-                                   8..1000; default 48 (two cells) */
+                                   0 = every vector votes alone (the paper, and the
+                                   default: a sparse map gains nothing); else 8..1000;
+                                   48 (two cells, votes move < 34 mm, inside the blur)
+                                   for a laser's dense map */
+    uint16_t reading_stride;    /* only readings 0, k, 2k, ... of a scan vote (1 = all,
+                                   the default; 1..64): a laser's hundreds of readings
+                                   pin the peak with a fraction of them, and the
+                                   refinement (refine.h) still uses every one */
     uint32_t max_map_vectors;   /* largest map to accept; default 16384. hl_slam sets it
                                    to its map_capacity (slam.h) */
 } hl_loc_params_t;

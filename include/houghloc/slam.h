@@ -68,6 +68,11 @@ typedef struct hl_slam_params {
                                    seen from one side; 0 = none (paper); default 0 */
     hl_mm_t map_square_mm;      /* default 50 */
     uint64_t seed;              /* map culling seed; default 1 */
+    double heading_gain;        /* of an accepted localization's heading correction, the
+                                   part taken (the rest stays with the odometry): a
+                                   complementary filter for sensors whose heading is
+                                   noisier than the odometry's over one step, such as a
+                                   sonar ring; 0..1, default 1 (all of it) */
     bool guarded;               /* false = paper mode; default true */
     bool interpolate;           /* sub-cell interpolation; default true */
     bool use_prior;             /* odometry prior attenuation; default true */

@@ -20,8 +20,8 @@ void hl_loc_params_default(hl_loc_params_t *p)
      * to that drift, which the map then inherits (docs/experiments.md). */
     p->prior_sigma_theta = hl_bam_from_deg(15.0);
     p->max_cells = 1u << 20;
-    /* Two cells: a vote moves by at most 34 mm, well inside the blur's 60 mm */
-    p->group_mm = 48;
+    p->group_mm = 0;   /* a sparse map gains nothing, and 48 mm cost 20 % on the tours */
+    p->reading_stride = 1;
     p->max_map_vectors = 16384;
 }
 
@@ -51,6 +51,8 @@ const char *hl_loc_params_error(const hl_loc_params_t *p)
         return "max_cells must be in 1..2^26";
     if (p->group_mm != 0 && (p->group_mm < 8 || p->group_mm > 1000))
         return "group_mm must be 0 or in 8..1000";
+    if (p->reading_stride < 1 || p->reading_stride > 64)
+        return "reading_stride must be in 1..64";
     if (p->max_map_vectors < 1 || p->max_map_vectors > HL_MAP_MAX_CAPACITY)
         return "max_map_vectors must be in 1..2^20";
     return NULL;

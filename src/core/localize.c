@@ -116,7 +116,8 @@ double hl_loc_confidence(const hl_loc_result_t *r)
     return c < 0 ? 0 : c;
 }
 
-/* Copies the valid readings out of the scan; returns their count and longest range. */
+/* Copies the valid readings that vote (every reading_stride-th of the scan) out of it;
+ * returns their count and longest range. */
 static uint32_t gather_readings(hl_localizer_t *loc, const hl_scan_t *scan,
                                 int32_t *max_range)
 {
@@ -125,6 +126,8 @@ static uint32_t gather_readings(hl_localizer_t *loc, const hl_scan_t *scan,
     for (uint32_t i = 0; i < scan->count; i++) {
         const hl_reading_t *r = &scan->readings[i];
         if (!r->valid)
+            continue;
+        if (i % loc->p.reading_stride)
             continue;
         loc->range[n] = r->range_mm;
         loc->bearing[n] = r->bearing;

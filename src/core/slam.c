@@ -1,6 +1,7 @@
 /* slam.c - the online localize-then-extend cycle (paper, sections 2 and 7). */
 #include "houghloc/slam.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,6 +25,7 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->map_per_place = 0;
     p->map_square_mm = 50;
     p->seed = 1;
+    p->heading_gain = 1.0;
     p->guarded = true;
     p->interpolate = true;
     p->use_prior = true;
@@ -48,6 +50,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "map_capacity must be in 1..1048576";
     if (p->map_per_place > HL_MAP_MAX_PER_PLACE)
         return "map_per_place must be in 0..1000";
+    if (!(p->heading_gain >= 0.0 && p->heading_gain <= 1.0))
+        return "heading_gain must be in 0..1";
     if (p->map_square_mm < HL_MAP_MIN_SQUARE_MM || p->map_square_mm > HL_MAP_MAX_SQUARE_MM)
         return "map_square_mm must be in 10..1000";
     hl_loc_params_t lp = p->loc;    /* as hl_slam_create makes the localizer */
@@ -162,6 +166,15 @@ static uint32_t tracked_peak(uint32_t avg, uint32_t peak, bool accepted)
     return (uint32_t)((int64_t)avg + ((int64_t)peak - avg) / 4);
 }
 
+/* predicted + gain * (found - predicted), the short way round; gain 1 gives found. */
+static hl_bam_t blend_heading(hl_bam_t predicted, hl_bam_t found, double gain)
+{
+    if (gain >= 1.0)
+        return found;
+    int32_t d = (int16_t)(uint16_t)(found - predicted);
+    return (hl_bam_t)(predicted + (int32_t)lround(gain * d));
+}
+
 /* The scan as the localizer and the map see it. */
 static const hl_scan_t *prepared(hl_slam_t *s, const hl_scan_t *scan)
 {
@@ -226,6 +239,7 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
         if (accept) {
             step.status = HL_SLAM_ACCEPTED;
             step.pose = found;
+            step.pose.theta = blend_heading(predicted.theta, found.theta, s->p.heading_gain);
         } else {
             step.status = HL_SLAM_REJECTED_WILD;
             extend = false;

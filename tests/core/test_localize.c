@@ -181,7 +181,7 @@ static void test_vote_saturation(void **state)
     hl_loc_destroy(loc);
 }
 
-/* Run with group_mm = 0 (every vector alone) and with the default groups. */
+/* Run with group_mm = 0 (every vector alone, the default) and with 48 mm groups. */
 static void run_both(const hl_vector_t *map, uint32_t n, const hl_scan_t *scan,
                      const hl_loc_query_t *q, hl_loc_result_t *alone, hl_loc_result_t *grouped,
                      uint16_t *alone_votes, uint16_t *grouped_votes, size_t max_cells)
@@ -263,6 +263,37 @@ static void test_groups_of_a_dense_map(void **state)
     free(a);
     free(b);
     free(map);
+    free_fixture(f);
+}
+
+/* reading_stride k: readings 0, k, 2k, ... vote, exactly as a scan holding only those. */
+static void test_reading_stride(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(0, 0, 45);
+    hl_scan_t *even = malloc(sizeof *even);
+    *even = f->scan;
+    for (uint32_t i = 1; i < even->count; i += 2)
+        even->readings[i].valid = false;
+    hl_loc_query_t q = local_query(f->truth);
+    hl_loc_params_t p = f->p;
+    p.reading_stride = 2;
+    hl_localizer_t *strided = hl_loc_create(&p);
+    assert_non_null(strided);
+    hl_loc_result_t a, b, all;
+    assert_int_equal(hl_loc_run(strided, f->map, f->n, &f->scan, &q, &a), HL_OK);
+    assert_int_equal(hl_loc_run(f->loc, f->map, f->n, even, &q, &b), HL_OK);
+    assert_int_equal(hl_loc_run(f->loc, f->map, f->n, &f->scan, &q, &all), HL_OK);
+    assert_int_equal(a.votes, b.votes);
+    assert_int_equal(a.peak, b.peak);
+    assert_memory_equal(&a.pose, &b.pose, sizeof a.pose);
+    assert_in_range(a.votes, all.votes / 3, all.votes * 2 / 3);
+    assert_within(a.pose.x_mm, f->truth.x_mm, 40);
+    assert_within(a.pose.y_mm, f->truth.y_mm, 40);
+    p.reading_stride = 0;
+    assert_string_equal(hl_loc_params_error(&p), "reading_stride must be in 1..64");
+    hl_loc_destroy(strided);
+    free(even);
     free_fixture(f);
 }
 
@@ -409,6 +440,7 @@ int main(void)
         cmocka_unit_test(test_capacity_limits),
         cmocka_unit_test(test_groups_of_one_point_are_exact),
         cmocka_unit_test(test_groups_of_a_dense_map),
+        cmocka_unit_test(test_reading_stride),
         cmocka_unit_test(test_params_validated),
         cmocka_unit_test(test_prior_breaks_ambiguity),
         cmocka_unit_test(test_peak_is_before_the_prior),

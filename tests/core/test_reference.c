@@ -8,8 +8,8 @@
  * is a correct answer. At most one scene in eight may be such a tie (measured: 4 of
  * 400 scenes).
  *
- * The default groups nearby map vectors into one vote (group_mm, localize.h): those
- * runs are held to a pose within a cell of the reference's instead. */
+ * With group_mm > 0 nearby map vectors vote together (localize.h): those runs are held
+ * to a pose within a cell of the reference's instead. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -130,7 +130,7 @@ static void compare(const hl_loc_params_t *p, bool local)
     hl_loc_destroy(loc);
 }
 
-/* The exact method: every vector votes alone. */
+/* The exact method: every vector votes alone (the default). */
 static void exact_params(hl_loc_params_t *p)
 {
     hl_loc_params_default(p);
@@ -158,8 +158,8 @@ static void test_grouped_global_near_reference(void **state)
 {
     (void)state;
     hl_loc_params_t p;
-    hl_loc_params_default(&p);
-    p.max_cells = 1u << 19;
+    exact_params(&p);
+    p.group_mm = 48;
     compare_grouped(&p, false, 24);
 }
 
@@ -167,8 +167,8 @@ static void test_grouped_local_near_reference(void **state)
 {
     (void)state;
     hl_loc_params_t p;
-    hl_loc_params_default(&p);
-    p.max_cells = 1u << 19;
+    exact_params(&p);
+    p.group_mm = 48;
     compare_grouped(&p, true, 24);
 }
 

@@ -98,6 +98,49 @@ static void test_guarded_walk_beats_odometry(void **state)
     free(w);
 }
 
+/* heading_gain g: an accepted localization's heading is the prediction's plus g of the
+ * correction (0: the odometry's heading, 1: the localizer's), the position is the
+ * localizer's either way. Two scans: the first builds the map at the true pose, the
+ * second arrives with the odometry 3 degrees off. */
+static void test_heading_gain_blends_the_correction(void **state)
+{
+    (void)state;
+    walk_t *w = make_walk(8);
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_pose_t second_odom = w->truth[1];
+    second_odom.theta = (hl_bam_t)(second_odom.theta + hl_bam_from_deg(3.0));
+    hl_slam_step_t out[3];
+    const double gains[3] = { 1.0, 0.5, 0.0 };
+    for (int g = 0; g < 3; g++) {
+        hl_slam_params_t p;
+        ray_sensor_defaults(&p);
+        p.heading_gain = gains[g];
+        hl_slam_t *s = hl_slam_create(&p);
+        assert_non_null(s);
+        hl_slam_reset(s, w->truth[0]);
+        sr_sound(&w->room, w->truth[0], 128, 8000, 15, scan);
+        assert_int_equal(hl_slam_update(s, scan, w->truth[0], &out[g]), HL_OK);
+        sr_sound(&w->room, w->truth[1], 128, 8000, 15, scan);
+        assert_int_equal(hl_slam_update(s, scan, second_odom, &out[g]), HL_OK);
+        assert_int_equal(out[g].status, HL_SLAM_ACCEPTED);
+        assert_int_equal(hl_slam_pose(s).theta, out[g].pose.theta);
+        hl_slam_destroy(s);
+    }
+    /* the full correction brings the heading back to within a degree of the truth */
+    assert_true(abs(hl_bam_diff(out[0].pose.theta, w->truth[1].theta)) < hl_bam_from_deg(1.0));
+    int32_t correction = hl_bam_diff(out[0].pose.theta, out[0].predicted.theta);
+    assert_true(abs(correction) > hl_bam_from_deg(2.0));
+    assert_int_equal(out[2].pose.theta, out[2].predicted.theta);
+    int32_t half = hl_bam_diff(out[1].pose.theta, out[1].predicted.theta);
+    assert_true(abs(half - correction / 2) <= hl_bam_from_deg(0.5));
+    hl_slam_params_t p;
+    ray_sensor_defaults(&p);
+    p.heading_gain = 1.5;
+    assert_string_equal(hl_slam_params_error(&p), "heading_gain must be in 0..1");
+    free(scan);
+    free(w);
+}
+
 static void test_paper_mode_accepts_everything(void **state)
 {
     (void)state;
@@ -821,6 +864,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_guarded_walk_beats_odometry),
+        cmocka_unit_test(test_heading_gain_blends_the_correction),
         cmocka_unit_test(test_paper_mode_accepts_everything),
         cmocka_unit_test(test_wild_jump_is_rejected),
         cmocka_unit_test(test_localize_changes_nothing),

@@ -16,10 +16,13 @@ check() {   # check DESCRIPTION COMMAND...: the command must succeed
     desc=$1; shift
     if "$@"; then echo "ok: $desc"; else echo "FAIL: $desc"; fail=1; fi
 }
+PROGS="houghlocd houghloc-goto houghloc-ctl houghloc-map houghloc-import-carmen houghloc-eval"
+# make's -o for each program: the install must not rebuild what make test built
+keep_built() { for p in $PROGS; do printf ' -o %s' "$1/bin/$p"; done; }
 hl_make() { # hl_make LOG TARGET VAR=VALUE...: make quietly, the output in LOG
     log=$1; shift
-    make --no-print-directory -s BUILD="$BUILD" -o "$BUILD/bin/houghlocd" \
-        -o "$BUILD/bin/houghloc-goto" -o "$BUILD/bin/houghloc-ctl" "$@" >"$log" 2>&1
+    # shellcheck disable=SC2046
+    make --no-print-directory -s BUILD="$BUILD" $(keep_built "$BUILD") "$@" >"$log" 2>&1
     rc=$?
     [ $rc -eq 0 ] || { echo "make $*:"; head -20 "$log"; }
     return $rc
@@ -29,7 +32,7 @@ mode_is() { # mode_is MODE FILE
 }
 files_in() { (cd "$1" && find . -type f | sed 's|^\./||' | sort); }
 
-for p in houghlocd houghloc-goto houghloc-ctl; do
+for p in $PROGS; do
     check "$BUILD/bin/$p is built" test -x "$BUILD/bin/$p"
 done
 [ $fail -eq 0 ] || exit 1
@@ -48,9 +51,7 @@ check "make install DESTDIR=... PREFIX=/usr succeeds" \
 {
     echo etc/houghloc/houghlocd.conf
     echo lib/systemd/system/houghlocd.service
-    echo usr/bin/houghloc-ctl
-    echo usr/bin/houghloc-goto
-    echo usr/bin/houghlocd
+    for p in $PROGS; do echo "usr/bin/$p"; done
     [ -n "$have_java" ] && echo usr/share/houghloc/java/houghloc_lcmtypes.jar
     echo usr/share/houghloc/python/houghloc/__init__.py
     for f in lcmtypes/houghloc_*.lcm; do
@@ -64,6 +65,7 @@ cmp -s "$tmp/expected" "$tmp/got" || diff "$tmp/expected" "$tmp/got" | head -20
 check "programs are 0755" mode_is 755 "$root/usr/bin/houghlocd"
 check "houghloc-goto is 0755" mode_is 755 "$root/usr/bin/houghloc-goto"
 check "houghloc-ctl is 0755" mode_is 755 "$root/usr/bin/houghloc-ctl"
+check "houghloc-map is 0755" mode_is 755 "$root/usr/bin/houghloc-map"
 check "the unit is 0644" mode_is 644 "$root/lib/systemd/system/houghlocd.service"
 check "the configuration is 0644" mode_is 644 "$root/etc/houghloc/houghlocd.conf"
 check "the Python types are 0644" mode_is 644 "$root/usr/share/houghloc/python/houghloc/pose_t.py"
@@ -137,10 +139,9 @@ if [ "$(id -u)" = 0 ]; then
         chown nobody "$tmp/user"
         check "make install works as an ordinary user (nobody)" \
             setpriv --reuid=nobody --regid="$(id -g nobody)" --clear-groups \
-            sh -c 'make --no-print-directory -s BUILD="$1" -o "$1/bin/houghlocd" \
-                -o "$1/bin/houghloc-goto" -o "$1/bin/houghloc-ctl" install DESTDIR="$2" \
+            sh -c 'make --no-print-directory -s BUILD="$1" $3 install DESTDIR="$2" \
                 PREFIX=/usr >"$2.log" 2>&1' \
-            - "$BUILD" "$tmp/user/root"
+            - "$BUILD" "$tmp/user/root" "$(keep_built "$BUILD")"
         [ -f "$tmp/user/root/usr/bin/houghlocd" ] || head -20 "$tmp/user/root.log" 2>/dev/null
         check "... and installs the programs" test -x "$tmp/user/root/usr/bin/houghlocd"
     else

@@ -48,9 +48,14 @@ check "seeds.sh summarises two seeds" grep -q "^orientation, 2 seeds: mean |bias
 
 # The benchmark's lines parse (values are not judged here: that is `make bench`).
 "$BIN/hl-bench" 3 >"$tmp/bench"
-check "hl-bench prints three parseable lines" test "$(grep -cE '^bench w[123]_[a-z0-9_]+ median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench")" -eq 3
+check "hl-bench prints three parseable lines" test "$(grep -cE '^bench w[123]_[a-z0-9_]+ median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+ group_mm=[0-9]+$' "$tmp/bench")" -eq 3
 check "hl-bench times echo and refinement" grep -qE '^bench w4_echo_refine median_us=[0-9]+ p90_us=[0-9]+ echo_median_us=[0-9]+ refine_median_us=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench"
-check "hl-bench times a laser scan against 15,000 vectors" grep -qE '^bench w5_laser15k median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench"
+check "hl-bench times a laser scan against 15,000 vectors" grep -qE '^bench w5_laser15k median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+ group_mm=48$' "$tmp/bench"
+check "hl-bench's dense workloads vote in 48 mm groups, the others alone" sh -c '
+    grep -q "^bench w3_map15k .* group_mm=48$" "$1" && grep -q "^bench w2_local_xyt .* group_mm=0$" "$1"' - "$tmp/bench"
+"$BIN/hl-bench" 2 w2 >"$tmp/bench_one"
+check "hl-bench RUNS WORKLOAD runs that workload alone" sh -c '
+    test "$(wc -l <"$1")" -eq 1 && grep -q "^bench w2_local_xyt " "$1"' - "$tmp/bench_one"
 
 # Bad input: one line, non-zero exit.
 rejects "missing log folder" "cannot open" "$BIN/hl-experiments" --logs "$tmp/nowhere" --out "$tmp/x" --no-figures
@@ -88,6 +93,7 @@ check "--rotation-sigma-deg 0.3 is the default" cmp -s "$tmp/rot_default/lab28.l
 check "--rotation-sigma-deg 0 changes the soundings" sh -c '! cmp -s "$1" logs/lab28.lcmlog' - "$tmp/rot_none/lab28.lcmlog"
 rejects "bad --rotation-sigma-deg" "--rotation-sigma-deg" "$BIN/hl-sim-logs" --rotation-sigma-deg -1 --out-dir "$tmp/w"
 rejects "bad bench runs" "usage" "$BIN/hl-bench" -5
+rejects "unknown bench workload" "no workload 'w9'" "$BIN/hl-bench" 2 w9
 printf 'segment 0 0 1000\n' >"$tmp/bad.world"
 rejects "bad world file" "bad.world:1" "$BIN/hl-sim-logs" --world "$tmp/bad.world" --out-dir "$tmp/w"
 rejects "bad limits world" "bad.world:1" "$BIN/hl-experiments" --only limits --world "$tmp/bad.world" --out "$tmp/x"

@@ -3,10 +3,12 @@
  * a synthetic cluttered room (128 readings per scan), one line per workload:
  *
  *   bench <workload> median_us=<n> p90_us=<n> ref_median_us=<n> votes=<n> mem_bytes=<n>
+ *         group_mm=<n>
  *
  * Workloads: w1_global_xy (heading known, global x, y over a 10 m x 10 m map, 24 mm
  * cells, 1500 vectors), w2_local_xyt (+-1 m window, +-8.8 deg at 1.1 deg, 1500 vectors),
- * w3_map15k (as w2 with 15,000 vectors). Scans cycle over POSES free poses so the
+ * w3_map15k (as w2 with 15,000 vectors, voting in 48 mm groups as a dense map is
+ * configured: localize.group_mm, tools/realeval/laser.conf). Scans cycle over POSES free poses so the
  * timing is not one input's luck. Single-threaded: the figures are for one core.
  *
  * A fourth line times what improved mode adds per scan, echo-bearing estimation
@@ -16,7 +18,7 @@
  *         mem_bytes=<n>
  *
  * and a fifth a laser's scan: w5_laser15k (360 readings against 15,000 vectors in a
- * +-1 m window, as w3), in the first line's format. The reference runs at most 20 times
+ * +-1 m window, 48 mm groups, as w3), in the first line's format. The reference runs at most 20 times
  * for w3 and 5 for w5 (it takes a quarter of a second and more per run there).
  */
 #define _POSIX_C_SOURCE 200809L
@@ -40,6 +42,7 @@ typedef struct workload {
     hl_mm_t window_mm;
     bool search_theta;
     int readings;           /* per scan: 128 (the sonar ring) or 360 (a laser) */
+    hl_mm_t group_mm;       /* localize.group_mm: 0 (default) or 48 for a dense map */
     int max_ref_runs;       /* the reference is slow: cap its runs */
 } workload_t;
 
@@ -71,6 +74,7 @@ static int run_workload(const workload_t *w, int runs, int ref_runs)
     hl_loc_params_t p;
     hl_loc_params_default(&p);
     p.max_map_vectors = n;
+    p.group_mm = w->group_mm;
     p.max_cells = w->window_mm > 0 ? hl_loc_cells_for_window(&p, w->window_mm, w->search_theta)
                                    : (10200 / p.cell_mm + 2) * (10200 / p.cell_mm + 2);
     hl_localizer_t *loc = hl_loc_create(&p);
@@ -110,9 +114,10 @@ static int run_workload(const workload_t *w, int runs, int ref_runs)
         ref_run(ref, map, n, &scans[i % POSES], &q[i % POSES], &rr);
         tr[i] = now_us() - t0;
     }
-    printf("bench %s median_us=%.0f p90_us=%.0f ref_median_us=%.0f votes=%u mem_bytes=%zu\n",
+    printf("bench %s median_us=%.0f p90_us=%.0f ref_median_us=%.0f votes=%u mem_bytes=%zu "
+           "group_mm=%d\n",
            w->name, quantile(t, runs, 0.5), quantile(t, runs, 0.9),
-           quantile(tr, ref_runs, 0.5), votes0, hl_loc_mem_bytes(loc));
+           quantile(tr, ref_runs, 0.5), votes0, hl_loc_mem_bytes(loc), (int)w->group_mm);
     fflush(stdout);
     hl_loc_destroy(loc);
     ref_destroy(ref);
@@ -187,11 +192,11 @@ int main(int argc, char **argv)
         runs = (int)v;
     }
     const workload_t w[] = {
-        { "w1_global_xy", 1500, 0, false, 128, 200 },
-        { "w2_local_xyt", 1500, 1000, true, 128, 200 },
-        { "w3_map15k", 15000, 1000, true, 128, 20 },
-        { "w4_echo_refine", 0, 0, false, 0, 0 },
-        { "w5_laser15k", 15000, 1000, true, 360, 5 },
+        { "w1_global_xy", 1500, 0, false, 128, 0, 200 },
+        { "w2_local_xyt", 1500, 1000, true, 128, 0, 200 },
+        { "w3_map15k", 15000, 1000, true, 128, 48, 20 },
+        { "w4_echo_refine", 0, 0, false, 0, 0, 0 },
+        { "w5_laser15k", 15000, 1000, true, 360, 48, 5 },
     };
     bool any = false;
     for (size_t i = 0; i < sizeof w / sizeof w[0]; i++) {

@@ -20,6 +20,9 @@ const std::map<std::string, std::pair<std::pair<double, double>, Setter>> &sette
 {
     static const std::map<std::string, std::pair<std::pair<double, double>, Setter>> s = {
         { "cell_mm", { { 1, 1000 }, [](Mode *m, double v) { m->loc.cell_mm = m->slam.loc.cell_mm = (hl_mm_t)v; } } },
+        { "group_mm", { { 0, 1000 }, [](Mode *m, double v) { m->loc.group_mm = m->slam.loc.group_mm = (hl_mm_t)v; } } },
+        { "map_per_place", { { 0, 1000 }, [](Mode *m, double v) { m->slam.map_per_place = (uint32_t)v; } } },
+        { "heading_gain", { { 0, 1 }, [](Mode *m, double v) { m->slam.heading_gain = v; } } },
         { "blur_sigma_mm", { { 0, 1000 }, [](Mode *m, double v) { m->loc.blur_sigma_mm = m->slam.loc.blur_sigma_mm = (hl_mm_t)v; } } },
         { "blur_sigma_theta_deg", { { 0, 10 }, [](Mode *m, double v) { m->loc.blur_sigma_theta = m->slam.loc.blur_sigma_theta = hl_bam_from_deg(v); } } },
         { "normal_gate_deg", { { 0, 180 }, [](Mode *m, double v) { m->loc.normal_gate = m->slam.loc.normal_gate = v >= 180 ? 32768 : hl_bam_from_deg(v); } } },
@@ -57,7 +60,8 @@ const char *override_names()
            "theta_half_steps prior_sigma_mm prior_sigma_theta_deg interpolate use_prior\n"
            "guarded window_mm wild_mm min_confidence min_peak_ratio map_capacity\n"
            "echo_bearings echo_cap echo_tie echo_half_beam_deg refine refine_heading\n"
-           "refine_radius_mm refine_match_mm refine_max_shift_mm table1_prior_sigma_mm";
+           "refine_radius_mm refine_match_mm refine_max_shift_mm table1_prior_sigma_mm\n"
+           "group_mm map_per_place heading_gain";
 }
 
 bool apply_override(const std::string &setting, Mode *paper, Mode *improved, std::string *err)
