@@ -64,6 +64,7 @@ CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(BUILD)/asan/gen/trig_table.o
 TESTKIT_OBJS      := $(call obj,$(TESTKIT_SRCS))
 TESTKIT_ASAN_OBJS := $(call asanobj,$(TESTKIT_SRCS))
 LCM_OBJS       := $(call obj,$(LCM_C_SRCS:$(BUILD)/%=%))
+LCM_ASAN_OBJS  := $(call asanobj,$(LCM_C_SRCS:$(BUILD)/%=%))
 
 CORE_LIB      := $(BUILD)/lib/libhoughloc_core.a
 CORE_ASAN_LIB := $(BUILD)/lib/libhoughloc_core_asan.a
@@ -84,6 +85,10 @@ INTEGRATION_TESTS := tests/integration/test_tools.sh
 # packaging/packaging.mk `make install`; tools/*/*.mk the separate programs.
 -include $(sort $(wildcard src/*/*.mk tools/*/*.mk tests/*/*.mk packaging/*.mk))
 
+# The sanitized bus library carries a sanitized copy of the generated code, so every test
+# that links it (bus, daemon) takes the generated functions from there, not $(LCM_LIB).
+$(BUS_ASAN_LIB): $(LCM_ASAN_OBJS)
+
 all: $(BINS) $(TEST_BINS)
 
 deps:
@@ -98,7 +103,7 @@ $(TRIG_SRC): $(BUILD)/bin/gen_trig_table
 	@mkdir -p $(@D)
 	$(Q)$< > $@.tmp && mv $@.tmp $@
 
-# lcm-gen fails unless the output folder exists (DESIGN.md).
+# lcm-gen fails unless the output folder exists.
 $(LCM_STAMP): $(LCM_DEFS)
 	@mkdir -p $(BUILD)/lcmtypes
 	$(Q)lcm-gen -c --c-cpath $(BUILD)/lcmtypes --c-hpath $(BUILD)/lcmtypes $(LCM_DEFS)
@@ -118,6 +123,12 @@ $(BUILD)/asan/gen/%.o: $(BUILD)/gen/%.c
 $(BUILD)/obj/lcmtypes/%.o: $(BUILD)/lcmtypes/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(CPPFLAGS) -std=c11 $(OPT) -c -o $@ $<
+# ... but the tests run it under the sanitizers too, so UBSan sees inside it (lcm_coretypes.h's
+# memcpy of an array of zero elements, for one).
+$(BUILD)/asan/lcmtypes/%.o: $(BUILD)/lcmtypes/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	@echo "  CC-SAN  $<"
+	$(Q)$(CC) $(CPPFLAGS) -std=c11 $(OPT) $(SAN) -c -o $@ $<
 $(BUILD)/obj/%.o: %.c | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CC      $<"

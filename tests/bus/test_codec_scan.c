@@ -89,7 +89,9 @@ static void assert_scan_matches(const hl_bus_scan_t *s, const houghloc_scan_t *g
 }
 
 /* (a) ours -> generated decode, same fields, and the generated encoder writes the same
- * bytes; generated encode -> ours, same fields, and we write the same bytes. */
+ * bytes; generated encode -> ours, same fields, and we write the same bytes. Not for zero
+ * readings: the generated decoder gives an empty array a NULL pointer and hands it to
+ * memcpy, which UBSan refuses even for zero bytes (test_codec_empty.c covers them). */
 static void test_scan_matches_generated_code(void **state)
 {
     (void)state;
@@ -97,9 +99,9 @@ static void test_scan_matches_generated_code(void **state)
     hl_rng_t rng;
     hl_rng_seed(&rng, 11);
     hl_bus_scan_t *s = new_scan(), *t = new_scan();
-    const int counts[] = { 0, 1, 2, 16, 128, 1023, HL_SCAN_MAX_READINGS };
+    const int counts[] = { 1, 2, 16, 128, 1023, HL_SCAN_MAX_READINGS };
     for (int it = 0; it < 60; it++) {
-        int n = it < 7 ? counts[it] : (int)tk_range(&rng, 0, HL_SCAN_MAX_READINGS);
+        int n = it < 6 ? counts[it] : (int)tk_range(&rng, 1, HL_SCAN_MAX_READINGS);
         random_scan(&rng, s, n);
         int len = hl_bus_encode_scan(s, a, sizeof a);
         assert_int_equal(len, 43 + 8 * n);

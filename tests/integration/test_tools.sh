@@ -24,6 +24,19 @@ rejects() { # rejects DESCRIPTION EXPECTED_TEXT COMMAND...: exit 1 or 2, one lin
         fail=1
     fi
 }
+usage_error() { # usage_error DESCRIPTION EXPECTED_TEXT COMMAND...: exit 2, nothing on stdout,
+                # one line on stderr containing the text (fixed string)
+    desc=$1; want=$2; shift 2
+    "$@" >"$tmp/out" 2>"$tmp/err"
+    rc=$?
+    if [ $rc -eq 2 ] && [ ! -s "$tmp/out" ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] &&
+        grep -q -F -- "$want" "$tmp/err"; then
+        echo "ok: $desc"
+    else
+        echo "FAIL: $desc (exit $rc, wanted 2): $(head -c 300 "$tmp/err")"
+        fail=1
+    fi
+}
 
 # The committed logs are what `make logs` makes.
 "$BIN/hl-sim-logs" --seed 1 --out-dir "$tmp" >/dev/null
@@ -34,8 +47,10 @@ done
 # The experiments run end to end and write their tables.
 "$BIN/hl-experiments" --logs logs --out "$tmp/exp" --reps 1 --no-figures 2>"$tmp/progress"
 check "hl-experiments exits 0" test $? -eq 0
-check "table1.tsv has 12 rows" test "$(tail -n +2 "$tmp/exp/table1.tsv" | wc -l)" -eq 12
-check "table1.tsv header" grep -q "^mode	fraction	raster_mm	trials	wild	wild_pct	tame_mean_mm	tame_sigma_mm$" "$tmp/exp/table1.tsv"
+check "table1.tsv has 18 rows (paper; improved without and with a prior)" test "$(tail -n +2 "$tmp/exp/table1.tsv" | wc -l)" -eq 18
+check "table1.tsv header" grep -q "^mode	fraction	raster_mm	trials	wild	wild_pct	tame_mean_mm	tame_sigma_mm	prior$" "$tmp/exp/table1.tsv"
+check "table1.tsv: 6 improved rows with the prior, 6 without" sh -c '
+    test "$(grep -c "^improved	.*	yes$" "$1")" -eq 6 && test "$(grep -c "^improved	.*	no$" "$1")" -eq 6' - "$tmp/exp/table1.tsv"
 check "orientation.tsv has both modes" test "$(cut -f1 "$tmp/exp/orientation.tsv" | tr '\n' ' ')" = "mode paper improved "
 check "combined.tsv has paper, odometry, improved" test "$(cut -f1 "$tmp/exp/combined.tsv" | tr '\n' ' ')" = "mode paper odometry improved "
 check "results.md names the three experiments and the limits" test "$(grep -c '^## ' "$tmp/exp/results.md")" -eq 4
@@ -92,12 +107,96 @@ check "--rotation-sigma-deg 0.3 is the default" cmp -s "$tmp/rot_default/lab28.l
 "$BIN/hl-sim-logs" --rotation-sigma-deg 0 --out-dir "$tmp/rot_none" >/dev/null
 check "--rotation-sigma-deg 0 changes the soundings" sh -c '! cmp -s "$1" logs/lab28.lcmlog' - "$tmp/rot_none/lab28.lcmlog"
 rejects "bad --rotation-sigma-deg" "--rotation-sigma-deg" "$BIN/hl-sim-logs" --rotation-sigma-deg -1 --out-dir "$tmp/w"
-rejects "bad bench runs" "usage" "$BIN/hl-bench" -5
+rejects "bad --soundings" "--soundings" "$BIN/hl-sim-logs" --soundings 0 --out-dir "$tmp/w"
+# Another building: the corridor world's own layout, orientation square and tour.
+"$BIN/hl-sim-logs" --seed 2 --world tools/sim/worlds/corridor.world --out-dir "$tmp/corr" >/dev/null
+check "hl-sim-logs makes the corridor world's three logs" \
+    sh -c 'test -s "$1/lab28.lcmlog" && test -s "$1/orientation.lcmlog" && test -s "$1/tour.lcmlog" &&
+           test -z "$(ls -A "$1" | grep -v lcmlog)"' - "$tmp/corr"
+check "... and hl-experiments runs on them" sh -c '"$1" --logs "$2" --out "$3" --no-figures \
+    --only table1 --reps 1 2>/dev/null' - "$BIN/hl-experiments" "$tmp/corr" "$tmp/corr_out"
+check "... 28 positions (two soundings each): 28 Table 1 trials a row with one map subset" \
+    awk -F '\t' 'NR == 2 { exit !($4 == 28) }' "$tmp/corr_out/table1.tsv"
+# A world open on one side is refused with one line, and a failed run leaves the folder
+# as it was: the old set stays whole.
+printf 'segment 0 0 10000 0\nsegment 10000 0 10000 10000\nsegment 0 10000 10000 10000\nopen 1000 1000 9000 9000\norientation 3000 3000\ntour 5000 5000\n' >"$tmp/open.world"
+cp -r "$tmp/corr" "$tmp/keep"
+rejects "unclosed world" "not closed around" "$BIN/hl-sim-logs" --world "$tmp/open.world" --out-dir "$tmp/keep"
+check "a refused world leaves the old logs untouched and no temporary folder" \
+    sh -c 'cmp -s "$1/lab28.lcmlog" "$2/lab28.lcmlog" && cmp -s "$1/tour.lcmlog" "$2/tour.lcmlog" &&
+           test "$(ls -A "$2" | wc -l)" -eq 3' - "$tmp/corr" "$tmp/keep"
+rejects "bad bench runs" "RUNS '-5'" "$BIN/hl-bench" -5
 rejects "unknown bench workload" "no workload 'w9'" "$BIN/hl-bench" 2 w9
 printf 'segment 0 0 1000\n' >"$tmp/bad.world"
 rejects "bad world file" "bad.world:1" "$BIN/hl-sim-logs" --world "$tmp/bad.world" --out-dir "$tmp/w"
 rejects "bad limits world" "bad.world:1" "$BIN/hl-experiments" --only limits --world "$tmp/bad.world" --out "$tmp/x"
 printf '1000 935\n2000 abc\n' >"$tmp/bad.pairs"
 rejects "bad calibration pairs" "bad.pairs:2" "$BIN/hl-calibrate" "$tmp/bad.pairs"
+
+# hl-calibrate prints only what the core accepts (hl_calib_error), and reads stdin only
+# when told to.
+printf '20000 300\n21000 400\n22000 500\n' >"$tmp/far.pairs"
+"$BIN/hl-calibrate" "$tmp/far.pairs" >"$tmp/out" 2>"$tmp/err"
+check "hl-calibrate refuses an offset the core rejects: exit 1, one line, nothing printed" \
+    sh -c '[ "$1" -eq 1 ] && [ ! -s "$2" ] && [ "$(wc -l <"$3")" -eq 1 ] &&
+           grep -q "offset must be within +-10000 mm" "$3"' - $? "$tmp/out" "$tmp/err"
+usage_error "hl-calibrate without a file" "input file ('-' for stdin)" "$BIN/hl-calibrate"
+printf '1000 935\n2000 1870\n3000 2800\n' | "$BIN/hl-calibrate" - >"$tmp/out" 2>"$tmp/err"
+check "hl-calibrate - reads stdin" sh -c '[ "$1" -eq 0 ] &&
+    grep -q "^calibration.gain_q16 = 70280$" "$2" && grep -q "^calibration.offset_mm = -4$" "$2"' \
+    - $? "$tmp/out"
+
+# A log whose scan seqs repeat (the first ten scans twice) is refused by the experiments'
+# reader, naming the file, the event and both seqs.
+mkdir -p "$tmp/dup"
+"$BIN/hl-eval" split logs/lab28.lcmlog 10 "$tmp/first10.lcmlog" "$tmp/rest.lcmlog"
+cat "$tmp/first10.lcmlog" "$tmp/first10.lcmlog" >"$tmp/dup/lab28.lcmlog"
+rejects "repeated scan seq in a log" "dup/lab28.lcmlog: event 33: SONAR: seq 0 after seq 9" \
+    "$BIN/hl-experiments" --logs "$tmp/dup" --only table1 --out "$tmp/x" --no-figures
+cat "$tmp/rest.lcmlog" "$tmp/first10.lcmlog" >"$tmp/dup/lab28.lcmlog"
+rejects "decreasing scan seq in a log" "SONAR: seq 0 after seq " \
+    "$BIN/hl-experiments" --logs "$tmp/dup" --only table1 --out "$tmp/x" --no-figures
+
+# Every program answers --help on stdout with exit 0 (hl-pose-bytes, a test helper, and
+# gen_trig_table, a build step, take no options).
+for p in hl-bench hl-bench-cycle hl-calibrate hl-eval hl-experiments hl-sim-draw hl-sim-logs \
+         houghloc-ctl houghloc-eval houghloc-goto houghloc-import-carmen houghloc-map houghlocd; do
+    "$BIN/$p" --help >"$tmp/out" 2>"$tmp/err"
+    check "$p --help: exit 0, usage on stdout" sh -c '[ "$1" -eq 0 ] && [ ! -s "$3" ] &&
+        grep -qi "usage" "$2"' - $? "$tmp/out" "$tmp/err"
+done
+
+# Bad numbers: exit 2 and one line naming the option and the value (letters, trailing
+# junk, out of range, leading spaces, hexadecimal), before anything runs.
+usage_error "hl-sim-draw --seed abc" "--seed 'abc'" "$BIN/hl-sim-draw" --seed abc --out "$tmp/w.png"
+usage_error "hl-sim-draw --seed 2^64" "--seed '18446744073709551616'" \
+    "$BIN/hl-sim-draw" --seed 18446744073709551616 --out "$tmp/w.png"
+usage_error "hl-sim-draw --px-per-m 50x" "--px-per-m '50x'" "$BIN/hl-sim-draw" --px-per-m 50x --out "$tmp/w.png"
+usage_error "hl-sim-draw unknown option" "'--bogus'" "$BIN/hl-sim-draw" --bogus
+usage_error "hl-calibrate --seed 2^64" "'18446744073709551616'" \
+    "$BIN/hl-calibrate" --simulate --seed 18446744073709551616
+usage_error "hl-calibrate unknown option" "'--bogus'" "$BIN/hl-calibrate" --bogus
+usage_error "hl-bench RUNS 5x" "RUNS '5x'" "$BIN/hl-bench" 5x
+usage_error "hl-bench extra argument" "'extra'" "$BIN/hl-bench" 1 w1 extra
+usage_error "hl-bench-cycle --reps 5x" "--reps wants a whole number 1..1000, not '5x'" \
+    "$BIN/hl-bench-cycle" --reps 5x
+usage_error "hl-bench-cycle --start with trailing junk" "'1,2,3abc'" "$BIN/hl-bench-cycle" --start 1,2,3abc
+usage_error "hl-bench-cycle --start out of range" "'99999999999999999999,0,0'" \
+    "$BIN/hl-bench-cycle" --start 99999999999999999999,0,0
+usage_error "hl-eval split count out of range" "split: '99999999999999999999'" \
+    "$BIN/hl-eval" split logs/lab28.lcmlog 99999999999999999999 "$tmp/a.lcmlog" "$tmp/b.lcmlog"
+usage_error "hl-experiments --reps ' 5'" "--reps must be a whole number 1..100, not ' 5'" \
+    "$BIN/hl-experiments" --reps " 5" --logs "$tmp/nowhere" --out "$tmp/x"
+usage_error "hl-experiments unknown option" "unknown option '--bogus'" "$BIN/hl-experiments" --bogus
+usage_error "hl-experiments --reps without a value" "--reps needs a value" "$BIN/hl-experiments" --reps
+usage_error "houghloc-eval --delta 0x1" "--delta '0x1'" "$BIN/houghloc-eval" --delta 0x1 "$tmp/none" "$tmp/none"
+usage_error "houghloc-map --resolution ' 1'" "--resolution ' 1'" "$BIN/houghloc-map" --resolution " 1" "$tmp/none" "$tmp/map"
+# (on a port of their own, so that even a client that took the value disturbs no daemon)
+quiet_url='udpm://239.255.76.67:7611?ttl=0'
+usage_error "houghloc-goto --timeout ' 0.2'" "--timeout \" 0.2\"" \
+    "$BIN/houghloc-goto" --lcm-url "$quiet_url" --timeout " 0.2" 1 1
+usage_error "houghloc-ctl --timeout 0x0.4" "--timeout \"0x0.4\"" \
+    "$BIN/houghloc-ctl" --lcm-url "$quiet_url" --timeout 0x0.4 save
+usage_error "houghloc-import-carmen --fov-deg 5x" "--fov-deg '5x'" "$BIN/houghloc-import-carmen" --fov-deg 5x "$tmp/none" "$tmp/none.lcmlog"
 
 exit $fail

@@ -25,6 +25,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <lcm/eventlog.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -141,6 +142,47 @@ static void usage(FILE *f)
                "[--paper] [--steps]\n");
 }
 
+static int bad_usage(const char *what, const char *value)
+{
+    fprintf(stderr, "hl-bench-cycle: %s '%s' (try --help)\n", what, value);
+    return 2;
+}
+
+/* One field of --start: X_MM or Y_MM, a whole number within +-HL_COORD_MAX_MM; *s moves
+ * past it. */
+static bool parse_coord(const char **s, hl_mm_t *out)
+{
+    const char *p = *s + (**s == '-' || **s == '+');
+    if (*p < '0' || *p > '9')
+        return false;
+    char *end;
+    errno = 0;
+    long v = strtol(*s, &end, 10);
+    if (errno || v < -HL_COORD_MAX_MM || v > HL_COORD_MAX_MM)
+        return false;
+    *out = (hl_mm_t)v;
+    *s = end;
+    return true;
+}
+
+/* --start X_MM,Y_MM,DEG: two coordinates and a finite heading in degrees, nothing more. */
+static bool parse_start(const char *s, hl_pose_t *out)
+{
+    hl_mm_t x, y;
+    if (!parse_coord(&s, &x) || *s++ != ',' || !parse_coord(&s, &y) || *s++ != ',')
+        return false;
+    if (!(*s == '-' || *s == '+' || *s == '.' || (*s >= '0' && *s <= '9')) ||
+        strpbrk(s, "xX") != NULL)
+        return false;
+    char *end;
+    errno = 0;
+    double deg = strtod(s, &end);
+    if (*end || errno || !(deg >= -1e6 && deg <= 1e6))
+        return false;
+    *out = (hl_pose_t){ x, y, hl_bam_from_deg(deg) };
+    return true;
+}
+
 int main(int argc, char **argv)
 {
     const char *path = "logs/tour.lcmlog";
@@ -148,34 +190,29 @@ int main(int argc, char **argv)
     bool paper = false, steps = false;
     hl_pose_t start = { 0, 0, 0 };
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help")) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage(stdout);
             return 0;
         } else if (!strcmp(argv[i], "--log") && i + 1 < argc) {
             path = argv[++i];
         } else if (!strcmp(argv[i], "--reps") && i + 1 < argc) {
+            const char *a = argv[++i];
             char *end;
-            long v = strtol(argv[++i], &end, 10);
-            if (*end || v < 1 || v > 1000) {
-                fprintf(stderr, "hl-bench-cycle: --reps must be 1..1000\n");
-                return 2;
-            }
+            errno = 0;
+            long v = strtol(a, &end, 10);
+            if (*a < '0' || *a > '9' || *end || errno || v < 1 || v > 1000)
+                return bad_usage("--reps wants a whole number 1..1000, not", a);
             reps = (int)v;
         } else if (!strcmp(argv[i], "--start") && i + 1 < argc) {
-            long x, y;
-            double deg;
-            if (sscanf(argv[++i], "%ld,%ld,%lf", &x, &y, &deg) != 3) {
-                fprintf(stderr, "hl-bench-cycle: --start wants X_MM,Y_MM,DEG\n");
-                return 2;
-            }
-            start = (hl_pose_t){ (hl_mm_t)x, (hl_mm_t)y, hl_bam_from_deg(deg) };
+            if (!parse_start(argv[++i], &start))
+                return bad_usage("--start wants X_MM,Y_MM,DEG (millimetres within +-4194304, "
+                                 "degrees), not", argv[i]);
         } else if (!strcmp(argv[i], "--paper")) {
             paper = true;
         } else if (!strcmp(argv[i], "--steps")) {
             steps = true;
         } else {
-            usage(stderr);
-            return 2;
+            return bad_usage("unknown or incomplete option", argv[i]);
         }
     }
 

@@ -22,6 +22,7 @@
  * for w3 and 5 for w5 (it takes a quarter of a second and more per run there).
  */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -75,8 +76,9 @@ static int run_workload(const workload_t *w, int runs, int ref_runs)
     hl_loc_params_default(&p);
     p.max_map_vectors = n;
     p.group_mm = w->group_mm;
+    uint32_t global_side = (uint32_t)(10200 / p.cell_mm + 2);   /* the whole 10 m room */
     p.max_cells = w->window_mm > 0 ? hl_loc_cells_for_window(&p, w->window_mm, w->search_theta)
-                                   : (10200 / p.cell_mm + 2) * (10200 / p.cell_mm + 2);
+                                   : global_side * global_side;
     hl_localizer_t *loc = hl_loc_create(&p);
     ref_localizer_t *ref = ref_create(&p);
     if (!loc || !ref) {
@@ -177,16 +179,29 @@ static int run_echo_refine(int runs)
     return 0;
 }
 
+static const char usage[] =
+    "usage: hl-bench [RUNS [WORKLOAD]]\n"
+    "Times the localizer on synthetic rooms, one line per workload (RUNS 1..100000,\n"
+    "default 200; WORKLOAD w1 .. w5 or its full name, default all).\n";
+
 int main(int argc, char **argv)
 {
     int runs = 200;
+    if (argc > 1 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0))
+        return fputs(usage, stdout), 0;
+    if (argc > 3) {
+        fprintf(stderr, "hl-bench: unexpected argument '%s' (try --help)\n", argv[3]);
+        return 2;
+    }
     const char *only = argc > 2 ? argv[2] : NULL;   /* a workload's name, or its w<n> */
     if (argc > 1) {
+        const char *a = argv[1];
         char *end;
-        long v = strtol(argv[1], &end, 10);
-        if (*end || v < 1 || v > 100000 || argc > 3) {
-            fprintf(stderr, "usage: hl-bench [RUNS [WORKLOAD]]   (RUNS 1..100000, default 200;"
-                            " WORKLOAD w1 .. w5, default all)\n");
+        errno = 0;
+        long v = strtol(a, &end, 10);
+        if (*a < '0' || *a > '9' || *end || errno || v < 1 || v > 100000) {
+            fprintf(stderr, "hl-bench: RUNS '%s' is not a whole number 1..100000 (try --help)\n",
+                    a);
             return 2;
         }
         runs = (int)v;

@@ -20,6 +20,7 @@
  * houghloc-eval and houghloc-map).
  */
 #include <errno.h>
+#include <limits.h>
 #include <lcm/eventlog.h>
 #include <math.h>
 #include <stdio.h>
@@ -291,10 +292,13 @@ int main(int argc, char **argv)
     if (argc == 3 && strcmp(argv[1], "status") == 0)
         return cmd_status(argv[2]);
     if (argc == 6 && strcmp(argv[1], "split") == 0) {
+        const char *a = argv[3];
         char *end;
-        long n = strtol(argv[3], &end, 10);
-        if (*end || end == argv[3] || n < 0)
-            return fprintf(stderr, "hl-eval: split: '%s' is not a scan count\n", argv[3]), 2;
+        errno = 0;
+        long n = strtol(a, &end, 10);
+        if (*a < '0' || *a > '9' || *end || errno)
+            return fprintf(stderr, "hl-eval: split: '%s' is not a scan count 0..%ld\n", a,
+                           LONG_MAX), 2;
         writer_t w = { .split_at = n };
         return cmd_write(argv[2], on_split, &w, argv[4], argv[5]);
     }

@@ -7,6 +7,7 @@
 // POSE per scan); both are matched by scan sequence number (runlog.h).
 #include <getopt.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -237,7 +238,10 @@ int main(int argc, char **argv)
             char *end;
             errno = 0;
             o.delta = std::strtod(optarg, &end);
-            if (end == optarg || *end || errno || !(o.delta > 0) || !std::isfinite(o.delta))
+            // plain decimals only: strtod would also skip spaces and read hexadecimal
+            if (!(std::isdigit(static_cast<unsigned char>(*optarg)) || *optarg == '.') ||
+                std::strpbrk(optarg, "xX") || end == optarg || *end || errno ||
+                !(o.delta > 0) || !std::isfinite(o.delta))
                 return usage_error(std::string("--delta '") + optarg +
                                    "' is not a positive number of metres");
             break;

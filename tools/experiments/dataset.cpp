@@ -3,6 +3,7 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <map>
 
@@ -44,6 +45,9 @@ bool read_soundings(const std::string &path, Soundings *out, std::string *err)
     }
     std::map<int32_t, hl_pose_t> truth;
     long n = 0;
+    // The ground truth is matched by seq, so a repeated seq would score a scan against
+    // another's pose: seqs must increase over all the scan channels, as houghlocd wants.
+    const Sounding *last = nullptr;
     char why[HL_BUS_WHY_LEN];
     for (;;) {
         lcm_eventlog_event_t *ev = lcm_eventlog_read_next_event(f.log);
@@ -58,8 +62,15 @@ bool read_soundings(const std::string &path, Soundings *out, std::string *err)
             auto s = std::make_unique<Sounding>();
             s->channel = channel;
             ok = hl_bus_decode_scan(data, len, &s->msg, why) == HL_OK;
-            if (ok)
+            if (ok && last && s->msg.seq <= last->msg.seq) {
+                std::snprintf(why, sizeof why, "seq %ld after seq %ld: scan seqs must increase",
+                              static_cast<long>(s->msg.seq), static_cast<long>(last->msg.seq));
+                ok = false;
+            }
+            if (ok) {
+                last = s.get();
                 out->push_back(std::move(s));
+            }
         } else if (channel == HL_CHANNEL_GROUND_TRUTH) {
             hl_bus_pose_t p;
             ok = hl_bus_decode_pose(data, len, &p, why) == HL_OK;

@@ -23,7 +23,8 @@ using Soundings = std::vector<std::unique_ptr<Sounding>>;
 
 // Reads every scan on a channel whose name starts with "SONAR" and the GROUND_TRUTH poses.
 // Returns false with a one-line reason (naming the file and event) on any bad event, a
-// truncated log, or a scan without ground truth (the experiments score against it).
+// truncated log, a scan whose seq does not increase on the previous scan's (on any of
+// those channels), or a scan without ground truth (the experiments score against it).
 bool read_soundings(const std::string &path, Soundings *out, std::string *err);
 
 // The soundings on exactly @p channel, in log order.

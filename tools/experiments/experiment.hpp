@@ -41,6 +41,7 @@ struct Context {
 
 struct Table1Row {
     std::string mode;
+    bool prior;                 // the improved mode's prior estimate (Mode::prior_sigma_mm)
     int fraction16;             // map fraction, in sixteenths
     int raster_mm;
     int trials, wild;

@@ -70,7 +70,8 @@ int main(int argc, char **argv)
         { nullptr, 0, nullptr, 0 },
     };
     int c;
-    while ((c = getopt_long(argc, argv, "l:o:r:x:w:s:h", opts, nullptr)) != -1) {
+    opterr = 0;     // one line of our own instead of getopt's and the usage
+    while ((c = getopt_long(argc, argv, ":l:o:r:x:w:s:h", opts, nullptr)) != -1) {
         switch (c) {
         case 'l': logs = optarg; break;
         case 'o': ctx.out_dir = optarg; break;
@@ -78,7 +79,7 @@ int main(int argc, char **argv)
             char *end;
             errno = 0;
             long v = std::strtol(optarg, &end, 10);
-            if (errno || *end || v < 1 || v > 100) {
+            if (*optarg < '0' || *optarg > '9' || errno || *end || v < 1 || v > 100) {
                 std::fprintf(stderr, "hl-experiments: --reps must be a whole number 1..100, not '%s'\n", optarg);
                 return 2;
             }
@@ -112,7 +113,12 @@ int main(int argc, char **argv)
         case 'w': world_path = optarg; break;
         case 'F': ctx.figures = false; break;
         case 'h': usage(stdout); return 0;
-        default: usage(stderr); return 2;
+        case ':':
+            std::fprintf(stderr, "hl-experiments: %s needs a value (try --help)\n", argv[optind - 1]);
+            return 2;
+        default:
+            std::fprintf(stderr, "hl-experiments: unknown option '%s' (try --help)\n", argv[optind - 1]);
+            return 2;
         }
     }
     if (optind < argc) {
@@ -149,11 +155,16 @@ int main(int argc, char **argv)
         ((want("combined") || want("limits")) && !load(logs + "/tour.lcmlog", &tour)))
         return 1;
     hlexp::Results res;
-    if (want("table1"))
-        for (const auto &m : modes) {
-            auto rows = hlexp::run_table1(lab, m, ctx);
+    if (want("table1")) {
+        // Improved mode both with its prior estimate and, like the paper's method,
+        // without one (a global search).
+        hlexp::Mode improved_global = improved;
+        improved_global.prior_sigma_mm = 0;
+        for (const auto *m : { &paper, &improved_global, &improved }) {
+            auto rows = hlexp::run_table1(lab, *m, ctx);
             res.table1.insert(res.table1.end(), rows.begin(), rows.end());
         }
+    }
     if (want("orientation"))
         for (const auto &m : modes)
             res.orientation.push_back(hlexp::run_orientation(orientation, m, ctx));

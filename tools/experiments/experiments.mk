@@ -1,7 +1,9 @@
 # tools/experiments/experiments.mk - the paper's experiments, rerun (hl-experiments).
 #
-#   make experiments   run all three in paper and improved modes; results, tables and
-#                      figures in build/experiments/
+#   make experiments        run all three in paper and improved modes; results, tables
+#                           and figures in build/experiments/
+#   make experiments-seeds  the same over 10 layouts (seeds) of the lab and the corridor
+#                           world: build/experiments/seeds.tsv (tools/experiments/seeds_tsv.sh)
 
 EXP_SRCS := tools/experiments/experiments.cpp tools/experiments/dataset.cpp \
             tools/experiments/modes.cpp tools/experiments/table1.cpp \
@@ -17,7 +19,13 @@ $(BUILD)/bin/hl-experiments: $(call obj,$(EXP_SRCS)) $(BUILD)/lib/libhoughloc_re
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $^ $(CAIRO_LIBS) $(PKG_LIBS) -lm
 
-.PHONY: experiments
+.PHONY: experiments experiments-seeds
+experiments-seeds: deps
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-experiments $(BUILD)/bin/hl-sim-logs
+	$(Q)BUILD=$(BUILD) sh tools/experiments/seeds_tsv.sh $(SEEDS)
+
+SEEDS ?= 10
+
 experiments: deps
 	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-experiments
 	$(Q)$(BUILD)/bin/hl-experiments --logs logs --out $(BUILD)/experiments

@@ -91,12 +91,12 @@ bool write_tsv(const std::string &path, const char *header, const std::vector<Ro
 bool write_tsvs(const std::string &dir, const Results &r, std::string *err)
 {
     return write_tsv(dir + "/table1.tsv",
-                     "mode\tfraction\traster_mm\ttrials\twild\twild_pct\ttame_mean_mm\ttame_sigma_mm",
+                     "mode\tfraction\traster_mm\ttrials\twild\twild_pct\ttame_mean_mm\ttame_sigma_mm\tprior",
                      r.table1, [](FILE *f, const Table1Row &t) {
-                         std::fprintf(f, "%s\t%d/16\t%d\t%d\t%d\t%.1f\t%.1f\t%.1f\n",
+                         std::fprintf(f, "%s\t%d/16\t%d\t%d\t%d\t%.1f\t%.1f\t%.1f\t%s\n",
                                       t.mode.c_str(), t.fraction16, t.raster_mm, t.trials,
                                       t.wild, pct(t.wild, t.trials), t.tame_mean_mm,
-                                      t.tame_sigma_mm);
+                                      t.tame_sigma_mm, t.prior ? "yes" : "no");
                      }, err) &&
            write_tsv(dir + "/orientation.tsv", "mode\ttrials\tmean_deg\tsigma_deg\tmax_abs_deg",
                      r.orientation, [](FILE *f, const OrientationRow &o) {
@@ -123,25 +123,31 @@ bool write_tsvs(const std::string &dir, const Results &r, std::string *err)
 void markdown_table1(FILE *f, const Results &r)
 {
     std::fprintf(f, "## 1. Localization against a known map (Table 1)\n\n"
-                    "Leave-one-out over the 28 positions of `logs/lab28.lcmlog`, heading known; "
-                    "%d random map subsets per setting, so %d trials per row (the paper: 28). "
-                    "Paper mode searches the whole map, as the paper did. Improved mode is given "
-                    "a prior estimate, the measured position plus a seeded Gaussian error of "
-                    "150 mm per axis (what odometry over a short hop would give), and searches "
-                    "+-1 m around it with the odometry prior. Wild = error above 0.5 m; tame = "
-                    "the rest.\n\n",
+                    "Leave-one-out over the positions of `logs/lab28.lcmlog` (the map: every "
+                    "sounding of the other positions; the test: the left-out position's first "
+                    "sounding), heading known; %d random map subsets per setting, so %d trials "
+                    "per row with 28 positions (the paper: 28). Paper mode searches the whole "
+                    "map, as the paper did; so does improved mode without a prior. Improved mode "
+                    "with a prior is given a prior estimate, the measured position plus a seeded "
+                    "Gaussian error of 150 mm per axis (what odometry over a short hop would "
+                    "give), and searches +-1 m around it with the odometry prior. Wild = error "
+                    "above 0.5 m; tame = the rest.\n\n",
                  r.reps, r.reps * 28);
-    std::fprintf(f, "| raster | fraction | paper: wild | tame mean | sigma | paper mode: wild | tame mean | sigma | improved: wild | tame mean | sigma |\n"
-                    "|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::fprintf(f, "| raster | fraction | paper: wild | tame mean | sigma | paper mode: wild | tame mean | sigma | improved, no prior: wild | tame mean | sigma | improved, prior: wild | tame mean | sigma |\n"
+                    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int raster : { 47, 24 })
         for (int fr = 1; fr <= 3; fr++) {
             const PaperRow *p = paper_row(raster, fr);
             std::fprintf(f, "| %d mm | %d/16 | %.1f %% | %.0f mm | %.0f mm", raster, fr,
                          p->wild_pct, p->mean_mm, p->sigma_mm);
-            for (const char *mode : { "paper", "improved" }) {
+            const std::pair<const char *, bool> cols[] = { { "paper", false },
+                                                            { "improved", false },
+                                                            { "improved", true } };
+            for (const auto &[mode, prior] : cols) {
                 const Table1Row *row = nullptr;
                 for (const auto &t : r.table1)
-                    if (t.mode == mode && t.raster_mm == raster && t.fraction16 == fr)
+                    if (t.mode == mode && t.prior == prior && t.raster_mm == raster &&
+                        t.fraction16 == fr)
                         row = &t;
                 if (row)
                     std::fprintf(f, " | %.1f %% | %.0f mm | %.0f mm", pct(row->wild, row->trials),

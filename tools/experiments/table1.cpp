@@ -1,6 +1,7 @@
 // table1.cpp - the localization experiment (paper, section 5, Table 1): leave-one-out
-// over the 28 hand-placed soundings. The other 27 soundings, placed at their measured
-// poses, make the "known map"; a random fraction of it is kept; the left-out sounding
+// over the 28 hand-placed positions. The soundings of the other 27 positions (the
+// paper's 7,616 readings suggest two at each), placed at their measured poses, make the
+// "known map"; a random fraction of it is kept; the left-out position's first sounding
 // is localized over the whole map with its heading known. An error above 0.5 m is wild.
 #include <cmath>
 #include <cstdio>
@@ -88,8 +89,41 @@ bool localize(hl_localizer_t *loc, hl_refiner_t *refiner, const Mode &m,
     return true;
 }
 
-void draw_figures(const Soundings &lab, const std::vector<std::vector<hl_vector_t>> &per,
-                  const Mode &m, const Context &ctx)
+// The soundings of each position, in log order: a position is a measured pose (the
+// operator's tile intersection and heading), consecutive soundings there share it.
+std::vector<std::vector<size_t>> by_position(const Soundings &lab)
+{
+    std::vector<std::vector<size_t>> groups;
+    for (size_t i = 0; i < lab.size(); i++) {
+        const hl_pose_t &p = lab[i]->msg.odometry;
+        bool same = !groups.empty();
+        if (same) {
+            const hl_pose_t &q = lab[groups.back()[0]]->msg.odometry;
+            same = p.x_mm == q.x_mm && p.y_mm == q.y_mm && p.theta == q.theta;
+        }
+        if (same)
+            groups.back().push_back(i);
+        else
+            groups.push_back({ i });
+    }
+    return groups;
+}
+
+// The map vectors of every position but `skip`.
+std::vector<hl_vector_t> others_of(const std::vector<std::vector<size_t>> &groups,
+                                   const std::vector<std::vector<hl_vector_t>> &per, size_t skip)
+{
+    std::vector<hl_vector_t> map;
+    for (size_t g = 0; g < groups.size(); g++)
+        if (g != skip)
+            for (size_t i : groups[g])
+                map.insert(map.end(), per[i].begin(), per[i].end());
+    return map;
+}
+
+void draw_figures(const Soundings &lab, const std::vector<std::vector<size_t>> &groups,
+                  const std::vector<std::vector<hl_vector_t>> &per, const Mode &m,
+                  const Context &ctx)
 {
     // Fig. 3: the known map, every valid reading pointing back at its robot position.
     std::vector<hl_vector_t> all;
@@ -100,7 +134,7 @@ void draw_figures(const Soundings &lab, const std::vector<std::vector<hl_vector_
     }
     save_map_figure(ctx, "fig3_known_map.png", all, where,
                     "Known map: " + std::to_string(all.size()) + " valid readings from " +
-                        std::to_string(lab.size()) + " positions" +
+                        std::to_string(groups.size()) + " positions" +
                         (m.slam.echo_bearings ? ", at their estimated echo bearings" : ""));
 
     // Figs. 4 and 5, as in the paper: a global search over the map (3/16 of it, 24 mm
@@ -111,18 +145,15 @@ void draw_figures(const Soundings &lab, const std::vector<std::vector<hl_vector_
     hl_localizer_t *loc = hl_loc_create(&p);
     Mode global = m;
     global.prior_sigma_mm = 0;
-    for (size_t k = 0; loc && k < lab.size(); k++) {
-        size_t test = (10 + k) % lab.size();
+    for (size_t k = 0; loc && k < groups.size(); k++) {
+        size_t test = (10 + k) % groups.size();
         hl_rng_t rng;
         hl_rng_seed(&rng, 3);
-        std::vector<hl_vector_t> others;
-        for (size_t j = 0; j < lab.size(); j++)
-            if (j != test)
-                others.insert(others.end(), per[j].begin(), per[j].end());
-        std::vector<hl_vector_t> map = sample(others, 3, &rng);
+        std::vector<hl_vector_t> map = sample(others_of(groups, per, test), 3, &rng);
+        const Sounding &s = *lab[groups[test][0]];
         Trial t;
-        if (localize(loc, nullptr, global, map, *lab[test], &rng, &t) && t.error_mm < 100.0) {
-            save_localization_figures(ctx, loc, map, *lab[test], t.found);
+        if (localize(loc, nullptr, global, map, s, &rng, &t) && t.error_mm < 100.0) {
+            save_localization_figures(ctx, loc, map, s, t.found);
             break;
         }
     }
@@ -136,6 +167,8 @@ std::vector<Table1Row> run_table1(const Soundings &lab, const Mode &m, const Con
     std::vector<std::vector<hl_vector_t>> per;
     for (const auto &s : lab)
         per.push_back(vectors_of(*s, m));
+    const std::vector<std::vector<size_t>> groups = by_position(lab);
+    const bool prior = m.prior_sigma_mm > 0;
     std::vector<Table1Row> rows;
     for (int raster : { 47, 24 }) {
         hl_loc_params_t p = m.loc;
@@ -150,18 +183,15 @@ std::vector<Table1Row> run_table1(const Soundings &lab, const Mode &m, const Con
             return rows;
         }
         for (int f = 1; f <= 3; f++) {
-            Table1Row row{ m.name, f, raster, 0, 0, 0, 0 };
+            Table1Row row{ m.name, prior, f, raster, 0, 0, 0, 0 };
             std::vector<double> tame;
             for (int rep = 0; rep < ctx.reps; rep++) {
                 hl_rng_t rng;
                 hl_rng_seed(&rng, static_cast<uint64_t>(1000 * rep + 16 * f + raster));
-                for (size_t i = 0; i < lab.size(); i++) {
-                    std::vector<hl_vector_t> others;
-                    for (size_t j = 0; j < lab.size(); j++)
-                        if (j != i)
-                            others.insert(others.end(), per[j].begin(), per[j].end());
+                for (size_t g = 0; g < groups.size(); g++) {
                     Trial t;
-                    if (!localize(loc, refiner, m, sample(others, f, &rng), *lab[i], &rng, &t)) {
+                    if (!localize(loc, refiner, m, sample(others_of(groups, per, g), f, &rng),
+                                  *lab[groups[g][0]], &rng, &t)) {
                         row.trials++;
                         row.wild++;     // no answer counts as a wild error
                         continue;
@@ -175,16 +205,17 @@ std::vector<Table1Row> run_table1(const Soundings &lab, const Mode &m, const Con
             }
             row.tame_mean_mm = mean(tame);
             row.tame_sigma_mm = sigma(tame);
-            progress("table1: %-8s %2d mm  %d/16: wild %5.1f %%  tame %5.1f +- %5.1f mm  (%d trials)",
-                     m.name.c_str(), raster, f, 100.0 * row.wild / row.trials,
+            progress("table1: %-8s %-8s %2d mm  %d/16: wild %5.1f %%  tame %5.1f +- %5.1f mm  (%d trials)",
+                     m.name.c_str(), prior ? "prior" : "no prior", raster, f,
+                     100.0 * row.wild / row.trials,
                      row.tame_mean_mm, row.tame_sigma_mm, row.trials);
             rows.push_back(row);
         }
         hl_refine_destroy(refiner);
         hl_loc_destroy(loc);
     }
-    if (ctx.figures && m.name == "improved")
-        draw_figures(lab, per, m, ctx);
+    if (ctx.figures && m.name == "improved" && prior)
+        draw_figures(lab, groups, per, m, ctx);
     return rows;
 }
 

@@ -39,6 +39,9 @@ int req_usage_error(const char *prog, const char *fmt, ...)
 
 bool req_parse_number(const char *s, double *out)
 {
+    /* no leading spaces and no hexadecimal, which strtod would also take */
+    if (isspace((unsigned char)*s) || strpbrk(s, "xX"))
+        return false;
     char *end;
     errno = 0;
     double v = strtod(s, &end);

@@ -47,8 +47,9 @@ typedef struct req_options {
 __attribute__((format(printf, 2, 3))) int req_usage_error(const char *prog, const char *fmt,
                                                           ...);
 
-/** @return true when the whole of @p s (not NULL) is a number, possibly inf or nan, and
- *          then stores it in @p out (not NULL). */
+/** @return true when the whole of @p s (not NULL) is a decimal number, possibly inf or
+ *          nan (no leading spaces, no hexadecimal), and then stores it in @p out (not
+ *          NULL). */
 bool req_parse_number(const char *s, double *out);
 
 /**

@@ -7,6 +7,7 @@
  * MAP message is taken. Writes OUTBASE.png (mapdraw.h), OUTBASE.pgm and OUTBASE.yaml
  * (mapgrid.h). Every log is checked with hl_log_check before liblcm reads it (runlog.h).
  */
+#include <ctype.h>
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -222,7 +223,9 @@ static int parse(int argc, char **argv, options_t *o)
         case 'r':
             errno = 0;
             o->resolution_m = strtod(optarg, &end);
-            if (end == optarg || *end || errno || !(o->resolution_m >= 0.001) ||
+            /* plain decimals only: strtod would also skip spaces and read hexadecimal */
+            if (!(isdigit((unsigned char)*optarg) || *optarg == '.') || strpbrk(optarg, "xX") ||
+                end == optarg || *end || errno || !(o->resolution_m >= 0.001) ||
                 !(o->resolution_m <= 100))
                 return bad_usage("--resolution '%s' is not a cell size of 0.001..100 m", optarg);
             break;

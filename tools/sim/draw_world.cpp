@@ -1,9 +1,12 @@
 // draw_world.cpp - hl-sim-draw: a PNG of a simulator world, its named positions, the
 // tour, and one simulated sounding, for checking a world by eye.
 #include <cairo.h>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 
 #include "houghloc/calib.h"
@@ -22,7 +25,45 @@ void usage(FILE *f)
                  "usage: hl-sim-draw [--world FILE] [--out FILE.png] [--position NAME]\n"
                  "                   [--seed N] [--tour] [--px-per-m N]\n"
                  "Draws the world (default: built-in lab), its positions, one sounding at\n"
-                 "NAME (default: the first position) and, with --tour, the tour order.\n");
+                 "NAME (default: the first position) and, with --tour, the tour order.\n"
+                 "--seed: the sounding's random draws, 0..18446744073709551615 (default 1);\n"
+                 "--px-per-m: the scale, 10..400 (default 80).\n");
+}
+
+// One line naming the option and its value, exit status 2.
+int bad_value(const char *option, const char *value, const char *want)
+{
+    std::fprintf(stderr, "hl-sim-draw: %s '%s': expected %s (try --help)\n", option, value, want);
+    return 2;
+}
+
+// A whole decimal number 0..UINT64_MAX: no sign, no spaces, no trailing characters.
+bool parse_seed(const char *s, uint64_t *out)
+{
+    if (*s < '0' || *s > '9')
+        return false;
+    char *end = nullptr;
+    errno = 0;
+    unsigned long long v = std::strtoull(s, &end, 10);
+    if (*end != '\0' || errno == ERANGE)
+        return false;
+    *out = v;
+    return true;
+}
+
+// A plain decimal number (no hexadecimal, no spaces, nothing after it) in [lo, hi].
+bool parse_decimal(const char *s, double lo, double hi, double *out)
+{
+    if (!(*s == '-' || *s == '+' || *s == '.' || (*s >= '0' && *s <= '9')) ||
+        std::strpbrk(s, "xX") != nullptr)
+        return false;
+    char *end = nullptr;
+    errno = 0;
+    double v = std::strtod(s, &end);
+    if (*end != '\0' || errno == ERANGE || !(v >= lo && v <= hi))
+        return false;
+    *out = v;
+    return true;
 }
 
 }  // namespace
@@ -46,18 +87,16 @@ int main(int argc, char **argv)
         } else if (a == "--position" && v) {
             pos_name = argv[++i];
         } else if (a == "--seed" && v) {
-            seed = std::strtoull(argv[++i], nullptr, 10);
+            if (!parse_seed(argv[++i], &seed))
+                return bad_value("--seed", argv[i], "an integer 0..18446744073709551615");
         } else if (a == "--px-per-m" && v) {
-            px_per_m = std::atof(argv[++i]);
-            if (!(px_per_m >= 10.0 && px_per_m <= 400.0)) {
-                std::fprintf(stderr, "hl-sim-draw: --px-per-m must be 10..400\n");
-                return 2;
-            }
+            if (!parse_decimal(argv[++i], 10.0, 400.0, &px_per_m))
+                return bad_value("--px-per-m", argv[i], "pixels per metre, 10..400");
         } else if (a == "--tour") {
             draw_tour = true;
         } else {
-            std::fprintf(stderr, "hl-sim-draw: unknown or incomplete option '%s'\n", a.c_str());
-            usage(stderr);
+            std::fprintf(stderr, "hl-sim-draw: unknown or incomplete option '%s' (try --help)\n",
+                         a.c_str());
             return 2;
         }
     }

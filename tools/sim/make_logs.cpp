@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <string>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include "layout.hpp"
 #include "logwriter.hpp"
 #include "robot.hpp"
 #include "tour.hpp"
@@ -22,7 +24,6 @@ using namespace hlsim;
 namespace {
 
 constexpr int64_t kBaseUtime = 1000000000000000LL;  // 1e15 us; any fixed base will do
-constexpr double kMinClearance = 500.0;             // sounding positions vs obstacles
 
 struct Options {
     uint64_t seed = 1;
@@ -30,17 +31,29 @@ struct Options {
     std::string world;  // empty: built-in lab
     int tour_min_stops = 100;
     double rotation_sigma_deg = RobotParams{}.rotation_sigma_deg;
+    int soundings = 2;          // per Table 1 position
+    bool declared = false;      // Table 1 at the world's `position` lines, not drawn
 };
+
+constexpr int kPositions = 28;  // the paper's Table 1
 
 void usage(FILE *f)
 {
     std::fprintf(f,
-                 "usage: hl-sim-logs [--seed N] [--out-dir DIR] [--world FILE] [--rotation-sigma-deg S]\n"
+                 "usage: hl-sim-logs [--seed N] [--out-dir DIR] [--world FILE] [--soundings N]\n"
+                 "                   [--declared-positions] [--rotation-sigma-deg S]\n"
                  "Writes DIR/lab28.lcmlog, DIR/orientation.lcmlog and DIR/tour.lcmlog:\n"
                  "simulated sonar soundings (SONAR, SONAR_TEST), odometry (ODOMETRY) and\n"
-                 "true poses (GROUND_TRUTH) in the default lab world or FILE.\n"
-                 "--rotation-sigma-deg sets the error of each of the body's rotation steps\n"
-                 "within a sounding (0..5 degrees; default %.1f), to study its effect.\n"
+                 "true poses (GROUND_TRUTH) in the default lab world or FILE. The three\n"
+                 "are written to a temporary folder in DIR and renamed into place together:\n"
+                 "a failed run leaves DIR as it was.\n"
+                 "  --seed N               everything is a function of it (default 1)\n"
+                 "  --soundings N          soundings at each of Table 1's 28 positions, 1..8\n"
+                 "                         (default 2: the paper's 7,616 readings)\n"
+                 "  --declared-positions   Table 1 at the world's `position` lines instead of\n"
+                 "                         28 drawn per seed on its `open` floor\n"
+                 "  --rotation-sigma-deg S error of each of the body's rotation steps within\n"
+                 "                         a sounding (0..5 degrees; default %.1f)\n"
                  "Same seed, same bytes. Defaults: --seed 1 --out-dir logs.\n",
                  RobotParams{}.rotation_sigma_deg);
 }
@@ -54,24 +67,33 @@ uint64_t mix(uint64_t seed, uint64_t set)
     return z ^ (z >> 31);
 }
 
-void report(const char *path, const LogStats &s)
+void report(const char *path, const char *shown, const LogStats &s)
 {
     struct stat st;
     long size = stat(path, &st) == 0 ? static_cast<long>(st.st_size) : -1;
     double n = s.readings > 0 ? s.readings : 1;
     std::printf("%-28s %7ld bytes  %3d scans  %5d odometry  valid %.1f%%  cable %.1f%%  "
                 "sentinel %.1f%%  multipath %.1f%%\n",
-                path, size, s.scans, s.odometry, 100.0 * s.valid / n, 100.0 * s.cable / n,
+                shown, size, s.scans, s.odometry, 100.0 * s.valid / n, 100.0 * s.cable / n,
                 100.0 * s.sentinel / n, 100.0 * s.multipath / n);
+}
+
+// The name a log will have once renamed into place (write_set): without the temporary
+// folder.
+std::string final_name(const std::string &path)
+{
+    std::size_t a = path.find("/.hl-sim-logs.");
+    std::size_t b = a == std::string::npos ? a : path.find('/', a + 1);
+    return b == std::string::npos ? path : path.substr(0, a) + path.substr(b);
 }
 
 bool finish(LogWriter &log, const std::string &path)
 {
     if (!log.close()) {
-        std::fprintf(stderr, "hl-sim-logs: %s: write failed\n", path.c_str());
+        std::fprintf(stderr, "hl-sim-logs: %s: write failed\n", final_name(path).c_str());
         return false;
     }
-    report(path.c_str(), log.stats());
+    report(path.c_str(), final_name(path).c_str(), log.stats());
     return true;
 }
 
@@ -102,10 +124,11 @@ bool open_log(LogWriter *log, const std::string &path)
     return false;
 }
 
-// Experiment 1: the robot set down by hand at each named position. The operator's
-// measurement (the nominal tile intersection and heading) is what the ODOMETRY and
-// scan odometry carry; the true pose differs by the placement error.
-bool lab28(const World &w, const Options &o, const std::string &path)
+// Experiment 1: the robot set down by hand at each position, sounding o.soundings times
+// there. The operator's measurement (the nominal tile intersection and heading) is what
+// the ODOMETRY and scan odometry carry; the true pose differs by the placement error.
+bool lab28(const World &w, const Options &o, const std::vector<Position> &positions,
+           const std::string &path)
 {
     Rig rig(w, o, 1);
     Rng &rng = rig.rng;
@@ -116,15 +139,17 @@ bool lab28(const World &w, const Options &o, const std::string &path)
         return false;
     const double place_sigma_mm = 5.0, place_sigma_deg = 1.0;
     int32_t seq = 0;
-    for (const Position &p : w.positions) {
+    for (const Position &p : positions) {
         Pose truth = p.pose;
         truth.x += rng.normal(0.0, place_sigma_mm);
         truth.y += rng.normal(0.0, place_sigma_mm);
         truth.theta = wrap_pi(truth.theta + deg2rad(rng.normal(0.0, place_sigma_deg)));
         robot.wait(60.0);  // carrying the robot to the next tile
         robot.place(truth, p.pose);
-        log.odometry({OdoSample{robot.utime(), p.pose, 0.0, true}});
-        log.sounding(robot.sound(), seq++, sp.calib);
+        for (int k = 0; k < o.soundings; k++) {
+            log.odometry({OdoSample{robot.utime(), p.pose, 0.0, true}});
+            log.sounding(robot.sound(), seq++, sp.calib);
+        }
     }
     return finish(log, path);
 }
@@ -139,18 +164,12 @@ bool orientation(const World &w, const Options &o, const std::string &path)
     LogWriter log;
     if (!open_log(&log, path))
         return false;
-    // The square's south-west corner: tile intersection (8, 0), where the west part
-    // opens into the leg; all seven positions have 0.5 m clearance there.
-    const Vec2 c0{8 * kTileMm, 0.0};
-    const Vec2 base[6] = {{0, 0}, {750, 0}, {1500, 0}, {1500, 1500}, {750, 1500}, {0, 1500}};
-    const Vec2 centre = c0 + Vec2{750, 750};
-    for (Vec2 b : base)
-        for (Vec2 q : {c0 + b, centre})
-            if (w.clearance(q) < kMinClearance) {
-                std::fprintf(stderr, "hl-sim-logs: orientation position (%.0f, %.0f) is "
-                                     "within %.0f mm of an obstacle\n", q.x, q.y, kMinClearance);
-                return false;
-            }
+    // The square the world declares (`orientation X Y`: its south-west corner);
+    // check_layout has made sure its seven positions keep their clearance.
+    const Vec2 c0 = w.orientation_corner;
+    const double s = kOrientationSideMm;
+    const Vec2 base[6] = {{0, 0}, {s / 2, 0}, {s, 0}, {s, s}, {s / 2, s}, {0, s}};
+    const Vec2 centre = c0 + Vec2{s / 2, s / 2};
     Pose start{c0.x, c0.y, 0.0};
     robot.place(start, start);  // odometry frame = world frame at power-on
     int32_t seq = 0;
@@ -177,8 +196,8 @@ bool tour(const World &w, const Options &o, const std::string &path)
     Rig rig(w, o, 3);
     Robot &robot = rig.robot;
     const SonarParams &sp = rig.sonar;
-    // Start in the dense north-west corner and grow outward through the whole L.
-    std::vector<TourStop> stops = tour_order(w, lab_tour_start(), kTileMm, kTourClearanceMm);
+    // Start where the world says (the lab: its dense north-west corner) and grow outward.
+    std::vector<TourStop> stops = tour_order(w, w.tour_start, w.tile_mm, kTourClearanceMm);
     if (static_cast<int>(stops.size()) < o.tour_min_stops) {
         std::fprintf(stderr, "hl-sim-logs: the tour has %zu stops, want at least %d\n",
                      stops.size(), o.tour_min_stops);
@@ -203,6 +222,39 @@ bool tour(const World &w, const Options &o, const std::string &path)
     return finish(log, path);
 }
 
+// The three logs into a temporary folder inside the output folder, then renamed into
+// place together: a failed or interrupted run never leaves a mixed set behind.
+bool write_set(const World &w, const Options &o, const std::vector<Position> &positions)
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(o.out_dir, ec);   // like mkdir -p
+    if (ec) {
+        std::fprintf(stderr, "hl-sim-logs: %s: %s\n", o.out_dir.c_str(), ec.message().c_str());
+        return false;
+    }
+    const std::string tmp = o.out_dir + "/.hl-sim-logs." + std::to_string(getpid());
+    fs::remove_all(tmp, ec);
+    if (!fs::create_directory(tmp, ec) || ec) {
+        std::fprintf(stderr, "hl-sim-logs: %s: %s\n", tmp.c_str(),
+                     ec ? ec.message().c_str() : "exists");
+        return false;
+    }
+    const char *names[3] = {"lab28.lcmlog", "orientation.lcmlog", "tour.lcmlog"};
+    bool ok = lab28(w, o, positions, tmp + "/" + names[0]) &&
+              orientation(w, o, tmp + "/" + names[1]) && tour(w, o, tmp + "/" + names[2]);
+    for (int k = 0; ok && k < 3; k++) {
+        fs::rename(tmp + "/" + names[k], o.out_dir + "/" + names[k], ec);
+        if (ec) {
+            std::fprintf(stderr, "hl-sim-logs: %s/%s: %s\n", o.out_dir.c_str(), names[k],
+                         ec.message().c_str());
+            ok = false;
+        }
+    }
+    fs::remove_all(tmp, ec);
+    return ok;
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -223,6 +275,17 @@ int main(int argc, char **argv)
                 return 2;
             }
             o.seed = s;
+        } else if (a == "--soundings" && has_value) {
+            char *end = nullptr;
+            const char *v = argv[++i];
+            long n = std::strtol(v, &end, 10);
+            if (*v == '\0' || *end != '\0' || n < 1 || n > 8) {
+                std::fprintf(stderr, "hl-sim-logs: --soundings wants 1..8, got '%s'\n", v);
+                return 2;
+            }
+            o.soundings = static_cast<int>(n);
+        } else if (a == "--declared-positions") {
+            o.declared = true;
         } else if (a == "--out-dir" && has_value) {
             o.out_dir = argv[++i];
         } else if (a == "--world" && has_value) {
@@ -248,24 +311,19 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
         return 1;
     }
-    if (w.positions.empty()) {
+    std::vector<Position> positions = w.positions;
+    Rng layout_rng(mix(o.seed, 0));
+    if (!o.declared && !draw_positions(w, kPositions, layout_rng, &positions, &err)) {
+        std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
+        return 1;
+    }
+    if (o.declared && positions.empty()) {
         std::fprintf(stderr, "hl-sim-logs: the world has no 'position' lines\n");
         return 1;
     }
-    for (const Position &p : w.positions)
-        if (w.clearance(p.pose.pos()) < kMinClearance) {
-            std::fprintf(stderr, "hl-sim-logs: position %s is within %.0f mm of an obstacle\n",
-                         p.name.c_str(), kMinClearance);
-            return 1;
-        }
-    std::error_code ec;
-    std::filesystem::create_directories(o.out_dir, ec);   // like mkdir -p
-    if (ec) {
-        std::fprintf(stderr, "hl-sim-logs: %s: %s\n", o.out_dir.c_str(), ec.message().c_str());
+    if (!check_layout(w, positions, &err)) {
+        std::fprintf(stderr, "hl-sim-logs: %s\n", err.c_str());
         return 1;
     }
-    bool ok = lab28(w, o, o.out_dir + "/lab28.lcmlog") &&
-              orientation(w, o, o.out_dir + "/orientation.lcmlog") &&
-              tour(w, o, o.out_dir + "/tour.lcmlog");
-    return ok ? 0 : 1;
+    return write_set(w, o, positions) ? 0 : 1;
 }

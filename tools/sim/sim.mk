@@ -5,7 +5,8 @@
 #                (deterministic: byte-identical every time)
 
 SIM_SRCS := tools/sim/world.cpp tools/sim/sonar.cpp tools/sim/robot.cpp \
-            tools/sim/calib_fit.cpp tools/sim/tour.cpp tools/sim/logwriter.cpp
+            tools/sim/calib_fit.cpp tools/sim/tour.cpp tools/sim/logwriter.cpp \
+            tools/sim/layout.cpp
 SIM_WORLD_SRC := $(BUILD)/gen/sim_lab_world.cpp
 
 SIM_LIB      := $(BUILD)/lib/libhoughloc_sim.a

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <limits>
@@ -48,6 +49,47 @@ bool valid_name(const std::string &n)
         return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') ||
                (ch >= '0' && ch <= '9') || ch == '_' || ch == '-';
     });
+}
+
+// The optional last word of a shape line.
+bool parse_surface(const std::string &word, Surface *out)
+{
+    if (word == "smooth")
+        *out = Surface::Smooth;
+    else if (word == "rough")
+        *out = Surface::Rough;
+    else if (word == "thin")
+        *out = Surface::Thin;
+    else
+        return false;
+    return true;
+}
+
+// Whether strtod reads all of @p tok (nan and inf included).
+bool numeric(const std::string &tok)
+{
+    char *end = nullptr;
+    (void)std::strtod(tok.c_str(), &end);
+    return end != tok.c_str() && *end == '\0';
+}
+
+// Parses @p count numbers after the keyword of a directive line, each a coordinate.
+bool parse_coords(const std::vector<std::string> &w, std::size_t count, const char *usage,
+                  double *v, std::string *what)
+{
+    if (w.size() != count + 1) {
+        *what = std::string(usage);
+        return false;
+    }
+    for (std::size_t i = 0; i < count; i++) {
+        if (!parse_number(w[1 + i], &v[i], what))
+            return false;
+        if (std::fabs(v[i]) > kWorldCoordMax) {
+            *what = "coordinate " + w[1 + i] + " beyond +-4000000 mm";
+            return false;
+        }
+    }
+    return true;
 }
 
 Vec2 facing(Vec2 n, Vec2 dir)
@@ -116,6 +158,14 @@ bool World::parse_line(const std::string &line, std::string *what)
         return true;
     }
 
+    if (kw == "tiles" || kw == "open" || kw == "orientation" || kw == "tour")
+        return parse_layout(w, what);
+
+    // A shape line may end with a surface word.
+    Surface surface = Surface::Smooth;
+    if (w.size() > 1 && parse_surface(w.back(), &surface))
+        w.pop_back();
+
     std::size_t want;
     if (kw == "segment" || kw == "box")
         want = 4;
@@ -126,10 +176,22 @@ bool World::parse_line(const std::string &line, std::string *what)
     else if (kw == "polygon")
         want = 0;  // checked below
     else {
-        *what = "unknown keyword '" + kw + "' (expected segment, polygon, box, rbox, circle, position)";
+        *what = "unknown keyword '" + kw + "' (expected segment, polygon, box, rbox, circle, "
+                "position, tiles, open, orientation, tour)";
         return false;
     }
     std::size_t n = w.size() - 1;
+    // One word too many that is not a number: a misspelt surface.
+    bool extra = kw == "polygon" ? n >= 7 && n % 2 != 0 : n == want + 1;
+    Surface second;
+    if (extra && parse_surface(w.back(), &second)) {
+        *what = "more than one surface word";
+        return false;
+    }
+    if (extra && !numeric(w.back())) {
+        *what = "unknown surface '" + w.back() + "' (expected smooth, rough or thin)";
+        return false;
+    }
     if (kw == "polygon") {
         if (n < 6 || n % 2 != 0) {
             *what = "polygon needs at least 3 x y pairs, got " + std::to_string(n) + " numbers";
@@ -158,6 +220,7 @@ bool World::parse_line(const std::string &line, std::string *what)
         return false;
     }
 
+    std::size_t first_segment = segments.size();
     if (kw == "segment") {
         Segment s{{v[0], v[1]}, {v[2], v[3]}};
         if ((s.b - s.a).norm() < 1.0) {
@@ -198,7 +261,58 @@ bool World::parse_line(const std::string &line, std::string *what)
             *what = "circle radius must be at least 1 mm";
             return false;
         }
-        circles.push_back({{v[0], v[1]}, v[2]});
+        circles.push_back({{v[0], v[1]}, v[2], surface});
+    }
+    for (std::size_t i = first_segment; i < segments.size(); i++)
+        segments[i].surface = surface;
+    return true;
+}
+
+// The experiments' layout: tiles, open, orientation, tour.
+bool World::parse_layout(const std::vector<std::string> &w, std::string *what)
+{
+    const std::string &kw = w[0];
+    double v[4];
+    if (kw == "tiles") {
+        if (seen_tiles_) {
+            *what = "tiles given twice";
+            return false;
+        }
+        if (w.size() != 2) {
+            *what = "tiles needs 1 number (the tile size in mm)";
+            return false;
+        }
+        if (!parse_number(w[1], &v[0], what))
+            return false;
+        if (v[0] < 100.0 || v[0] > 2000.0) {
+            *what = "tile size " + w[1] + " outside 100..2000 mm";
+            return false;
+        }
+        tile_mm = v[0];
+        seen_tiles_ = true;
+    } else if (kw == "open") {
+        if (!parse_coords(w, 4, "open needs X0 Y0 X1 Y1", v, what))
+            return false;
+        if (!(v[0] < v[2] && v[1] < v[3])) {
+            *what = "open rectangle needs X0 < X1 and Y0 < Y1";
+            return false;
+        }
+        if (open.size() >= kWorldMaxOpen) {
+            *what = "too many open rectangles (limit " + std::to_string(kWorldMaxOpen) + ")";
+            return false;
+        }
+        open.push_back({{v[0], v[1]}, {v[2], v[3]}});
+    } else {
+        bool is_tour = kw == "tour";
+        bool &seen = is_tour ? has_tour : has_orientation;
+        if (seen) {
+            *what = kw + " given twice";
+            return false;
+        }
+        if (!parse_coords(w, 2, is_tour ? "tour needs X Y" : "orientation needs X Y", v, what))
+            return false;
+        (is_tour ? tour_start : orientation_corner) = Vec2{v[0], v[1]};
+        seen = true;
     }
     return true;
 }
@@ -278,6 +392,8 @@ bool World::cast(Vec2 o, Vec2 d, double max_dist, Hit *hit) const
             hit->point = o + d * t;
             Vec2 n{-e.y, e.x};
             hit->normal = facing(n * (1.0 / e.norm()), d);
+            hit->surface = s.surface;
+            hit->radius = 0.0;
         }
     }
     for (const Circle &c : circles) {
@@ -296,6 +412,8 @@ bool World::cast(Vec2 o, Vec2 d, double max_dist, Hit *hit) const
             hit->dist = t;
             hit->point = o + d * t;
             hit->normal = facing((hit->point - c.c) * (1.0 / c.r), d);
+            hit->surface = c.surface;
+            hit->radius = c.r;
         }
     }
     return found;
@@ -309,6 +427,23 @@ double World::clearance(Vec2 p) const
     for (const Circle &c : circles)
         best = std::min(best, std::max(0.0, (p - c.c).norm() - c.r));
     return best;
+}
+
+bool World::enclosed(Vec2 p, std::string *err) const
+{
+    Hit h;
+    for (int deg = 0; deg < 360; deg++) {
+        if (!cast(p, Vec2::polar(deg2rad(deg)), 2.0 * kWorldCoordMax, &h)) {
+            char buf[160];
+            std::snprintf(buf, sizeof buf,
+                          "the world is not closed around (%.1f, %.1f): a ray at %d degrees "
+                          "meets nothing",
+                          p.x, p.y, deg);
+            *err = buf;
+            return false;
+        }
+    }
+    return true;
 }
 
 const Position *World::find(const std::string &name) const

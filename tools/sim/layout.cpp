@@ -1,0 +1,140 @@
+// layout.cpp - positions drawn on the open floor, and the layout checks (layout.hpp).
+#include "layout.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace hlsim {
+
+namespace {
+
+std::string at(Vec2 p)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "(%.0f, %.0f)", p.x, p.y);
+    return buf;
+}
+
+bool clear(const World &w, Vec2 p, const char *what, std::string *err)
+{
+    if (w.clearance(p) >= kPositionClearanceMm)
+        return true;
+    *err = std::string(what) + " " + at(p) + " is within " +
+           std::to_string(static_cast<int>(kPositionClearanceMm)) + " mm of a surface";
+    return false;
+}
+
+}  // namespace
+
+std::vector<Vec2> open_intersections(const World &w)
+{
+    std::vector<Vec2> out;
+    const double t = w.tile_mm;
+    for (const Rect &r : w.open) {
+        long i0 = std::lround(std::ceil(r.lo.x / t)), i1 = std::lround(std::floor(r.hi.x / t));
+        long j0 = std::lround(std::ceil(r.lo.y / t)), j1 = std::lround(std::floor(r.hi.y / t));
+        for (long j = j0; j <= j1; j++)
+            for (long i = i0; i <= i1; i++) {
+                Vec2 p{static_cast<double>(i) * t, static_cast<double>(j) * t};
+                bool seen = false;  // rectangles may overlap
+                for (Vec2 q : out)
+                    seen = seen || (std::fabs(q.x - p.x) < 1e-6 && std::fabs(q.y - p.y) < 1e-6);
+                if (!seen && w.clearance(p) >= kPositionClearanceMm)
+                    out.push_back(p);
+            }
+    }
+    return out;
+}
+
+bool draw_positions(const World &w, int count, Rng &rng, std::vector<Position> *out,
+                    std::string *err)
+{
+    out->clear();
+    if (w.open.empty()) {
+        *err = "the world declares no open floor ('open' lines) to draw positions on";
+        return false;
+    }
+    const std::vector<Vec2> free = open_intersections(w);
+    const double t = w.tile_mm;
+    if (static_cast<int>(free.size()) < count) {
+        *err = "the open floor has " + std::to_string(free.size()) + " tile intersections " +
+               std::to_string(static_cast<int>(kPositionClearanceMm)) +
+               " mm from every surface, fewer than the " + std::to_string(count) +
+               " positions to draw";
+        return false;
+    }
+    // A compact cluster, as the paper's positions were (its Figure 2): a random first
+    // intersection, then each next one drawn at random among the free intersections
+    // nearest the cluster (its 8 neighbours, when any is free; an obstacle may split
+    // the floor, and then the cluster jumps to the nearest free one beyond it).
+    std::vector<Vec2> cluster{free[static_cast<std::size_t>(
+        rng.uniform_int(0, static_cast<int64_t>(free.size()) - 1))]};
+    std::vector<bool> taken(free.size(), false);
+    for (std::size_t i = 0; i < free.size(); i++)
+        taken[i] = std::fabs(free[i].x - cluster[0].x) < 1e-6 &&
+                   std::fabs(free[i].y - cluster[0].y) < 1e-6;
+    while (static_cast<int>(cluster.size()) < count) {
+        double best = 1e300;
+        std::vector<std::size_t> rim;
+        for (std::size_t i = 0; i < free.size(); i++) {
+            if (taken[i])
+                continue;
+            double d = 1e300;
+            for (Vec2 c : cluster)
+                d = std::min(d, std::max(std::fabs(c.x - free[i].x), std::fabs(c.y - free[i].y)));
+            d = std::max(d, t);   // every 8-neighbour is as near as any
+            if (d < best - 1e-6) {
+                best = d;
+                rim.clear();
+            }
+            if (std::fabs(d - best) < 1e-6)
+                rim.push_back(i);
+        }
+        std::size_t pick = rim[static_cast<std::size_t>(
+            rng.uniform_int(0, static_cast<int64_t>(rim.size()) - 1))];
+        taken[pick] = true;
+        cluster.push_back(free[pick]);
+    }
+    {
+        for (int k = 0; k < count; k++) {
+            double heading = static_cast<double>(rng.uniform_int(0, 3)) * kPi / 2.0;
+            char name[16];
+            std::snprintf(name, sizeof name, "P%02d", k + 1);
+            const Vec2 p = cluster[static_cast<std::size_t>(k)];
+            out->push_back({name, Pose{p.x, p.y, wrap_pi(heading)}});
+        }
+    }
+    return true;
+}
+
+bool check_layout(const World &w, const std::vector<Position> &positions, std::string *err)
+{
+    if (!w.has_orientation) {
+        *err = "the world declares no orientation square ('orientation X Y')";
+        return false;
+    }
+    if (!w.has_tour) {
+        *err = "the world declares no tour start ('tour X Y')";
+        return false;
+    }
+    if (positions.empty()) {
+        *err = "no sounding positions";
+        return false;
+    }
+    if (!w.enclosed(w.tour_start, err))
+        return false;
+    for (const Position &p : positions)
+        if (!clear(w, p.pose.pos(), ("position " + p.name).c_str(), err) ||
+            !w.enclosed(p.pose.pos(), err))
+            return false;
+    const double s = kOrientationSideMm;
+    const Vec2 c0 = w.orientation_corner;
+    for (Vec2 b : {Vec2{0, 0}, Vec2{s / 2, 0}, Vec2{s, 0}, Vec2{s, s}, Vec2{s / 2, s},
+                   Vec2{0, s}, Vec2{s / 2, s / 2}})
+        if (!clear(w, c0 + b, "orientation position", err) || !w.enclosed(c0 + b, err))
+            return false;
+    return true;
+}
+
+}  // namespace hlsim
