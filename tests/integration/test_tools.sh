@@ -108,6 +108,8 @@ check "--rotation-sigma-deg 0.3 is the default" cmp -s "$tmp/rot_default/lab28.l
 check "--rotation-sigma-deg 0 changes the soundings" sh -c '! cmp -s "$1" logs/lab28.lcmlog' - "$tmp/rot_none/lab28.lcmlog"
 rejects "bad --rotation-sigma-deg" "--rotation-sigma-deg" "$BIN/hl-sim-logs" --rotation-sigma-deg -1 --out-dir "$tmp/w"
 rejects "bad --soundings" "--soundings" "$BIN/hl-sim-logs" --soundings 0 --out-dir "$tmp/w"
+rejects "a seed beyond 64 bits" "--seed" "$BIN/hl-sim-logs" --seed 99999999999999999999 --out-dir "$tmp/w"
+rejects "an unknown option to hl-sim-logs, in one line" "--bogus" "$BIN/hl-sim-logs" --bogus
 # Another building: the corridor world's own layout, orientation square and tour.
 "$BIN/hl-sim-logs" --seed 2 --world tools/sim/worlds/corridor.world --out-dir "$tmp/corr" >/dev/null
 check "hl-sim-logs makes the corridor world's three logs" \
@@ -157,9 +159,9 @@ cat "$tmp/rest.lcmlog" "$tmp/first10.lcmlog" >"$tmp/dup/lab28.lcmlog"
 rejects "decreasing scan seq in a log" "SONAR: seq 0 after seq " \
     "$BIN/hl-experiments" --logs "$tmp/dup" --only table1 --out "$tmp/x" --no-figures
 
-# Every program answers --help on stdout with exit 0 (hl-pose-bytes, a test helper, and
-# gen_trig_table, a build step, take no options).
-for p in hl-bench hl-bench-cycle hl-calibrate hl-eval hl-experiments hl-sim-draw hl-sim-logs \
+# Every program answers --help on stdout with exit 0 (gen_trig_table, a build step, takes
+# no options).
+for p in hl-bench hl-bench-cycle hl-calibrate hl-eval hl-experiments hl-pose-bytes hl-sim-draw hl-sim-logs \
          houghloc-ctl houghloc-eval houghloc-goto houghloc-import-carmen houghloc-map houghlocd; do
     "$BIN/$p" --help >"$tmp/out" 2>"$tmp/err"
     check "$p --help: exit 0, usage on stdout" sh -c '[ "$1" -eq 0 ] && [ ! -s "$3" ] &&

@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "houghloc_pose_t.h"
 
@@ -43,9 +44,16 @@ int main(int argc, char **argv)
     long long v[NARGS] = { 0 };
     float confidence = 0.0f;
 
+    static const char usage[] = "usage: hl-pose-bytes UTIME SCAN_SEQ X_MM Y_MM HEADING_BAM "
+                                "STATUS CONFIDENCE PEAK SECOND VOTES\n"
+                                "Prints the LCM encoding of one houghloc_pose_t, in hex (the "
+                                "bindings' cross-language check).\n";
+    if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
+        fputs(usage, stdout);
+        return 0;
+    }
     if (argc != NARGS + 1) {
-        fprintf(stderr, "usage: hl-pose-bytes UTIME SCAN_SEQ X_MM Y_MM HEADING_BAM STATUS "
-                        "CONFIDENCE PEAK SECOND VOTES\n");
+        fputs("hl-pose-bytes: want 10 fields (--help)\n", stderr);
         return 2;
     }
     for (int i = 0; i < NARGS; i++) {

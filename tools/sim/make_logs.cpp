@@ -4,6 +4,7 @@
 // Everything is a function of --seed: each data set draws from its own generator,
 // seeded with (seed, data-set number), and timestamps are simulated time from a fixed
 // base, so the same seed rewrites byte-identical files.
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -269,8 +270,9 @@ int main(int argc, char **argv)
         } else if (a == "--seed" && has_value) {
             char *end = nullptr;
             const char *v = argv[++i];
+            errno = 0;
             unsigned long long s = std::strtoull(v, &end, 10);
-            if (*v == '\0' || *v == '-' || *end != '\0') {
+            if (*v < '0' || *v > '9' || *end != '\0' || errno == ERANGE) {
                 std::fprintf(stderr, "hl-sim-logs: --seed wants a non-negative integer, got '%s'\n", v);
                 return 2;
             }
@@ -300,8 +302,8 @@ int main(int argc, char **argv)
             }
             o.rotation_sigma_deg = d;
         } else {
-            std::fprintf(stderr, "hl-sim-logs: unknown or incomplete option '%s'\n", a.c_str());
-            usage(stderr);
+            std::fprintf(stderr, "hl-sim-logs: unknown or incomplete option '%s' (--help)\n",
+                         a.c_str());
             return 2;
         }
     }
