@@ -42,7 +42,10 @@ extern "C" {
 #define HL_ECHO_MAX_CANDIDATES 257
 
 typedef struct hl_echo_params {
-    hl_bam_t half_beam;         /* half the cone's full width; default 11 deg (1..45 deg) */
+    hl_bam_t half_beam;         /* half the width within which an echo can come from;
+                                   default 7 deg, where a Polaroid-type transducer's
+                                   two-way response is 12 dB down (1..45 deg); 11 for a
+                                   hard 22-degree cone */
     hl_bam_t step;              /* spacing of candidate bearings; default 0.5 deg */
     uint16_t noise_mm;          /* range noise sigma = noise_mm + range * noise_permille
                                    / 1000; defaults 10 mm and 10 (1 %) */

@@ -5,7 +5,10 @@
 
 void hl_echo_params_default(hl_echo_params_t *p)
 {
-    p->half_beam = hl_bam_from_deg(11.0);
+    /* Not the 22-degree cone's 11: an echo must clear the receiver's threshold, and off
+     * the axis the beam loses it; 7 degrees is about where a Polaroid-type piston's
+     * two-way response is 12 dB down (docs/simulator.md, "Echo model"). */
+    p->half_beam = hl_bam_from_deg(7.0);
     p->step = hl_bam_from_deg(0.5);
     p->noise_mm = 10;
     p->noise_permille = 10;

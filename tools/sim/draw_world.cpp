@@ -126,10 +126,10 @@ int main(int argc, char **argv)
     auto X = [&](double x) { return (x - lo.x + margin) * s; };
     auto Y = [&](double y) { return height - (y - lo.y + margin) * s; };
 
-    // Floor tiles, two feet.
+    // Floor tiles (the world's `tiles`; two feet in the lab).
     cairo_set_source_rgb(cr, 0.88, 0.88, 0.92);
     cairo_set_line_width(cr, 0.5);
-    const double tile = kTileMm;
+    const double tile = w.tile_mm;
     for (double x = std::floor(lo.x / tile) * tile; x <= hi.x; x += tile) {
         cairo_move_to(cr, X(x), Y(lo.y));
         cairo_line_to(cr, X(x), Y(hi.y));
@@ -154,7 +154,8 @@ int main(int argc, char **argv)
     cairo_stroke(cr);
 
     if (draw_tour) {
-        std::vector<TourStop> stops = tour_order(w, lab_tour_start(), kTileMm, kTourClearanceMm);
+        Vec2 start = w.has_tour ? w.tour_start : lab_tour_start();
+        std::vector<TourStop> stops = tour_order(w, start, w.tile_mm, kTourClearanceMm);
         cairo_set_source_rgba(cr, 0.1, 0.6, 0.1, 0.8);
         cairo_set_line_width(cr, 1.5);
         for (std::size_t i = 0; i < stops.size(); i++) {
