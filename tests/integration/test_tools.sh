@@ -108,6 +108,10 @@ check "--rotation-sigma-deg 0.3 is the default" cmp -s "$tmp/rot_default/lab28.l
 check "--rotation-sigma-deg 0 changes the soundings" sh -c '! cmp -s "$1" logs/lab28.lcmlog' - "$tmp/rot_none/lab28.lcmlog"
 rejects "bad --rotation-sigma-deg" "--rotation-sigma-deg" "$BIN/hl-sim-logs" --rotation-sigma-deg -1 --out-dir "$tmp/w"
 rejects "bad --soundings" "--soundings" "$BIN/hl-sim-logs" --soundings 0 --out-dir "$tmp/w"
+rejects "bad --sonar-model" "--sonar-model" "$BIN/hl-sim-logs" --sonar-model laser --out-dir "$tmp/w"
+"$BIN/hl-sim-logs" --seed 1 --sonar-model cone --out-dir "$tmp/cone" >/dev/null
+check "--sonar-model cone: the first simulator's echoes, other logs than the default's" \
+    sh -c 'test -s "$1/lab28.lcmlog" && ! cmp -s "$1/lab28.lcmlog" logs/lab28.lcmlog' - "$tmp/cone"
 rejects "a seed beyond 64 bits" "--seed" "$BIN/hl-sim-logs" --seed 99999999999999999999 --out-dir "$tmp/w"
 rejects "an unknown option to hl-sim-logs, in one line" "--bogus" "$BIN/hl-sim-logs" --bogus
 # Another building: the corridor world's own layout, orientation square and tour.

@@ -34,6 +34,7 @@ struct Options {
     double rotation_sigma_deg = RobotParams{}.rotation_sigma_deg;
     int soundings = 2;          // per Table 1 position
     bool declared = false;      // Table 1 at the world's `position` lines, not drawn
+    bool cone = false;          // the first simulator's hard 22-degree cone
 };
 
 constexpr int kPositions = 28;  // the paper's Table 1
@@ -42,7 +43,7 @@ void usage(FILE *f)
 {
     std::fprintf(f,
                  "usage: hl-sim-logs [--seed N] [--out-dir DIR] [--world FILE] [--soundings N]\n"
-                 "                   [--declared-positions] [--rotation-sigma-deg S]\n"
+                 "                   [--declared-positions] [--sonar-model M] [--rotation-sigma-deg S]\n"
                  "Writes DIR/lab28.lcmlog, DIR/orientation.lcmlog and DIR/tour.lcmlog:\n"
                  "simulated sonar soundings (SONAR, SONAR_TEST), odometry (ODOMETRY) and\n"
                  "true poses (GROUND_TRUTH) in the default lab world or FILE. The three\n"
@@ -53,6 +54,8 @@ void usage(FILE *f)
                  "                         (default 2: the paper's 7,616 readings)\n"
                  "  --declared-positions   Table 1 at the world's `position` lines instead of\n"
                  "                         28 drawn per seed on its `open` floor\n"
+                 "  --sonar-model M        physical (default: echo levels against a threshold)\n"
+                 "                         or cone (the first simulator's hard 22-degree cone)\n"
                  "  --rotation-sigma-deg S error of each of the body's rotation steps within\n"
                  "                         a sounding (0..5 degrees; default %.1f)\n"
                  "Same seed, same bytes. Defaults: --seed 1 --out-dir logs.\n",
@@ -99,15 +102,22 @@ bool finish(LogWriter &log, const std::string &path)
 }
 
 // The simulated robot a data set is recorded with: its own random stream (so the data
-// sets do not depend on each other), the default sonar, and the default body but for the
-// rotation-step error the options set.
+// sets do not depend on each other), the default sonar but for the echo model the options
+// choose, and the default body but for the rotation-step error the options set.
 struct Rig {
     Rng rng;
     SonarParams sonar;
     RobotParams body;
     Robot robot;
     Rig(const World &w, const Options &o, uint64_t set)
-        : rng(mix(o.seed, set)), body(body_of(o)), robot(w, sonar, body, rng, kBaseUtime) {}
+        : rng(mix(o.seed, set)), sonar(sonar_of(o)), body(body_of(o)),
+          robot(w, sonar, body, rng, kBaseUtime) {}
+    static SonarParams sonar_of(const Options &o)
+    {
+        SonarParams p;
+        p.model = o.cone ? SonarParams::Model::Cone : SonarParams::Model::Physical;
+        return p;
+    }
     static RobotParams body_of(const Options &o)
     {
         RobotParams b;
@@ -288,6 +298,14 @@ int main(int argc, char **argv)
             o.soundings = static_cast<int>(n);
         } else if (a == "--declared-positions") {
             o.declared = true;
+        } else if (a == "--sonar-model" && has_value) {
+            std::string m = argv[++i];
+            if (m != "physical" && m != "cone") {
+                std::fprintf(stderr, "hl-sim-logs: --sonar-model wants physical or cone, got '%s'\n",
+                             m.c_str());
+                return 2;
+            }
+            o.cone = m == "cone";
         } else if (a == "--out-dir" && has_value) {
             o.out_dir = argv[++i];
         } else if (a == "--world" && has_value) {
