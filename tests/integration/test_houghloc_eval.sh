@@ -69,6 +69,7 @@ rejects "no arguments" 2 "expected IN and OUT" "$EVAL"
 rejects "one argument without --odometry" 2 "expected IN and OUT" "$EVAL" "$LOG"
 rejects "unknown option" 2 "unknown option '--bogus'" "$EVAL" --bogus "$LOG" "$tmp/o.lcmlog"
 rejects "--delta 0" 2 "--delta '0'" "$EVAL" --delta 0 "$LOG" "$tmp/o.lcmlog"
+rejects "--delta beyond 100 km" 2 "--delta '1e20'" "$EVAL" --delta 1e20 "$LOG" "$tmp/o.lcmlog"
 rejects "--tum-gt without a value" 2 "needs a value" "$EVAL" "$LOG" "$tmp/o.lcmlog" --tum-gt
 
 # Bad input: exit 1, one line naming the file.

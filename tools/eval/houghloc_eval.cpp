@@ -45,7 +45,7 @@ const char kUsage[] =
     "Options:\n"
     "  --odometry        score the scans' odometry instead of POSE, integrated from the\n"
     "                    first true pose (OUT is not needed and, if given, not read)\n"
-    "  --delta M         RPE segment length in metres (default 1)\n"
+    "  --delta M         RPE segment length in metres, up to 100 km (default 1)\n"
     "  --tum-gt FILE     write the ground truth in TUM format (t x y z qx qy qz qw;\n"
     "                    t the scan's time in seconds, z 0, quaternion from the heading)\n"
     "  --tum-est FILE    write the estimate (POSE or odometry, not aligned) likewise\n"
@@ -241,9 +241,9 @@ int main(int argc, char **argv)
             // plain decimals only: strtod would also skip spaces and read hexadecimal
             if (!(std::isdigit(static_cast<unsigned char>(*optarg)) || *optarg == '.') ||
                 std::strpbrk(optarg, "xX") || end == optarg || *end || errno ||
-                !(o.delta > 0) || !std::isfinite(o.delta))
+                !(o.delta > 0) || !(o.delta <= 100000.0))
                 return usage_error(std::string("--delta '") + optarg +
-                                   "' is not a positive number of metres");
+                                   "' is not a number of metres in (0, 100000]");
             break;
         }
         case ':':
