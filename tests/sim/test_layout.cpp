@@ -69,6 +69,9 @@ static void test_draw_positions(void **state)
     }
     assert_false(same_as_c);
     assert_true(check_layout(w, a, &err));
+    // Grown towards the first: the second is one of its 8 neighbours.
+    assert_true(std::max(std::fabs(a[1].pose.x - a[0].pose.x), std::fabs(a[1].pose.y - a[0].pose.y)) <=
+                w.tile_mm + 1e-6);
 }
 
 // Worlds that cannot hold the experiments are refused with one line saying why.

@@ -65,9 +65,11 @@ bool draw_positions(const World &w, int count, Rng &rng, std::vector<Position> *
         return false;
     }
     // A compact cluster, as the paper's positions were (its Figure 2): a random first
-    // intersection, then each next one drawn at random among the free intersections
-    // nearest the cluster (its 8 neighbours, when any is free; an obstacle may split
-    // the floor, and then the cluster jumps to the nearest free one beyond it).
+    // intersection, then each next one among the free intersections nearest the cluster
+    // (its 8 neighbours, when any is free; an obstacle may split the floor, and then the
+    // cluster jumps to the nearest free one beyond it), the one nearest the first, ties
+    // drawn at random. Growing towards the first keeps the cluster a blob: a snake's
+    // ends lie outside the map the others make, and are always wild (issue 11).
     std::vector<Vec2> cluster{free[static_cast<std::size_t>(
         rng.uniform_int(0, static_cast<int64_t>(free.size()) - 1))]};
     std::vector<bool> taken(free.size(), false);
@@ -91,8 +93,19 @@ bool draw_positions(const World &w, int count, Rng &rng, std::vector<Position> *
             if (std::fabs(d - best) < 1e-6)
                 rim.push_back(i);
         }
-        std::size_t pick = rim[static_cast<std::size_t>(
-            rng.uniform_int(0, static_cast<int64_t>(rim.size()) - 1))];
+        std::vector<std::size_t> inner;
+        double closest = 1e300;
+        for (std::size_t i : rim) {
+            double d = (free[i] - cluster[0]).norm();
+            if (d < closest - 1e-6) {
+                closest = d;
+                inner.clear();
+            }
+            if (std::fabs(d - closest) < 1e-6)
+                inner.push_back(i);
+        }
+        std::size_t pick = inner[static_cast<std::size_t>(
+            rng.uniform_int(0, static_cast<int64_t>(inner.size()) - 1))];
         taken[pick] = true;
         cluster.push_back(free[pick]);
     }
