@@ -45,6 +45,21 @@ static void make_scene(scene_t *s, uint64_t seed)
     sr_sound(&s->room, s->truth, 128, 8000, 10, &s->scan);
 }
 
+/* A global search with the heading known, or a local one from a prediction off by a
+ * typical odometry error. */
+static hl_loc_query_t scene_query(const scene_t *s, bool local)
+{
+    hl_loc_query_t q = { .predicted = s->truth, .window_mm = 0, .search_theta = false };
+    if (local) {
+        q.predicted.x_mm += 130;
+        q.predicted.y_mm -= 170;
+        q.predicted.theta = (hl_bam_t)(q.predicted.theta + hl_bam_from_deg(2.5));
+        q.window_mm = 800;
+        q.search_theta = true;
+    }
+    return q;
+}
+
 /* Grouped voting (group_mm > 0, localize.h) moves each vote by less than a group's
  * half-diagonal: against the reference the pose stays within `tol_mm` and a heading
  * step, and the votes within 3 %. With group_mm = 0 the checks above are exact. */
@@ -58,14 +73,7 @@ static void compare_grouped(const hl_loc_params_t *p, bool local, double tol_mm)
     double worst = 0;
     for (uint64_t seed = 1; seed <= SCENES; seed++) {
         make_scene(s, seed + (local ? 100 : 0));
-        hl_loc_query_t q = { .predicted = s->truth, .window_mm = 0, .search_theta = false };
-        if (local) {
-            q.predicted.x_mm += 130;
-            q.predicted.y_mm -= 170;
-            q.predicted.theta = (hl_bam_t)(q.predicted.theta + hl_bam_from_deg(2.5));
-            q.window_mm = 800;
-            q.search_theta = true;
-        }
+        hl_loc_query_t q = scene_query(s, local);
         hl_loc_result_t r;
         ref_result_t rr;
         assert_int_equal(hl_loc_run(loc, s->map, s->n, &s->scan, &q, &r), HL_OK);
@@ -94,14 +102,7 @@ static void compare(const hl_loc_params_t *p, bool local)
     int ties = 0;
     for (uint64_t seed = 1; seed <= SCENES; seed++) {
         make_scene(s, seed + (local ? 100 : 0));
-        hl_loc_query_t q = { .predicted = s->truth, .window_mm = 0, .search_theta = false };
-        if (local) {
-            q.predicted.x_mm += 130;
-            q.predicted.y_mm -= 170;
-            q.predicted.theta = (hl_bam_t)(q.predicted.theta + hl_bam_from_deg(2.5));
-            q.window_mm = 800;
-            q.search_theta = true;
-        }
+        hl_loc_query_t q = scene_query(s, local);
         hl_loc_result_t r;
         ref_result_t rr;
         assert_int_equal(hl_loc_run(loc, s->map, s->n, &s->scan, &q, &r), HL_OK);

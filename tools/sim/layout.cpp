@@ -25,6 +25,24 @@ bool clear(const World &w, Vec2 p, const char *what, std::string *err)
     return false;
 }
 
+// The candidates at the least distance (ties within a micrometre), in their order.
+template <typename Distance>
+std::vector<std::size_t> nearest(const std::vector<std::size_t> &candidates, Distance dist)
+{
+    std::vector<std::size_t> out;
+    double best = 1e300;
+    for (std::size_t i : candidates) {
+        double d = dist(i);
+        if (d < best - 1e-6) {
+            best = d;
+            out.clear();
+        }
+        if (std::fabs(d - best) < 1e-6)
+            out.push_back(i);
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<Vec2> open_intersections(const World &w)
@@ -70,53 +88,35 @@ bool draw_positions(const World &w, int count, Rng &rng, std::vector<Position> *
     // cluster jumps to the nearest free one beyond it), the one nearest the first, ties
     // drawn at random. Growing towards the first keeps the cluster a blob: a snake's
     // ends lie outside the map the others make, and are always wild (issue 11).
-    std::vector<Vec2> cluster{free[static_cast<std::size_t>(
-        rng.uniform_int(0, static_cast<int64_t>(free.size()) - 1))]};
+    std::size_t first = static_cast<std::size_t>(
+        rng.uniform_int(0, static_cast<int64_t>(free.size()) - 1));
+    std::vector<Vec2> cluster{free[first]};
     std::vector<bool> taken(free.size(), false);
-    for (std::size_t i = 0; i < free.size(); i++)
-        taken[i] = std::fabs(free[i].x - cluster[0].x) < 1e-6 &&
-                   std::fabs(free[i].y - cluster[0].y) < 1e-6;
+    taken[first] = true;
     while (static_cast<int>(cluster.size()) < count) {
-        double best = 1e300;
-        std::vector<std::size_t> rim;
-        for (std::size_t i = 0; i < free.size(); i++) {
-            if (taken[i])
-                continue;
+        std::vector<std::size_t> open_ones;
+        for (std::size_t i = 0; i < free.size(); i++)
+            if (!taken[i])
+                open_ones.push_back(i);
+        std::vector<std::size_t> rim = nearest(open_ones, [&](std::size_t i) {
             double d = 1e300;
             for (Vec2 c : cluster)
                 d = std::min(d, std::max(std::fabs(c.x - free[i].x), std::fabs(c.y - free[i].y)));
-            d = std::max(d, t);   // every 8-neighbour is as near as any
-            if (d < best - 1e-6) {
-                best = d;
-                rim.clear();
-            }
-            if (std::fabs(d - best) < 1e-6)
-                rim.push_back(i);
-        }
-        std::vector<std::size_t> inner;
-        double closest = 1e300;
-        for (std::size_t i : rim) {
-            double d = (free[i] - cluster[0]).norm();
-            if (d < closest - 1e-6) {
-                closest = d;
-                inner.clear();
-            }
-            if (std::fabs(d - closest) < 1e-6)
-                inner.push_back(i);
-        }
+            return std::max(d, t);   // every 8-neighbour is as near as any
+        });
+        std::vector<std::size_t> inner =
+            nearest(rim, [&](std::size_t i) { return (free[i] - cluster[0]).norm(); });
         std::size_t pick = inner[static_cast<std::size_t>(
             rng.uniform_int(0, static_cast<int64_t>(inner.size()) - 1))];
         taken[pick] = true;
         cluster.push_back(free[pick]);
     }
-    {
-        for (int k = 0; k < count; k++) {
-            double heading = static_cast<double>(rng.uniform_int(0, 3)) * kPi / 2.0;
-            char name[16];
-            std::snprintf(name, sizeof name, "P%02d", k + 1);
-            const Vec2 p = cluster[static_cast<std::size_t>(k)];
-            out->push_back({name, Pose{p.x, p.y, wrap_pi(heading)}});
-        }
+    for (int k = 0; k < count; k++) {
+        double heading = static_cast<double>(rng.uniform_int(0, 3)) * kPi / 2.0;
+        char name[16];
+        std::snprintf(name, sizeof name, "P%02d", k + 1);
+        const Vec2 p = cluster[static_cast<std::size_t>(k)];
+        out->push_back({name, Pose{p.x, p.y, wrap_pi(heading)}});
     }
     return true;
 }
