@@ -107,6 +107,9 @@ check "--rotation-sigma-deg 0.3 is the default" cmp -s "$tmp/rot_default/lab28.l
 "$BIN/hl-sim-logs" --rotation-sigma-deg 0 --out-dir "$tmp/rot_none" >/dev/null
 check "--rotation-sigma-deg 0 changes the soundings" sh -c '! cmp -s "$1" logs/lab28.lcmlog' - "$tmp/rot_none/lab28.lcmlog"
 rejects "bad --rotation-sigma-deg" "--rotation-sigma-deg" "$BIN/hl-sim-logs" --rotation-sigma-deg -1 --out-dir "$tmp/w"
+printf 'polygon 0 0 5000 0 5000 5000\n\001\002\377garbage 1 2\n' >"$tmp/binary.world"
+rejects "a world with binary bytes: one line, no raw bytes echoed" "binary.world:2: unknown keyword a 10-byte non-text word" \
+    "$BIN/hl-sim-logs" --world "$tmp/binary.world" --out-dir "$tmp/w"
 rejects "bad --soundings" "--soundings" "$BIN/hl-sim-logs" --soundings 0 --out-dir "$tmp/w"
 rejects "bad --sonar-model" "--sonar-model" "$BIN/hl-sim-logs" --sonar-model laser --out-dir "$tmp/w"
 "$BIN/hl-sim-logs" --seed 1 --sonar-model cone --out-dir "$tmp/cone" >/dev/null

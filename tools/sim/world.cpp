@@ -28,13 +28,23 @@ std::vector<std::string> split_words(const std::string &s)
     return words;
 }
 
+// A token quoted in an error message: itself when it is printable ASCII of a sane
+// length, else its length only (a binary file must not put bytes on the terminal).
+std::string shown(const std::string &tok)
+{
+    bool text = tok.size() <= 40 && std::all_of(tok.begin(), tok.end(), [](char c) {
+        return c >= 0x21 && c <= 0x7e;
+    });
+    return text ? "'" + tok + "'" : "a " + std::to_string(tok.size()) + "-byte non-text word";
+}
+
 bool parse_number(const std::string &tok, double *out, std::string *what)
 {
     errno = 0;
     char *end = nullptr;
     double v = std::strtod(tok.c_str(), &end);
     if (end == tok.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
-        *what = "'" + tok + "' is not a finite number";
+        *what = shown(tok) + " is not a finite number";
         return false;
     }
     *out = v;
@@ -176,7 +186,7 @@ bool World::parse_line(const std::string &line, std::string *what)
     else if (kw == "polygon")
         want = 0;  // checked below
     else {
-        *what = "unknown keyword '" + kw + "' (expected segment, polygon, box, rbox, circle, "
+        *what = "unknown keyword " + shown(kw) + " (expected segment, polygon, box, rbox, circle, "
                 "position, tiles, open, orientation, tour)";
         return false;
     }
@@ -189,7 +199,7 @@ bool World::parse_line(const std::string &line, std::string *what)
         return false;
     }
     if (extra && !numeric(w.back())) {
-        *what = "unknown surface '" + w.back() + "' (expected smooth, rough or thin)";
+        *what = "unknown surface " + shown(w.back()) + " (expected smooth, rough or thin)";
         return false;
     }
     if (kw == "polygon") {
