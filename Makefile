@@ -4,7 +4,8 @@
 #   make test       install missing packages, build, run all tests (unit tests under
 #                   AddressSanitizer + UndefinedBehaviorSanitizer)
 #   make bench      localization benchmark at -O2
-#   make demo       run the system on the built-in simulated robot
+#   make demo       houghlocd drives the built-in simulated robot through the lab
+#                   (WORLD=corridor: the second building)
 #   make logs       regenerate the simulated data sets in logs/ (byte-identical)
 #   make experiments  rerun the paper's three experiments
 #   make clean
@@ -81,9 +82,11 @@ INTEGRATION_TESTS := tests/integration/test_tools.sh
 .PHONY: all deps test unit-test bench demo clean lcmtypes
 .DEFAULT_GOAL := all
 
-# src/bus/bus.mk defines the bus library and its tests, src/daemon/daemon.mk houghlocd,
-# packaging/packaging.mk `make install`; tools/*/*.mk the separate programs.
--include $(sort $(wildcard src/*/*.mk tools/*/*.mk tests/*/*.mk packaging/*.mk))
+# The layers in their order, each seeing the libraries of those before it: src/bus/bus.mk
+# the bus library, src/robot/robot.mk the robot link's, src/daemon/daemon.mk houghlocd;
+# then tools/*/*.mk the separate programs and packaging/packaging.mk `make install`.
+include src/bus/bus.mk src/robot/robot.mk src/daemon/daemon.mk
+-include $(sort $(wildcard tools/*/*.mk tests/*/*.mk packaging/*.mk))
 
 # The sanitized bus library carries a sanitized copy of the generated code, so every test
 # that links it (bus, daemon) takes the generated functions from there, not $(LCM_LIB).
@@ -186,11 +189,14 @@ bench: deps
 	$(Q)$(BUILD)/bin/hl-bench
 	$(Q)BUILD=$(BUILD) sh tools/bench/bench_daemon.sh
 
-# The product on the built-in simulated robot: houghlocd replays the recorded tour,
-# hl-eval scores its POSE output (tools/demo/demo.sh; DEMO_MODE=live for lcm-logplayer).
+# The product on the built-in simulated robot: houghlocd drives houghloc-sim through a
+# scripted tour of WORLD (lab or corridor) with houghloc-goto; hl-eval scores the log
+# against the simulator's ground truth (tools/demo/demo.sh).
+WORLD ?= lab
 demo: deps
-	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval
-	$(Q)BUILD=$(BUILD) sh tools/demo/demo.sh
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/houghlocd $(BUILD)/bin/houghloc-sim \
+	    $(BUILD)/bin/houghloc-goto $(BUILD)/bin/hl-eval $(BUILD)/bin/houghloc-map
+	$(Q)BUILD=$(BUILD) WORLD=$(WORLD) sh tools/demo/demo.sh
 
 clean:
 	rm -rf $(BUILD)
