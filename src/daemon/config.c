@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "config_keys.h"
+#include "houghloc/sounder.h"
+#include "link.h"
 #include "log.h"
 
 #define WHY(...) snprintf(why, HL_CONFIG_WHY_LEN, __VA_ARGS__)
@@ -51,6 +53,12 @@ void hl_config_defaults(hl_config_t *c)
     c->idle_after_ms = 5000;
     c->compute_window = 100;
     c->log_level = HL_LOG_INFO;
+    snprintf(c->robot_profile, sizeof c->robot_profile, "bonnie");
+    c->robot_sound_on_connect = true;
+    c->robot_reconnect_max_ms = 5000;
+    hl_sounder_params_default(&c->sounder);
+    hl_drive_params_default(&c->drive);
+    hl_rlink_params_default(&c->rlink);
     hl_fence_rect(&c->fence, -10000, -10000, 10000, 10000);
     snprintf(c->fence_text, sizeof c->fence_text, "-10,-10 10,-10 10,10 -10,10");
     snprintf(c->mode, sizeof c->mode, "improved");
@@ -138,6 +146,23 @@ static bool set_fence(hl_config_t *c, const hl_config_key_t *k, const char *v, c
     return true;
 }
 
+static bool check_link(const char *v, char *why)
+{
+    hl_link_spec_t spec;
+    char reason[HL_LINK_WHY_LEN];
+    if (hl_link_spec_parse(v, &spec, reason))
+        return true;
+    return REASON("%.190s", reason), false;
+}
+
+static bool check_profile(const char *v, char *why)
+{
+    hl_robot_profile_t profile;
+    if (hl_robot_profile_find(v, &profile) == HL_OK)
+        return true;
+    return REASON("'%s' is not a robot profile (bonnie or pioneer3)", v), false;
+}
+
 /* Sets one key from its text. @return false with the reason (no file or line). */
 static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, char *why)
 {
@@ -145,9 +170,15 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
     double d = 0;
     bool b;
     switch (k->type) {
+    case HL_KEY_LINK:
+    case HL_KEY_PROFILE:
     case HL_KEY_STR:
         if (strlen(v) >= k->size)
             return REASON("longer than %zu characters", k->size - 1), false;
+        if (k->type == HL_KEY_LINK && *v && !check_link(v, why))
+            return false;
+        if (k->type == HL_KEY_PROFILE && !check_profile(v, why))
+            return false;
         memcpy(field, v, strlen(v) + 1);
         return true;
     case HL_KEY_BOOL:
@@ -320,6 +351,12 @@ static bool apply_override(hl_config_t *c, const char *o, bool mode_only, char *
 static bool validate(const hl_config_t *c, char *why)
 {
     const char *e = hl_slam_params_error(&c->slam);
+    if (!e)
+        e = hl_sounder_params_error(&c->sounder);
+    if (!e)
+        e = hl_drive_params_error(&c->drive);
+    if (!e)
+        e = hl_rlink_params_error(&c->rlink);
     if (e)
         return WHY("config: %s", e), false;
     char channel[HL_BUS_CHANNEL_MAX];
@@ -373,7 +410,9 @@ static void print_value(const hl_config_t *c, const hl_config_key_t *k, FILE *ou
 {
     const char *field = (const char *)c + k->offset;
     switch (k->type) {
-    case HL_KEY_STR: fprintf(out, "%s", field); break;
+    case HL_KEY_STR:
+    case HL_KEY_LINK:
+    case HL_KEY_PROFILE: fprintf(out, "%s", field); break;
     case HL_KEY_I32: fprintf(out, "%d", *(const int32_t *)field); break;
     case HL_KEY_U16: fprintf(out, "%u", *(const uint16_t *)field); break;
     case HL_KEY_U32: fprintf(out, "%u", *(const uint32_t *)field); break;

@@ -15,8 +15,11 @@
 #include <stdio.h>
 
 #include "houghloc/bus.h"
+#include "houghloc/drive.h"
 #include "houghloc/fence.h"
+#include "houghloc/rlink.h"
 #include "houghloc/slam.h"
+#include "houghloc/sounder.h"
 
 #define HL_CONFIG_DEFAULT_PATH "/etc/houghloc/houghlocd.conf"
 #define HL_CONFIG_PATH_MAX 512
@@ -51,6 +54,14 @@ typedef struct hl_config {
     /* [slam], [localize], [echo], [refine] */
     char mode[16];                      /* "improved" or "paper" */
     hl_slam_params_t slam;
+    /* [robot], [calibration], [drive], [link]: the live robot (robot.h) */
+    char robot_link[272];               /* "" = none: SONAR and ODOMETRY come over LCM */
+    char robot_profile[16];             /* bonnie or pioneer3 */
+    bool robot_sound_on_connect;
+    int32_t robot_reconnect_max_ms;
+    hl_sounder_params_t sounder;        /* with the calibration */
+    hl_drive_params_t drive;
+    hl_rlink_params_t rlink;
 } hl_config_t;
 
 /** The compiled-in defaults (improved mode, host-only LCM, a 20 m square fence). */

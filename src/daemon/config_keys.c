@@ -6,6 +6,7 @@
 
 #define F(field) offsetof(hl_config_t, field), sizeof(((hl_config_t *)0)->field)
 #define S(field) F(slam.field)
+#define SND(field) F(sounder.field)
 
 const hl_config_key_t hl_config_keys[] = {
     { "lcm.url", HL_KEY_STR, F(lcm_url), 0, 0,
@@ -114,6 +115,53 @@ const hl_config_key_t hl_config_keys[] = {
     { "refine.iterations", HL_KEY_U16, S(refine_params.iterations), 1, 1000, "at most" },
     { "refine.min_matches", HL_KEY_U16, S(refine_params.min_matches), 1, 1024,
       "refuse with fewer matched readings" },
+    { "robot.link", HL_KEY_LINK, F(robot_link), 0, 0,
+      "the robot: serial:DEVICE[,BAUD] (ARCOS over a serial port; 9600 baud unless given) or "
+      "tcp:HOST:PORT (houghloc-sim, port 8101); empty: no robot, SONAR and ODOMETRY come over LCM" },
+    { "robot.profile", HL_KEY_PROFILE, F(robot_profile), 0, 0,
+      "where the transducers point: bonnie (16 evenly, the paper's robot) or pioneer3" },
+    { "robot.sound_on_connect", HL_KEY_BOOL, F(robot_sound_on_connect), 0, 0,
+      "sound once when the robot first connects (the map's first scan)" },
+    { "robot.reconnect_max_ms", HL_KEY_I32, F(robot_reconnect_max_ms), 250, 600000,
+      "a lost link is retried after 0.25 s, doubling up to this" },
+    { "robot.sounding_steps", HL_KEY_I32, SND(steps), 1, 32,
+      "body positions per sounding (the paper: 8, for 128 readings from 16 transducers)" },
+    { "robot.sounding_step_deg", HL_KEY_DEG, SND(step), 0.01, 90,
+      "turn between positions (the paper: 22.5 / 8 = 2.8125)" },
+    { "robot.settle_ms", HL_KEY_I32, SND(settle_ms), 0, 60000,
+      "robot time the base must be still before a position's readings count" },
+    { "robot.step_timeout_ms", HL_KEY_I32, SND(step_timeout_ms), 100, 600000,
+      "robot time allowed for one position (turn, settle, a reading from every transducer)" },
+    { "calibration.gain_q16", HL_KEY_I32, SND(calib.gain_q16), 1, 1048576,
+      "sonar range: mm per raw unit x 65536 (hl-calibrate prints it)" },
+    { "calibration.offset_mm", HL_KEY_I32, SND(calib.offset_mm), -10000, 10000,
+      "sonar range: added after the gain" },
+    { "calibration.min_raw", HL_KEY_U16, SND(calib.min_raw), 0, 65535,
+      "raw values below this are the robot's own cable echoes: invalid" },
+    { "calibration.sentinel_raw", HL_KEY_U16, SND(calib.sentinel_raw), 1, 65535,
+      "raw values from this up mean no echo: invalid" },
+    { "calibration.max_range_mm", HL_KEY_I32, SND(calib.max_range_mm), 1, 32767,
+      "calibrated ranges above this are invalid" },
+    { "drive.arrive_mm", HL_KEY_I32, F(drive.arrive_mm), 10, 5000,
+      "a destination is reached when the localized estimate is this close" },
+    { "drive.max_leg_mm", HL_KEY_I32, F(drive.max_leg_mm), 10, 30000,
+      "longest drive between two soundings" },
+    { "drive.max_legs", HL_KEY_I32, F(drive.max_legs), 1, 1000,
+      "legs (drive, sound, localize) before a destination fails" },
+    { "drive.speed_mm_s", HL_KEY_I32, F(drive.speed_mm_s), 10, 5000,
+      "the base's driving speed, for timeouts" },
+    { "drive.turn_deg_s", HL_KEY_I32, F(drive.turn_deg_s), 1, 720,
+      "the base's turning speed, for timeouts" },
+    { "drive.slack_ms", HL_KEY_I32, F(drive.slack_ms), 0, 600000,
+      "robot time added to every motion's expected duration before it times out" },
+    { "link.sync_timeout_ms", HL_KEY_I32, F(rlink.sync_timeout_ms), 10, 60000,
+      "resend an unanswered SYNC after this" },
+    { "link.sync_tries", HL_KEY_I32, F(rlink.sync_tries), 1, 100,
+      "sends of one SYNC before the connection is dropped and retried" },
+    { "link.silence_ms", HL_KEY_I32, F(rlink.silence_ms), 100, 600000,
+      "no packet from the robot this long: the link is lost (wall clock)" },
+    { "link.pulse_ms", HL_KEY_I32, F(rlink.pulse_ms), 10, 1500,
+      "send a keep-alive PULSE when nothing was sent this long (inside ARCOS's 2 s watchdog)" },
 };
 
 const size_t hl_config_nkeys = sizeof hl_config_keys / sizeof hl_config_keys[0];

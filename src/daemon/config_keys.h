@@ -19,6 +19,8 @@ enum hl_key_type {
     HL_KEY_MODE,        /* slam.mode preset */
     HL_KEY_FENCE_RECT,
     HL_KEY_FENCE_POLYGON,
+    HL_KEY_LINK,        /* char[size]: "" or a robot link (link.h) */
+    HL_KEY_PROFILE,     /* char[size]: a robot profile name (sounder.h) */
 };
 
 typedef struct hl_config_key {

@@ -173,6 +173,19 @@ static hl_pose_t prediction(const hl_cycle_t *c, hl_pose_t odometry)
     return hl_pose_in_range(p) ? p : s.pose;
 }
 
+/* The start pose is where the robot stood when the odometry began: a first scan made
+ * after the base moved (a live robot turns while it sounds) is placed by that motion. */
+static void place_first_scan(hl_cycle_t *c, hl_pose_t scan_odometry)
+{
+    hl_slam_state_t st;
+    hl_slam_get_state(c->slam, &st);
+    if (st.started || c->have_scan || !c->have_odometry)
+        return;
+    hl_pose_t first = hl_pose_compose(st.pose, hl_pose_between(c->first_odometry, scan_odometry));
+    if (hl_pose_in_range(first))
+        hl_slam_reset(c->slam, first);
+}
+
 static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us)
 {
     char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
@@ -186,6 +199,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
         hl_cycle_fault(c, &c->n.bad_messages, "sonar order", what);
         return;
     }
+    place_first_scan(c, in->odometry);
     c->have_scan = true;
     c->last_scan_seq = in->seq;
     c->last_scan_utime = in->utime;
@@ -245,6 +259,8 @@ static void on_odometry(hl_cycle_t *c, const void *data, size_t len)
         hl_cycle_fault(c, &c->n.bad_messages, "odometry order", what);
         return;
     }
+    if (!c->have_odometry)
+        c->first_odometry = o.pose;
     c->have_odometry = true;
     c->last_odometry_utime = o.utime;
     if (o.utime > c->newest_utime)

@@ -43,6 +43,9 @@ typedef struct hl_cycle_io {
     void (*emit)(void *ctx, hl_chan_t ch, const void *data, size_t len);
     /** A monotonic clock in microseconds, read around each localization. */
     int64_t (*now_us)(void *ctx);
+    /** A destination the cycle admitted (authentic, fresh, inside the fence), for the
+     *  robot to answer on REPLY; NULL when no robot is attached: NO_ROBOT. */
+    void (*destination)(void *ctx, const hl_bus_destination_t *d, int64_t now_us);
     void *ctx;
 } hl_cycle_io_t;
 
@@ -100,6 +103,20 @@ void hl_cycle_snapshot(const hl_cycle_t *c, hl_mapfile_t *out);
 void hl_cycle_saved(hl_cycle_t *c, bool ok, const char *why);
 
 const hl_cycle_counts_t *hl_cycle_counts(const hl_cycle_t *c);
+
+/* ---- for the live robot (robot.h), which feeds the cycle and answers destinations ---- */
+
+/** The estimate now: the last pose moved by the odometry received since its scan. */
+hl_pose_t hl_cycle_estimate(const hl_cycle_t *c);
+/** The newest odometry pose the cycle knows (from a message, or a restored map's last
+ *  scan). @return false when it knows none. */
+bool hl_cycle_odometry(const hl_cycle_t *c, hl_pose_t *out);
+/** Publishes a REPLY to request @p seq. */
+void hl_cycle_answer(hl_cycle_t *c, int64_t seq, int8_t result, const char *message);
+/** The destination STATUS reports (-1: none). */
+void hl_cycle_set_destination(hl_cycle_t *c, int64_t seq);
+/** Robot packets dropped so far, as STATUS reports them. */
+void hl_cycle_set_bad_packets(hl_cycle_t *c, int32_t n);
 /** The last rejection or fault, one line ("" when none). */
 const char *hl_cycle_last_error(const hl_cycle_t *c);
 /** Records a fault from outside the cycle (STATUS's last_error). */

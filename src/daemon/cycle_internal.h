@@ -21,8 +21,10 @@ struct hl_cycle {
     int64_t last_scan_utime, last_odometry_utime, newest_utime;
     hl_pose_t scan_odometry;        /* odometry of the last scan */
     hl_pose_t odometry;             /* newest odometry, from ODOMETRY or a scan */
+    hl_pose_t first_odometry;       /* the first ODOMETRY: where the start pose stands */
     int64_t last_request_seq;       /* highest DESTINATION/COMMAND seq accepted */
     int64_t destination_seq;        /* current destination, -1 if none */
+    int32_t bad_packets;            /* robot packets dropped, from the robot link */
     uint64_t scans_total;           /* over the map's life, saved with it */
 
     /* MAP publishing */

@@ -49,9 +49,13 @@ static bool admit(hl_cycle_t *c, const char *channel, int64_t seq, bool mac_ok)
     return true;
 }
 
+void hl_cycle_answer(hl_cycle_t *c, int64_t seq, int8_t result, const char *message)
+{
+    hl_cycle_reply(c, seq, result, message);
+}
+
 void hl_cycle_on_destination(hl_cycle_t *c, const void *data, size_t len, int64_t now_us)
 {
-    (void)now_us;
     char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
     hl_bus_destination_t d;
     if (!hl_cycle_decoded(c, hl_bus_decode_destination(data, len, &d, why),
@@ -67,8 +71,10 @@ void hl_cycle_on_destination(hl_cycle_t *c, const void *data, size_t len, int64_
                what);
         return;
     }
-    /* The robot link (a later part) drives to it; until then there is nothing to move. */
-    hl_cycle_reply(c, d.seq, HL_BUS_REPLY_NO_ROBOT, "no robot is connected to houghlocd");
+    if (c->io.destination)
+        c->io.destination(c->io.ctx, &d, now_us);   /* the robot answers it */
+    else
+        hl_cycle_reply(c, d.seq, HL_BUS_REPLY_NO_ROBOT, "no robot link is configured (robot.link)");
 }
 
 static void set_pose(hl_cycle_t *c, const hl_bus_command_t *cmd, int64_t now_us)

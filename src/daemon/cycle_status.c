@@ -36,8 +36,7 @@ static int32_t percentile(const int32_t *sorted, int32_t n, int p)
     return sorted[rank < 1 ? 0 : rank - 1];
 }
 
-/* The estimate now: the last pose moved by the odometry received since its scan. */
-static hl_pose_t current_pose(const hl_cycle_t *c)
+hl_pose_t hl_cycle_estimate(const hl_cycle_t *c)
 {
     hl_pose_t est = hl_slam_pose(c->slam);
     if (!c->have_scan)
@@ -55,7 +54,8 @@ void hl_cycle_publish_status(hl_cycle_t *c)
         .odometry_only = c->n.odometry_only, .bad_messages = c->n.bad_messages,
         .rejected_requests = c->n.rejected_requests,
         .map_vectors = (int32_t)hl_map_count(map), .map_version = (int32_t)hl_map_version(map),
-        .saves = c->n.saves, .pose = current_pose(c), .compute_samples = c->compute_n,
+        .saves = c->n.saves, .pose = hl_cycle_estimate(c),
+        .bad_packets = c->bad_packets, .compute_samples = c->compute_n,
     };
     if (c->compute_n > 0) {
         memcpy(c->compute_sorted, c->compute_us, (size_t)c->compute_n * sizeof(int32_t));
@@ -83,6 +83,28 @@ void hl_cycle_set_state(hl_cycle_t *c, int8_t state, int64_t now_us)
         hl_log(HL_LOG_INFO, "state %s -> %s", state_name(c->state), state_name(state));
     c->state = state;
     hl_cycle_publish_status(c);
+}
+
+bool hl_cycle_odometry(const hl_cycle_t *c, hl_pose_t *out)
+{
+    if (c->have_scan || c->have_odometry) {
+        *out = c->odometry;
+        return true;
+    }
+    hl_slam_state_t st;
+    hl_slam_get_state(c->slam, &st);
+    *out = st.odom;
+    return st.started;
+}
+
+void hl_cycle_set_destination(hl_cycle_t *c, int64_t seq)
+{
+    c->destination_seq = seq;
+}
+
+void hl_cycle_set_bad_packets(hl_cycle_t *c, int32_t n)
+{
+    c->bad_packets = n;
 }
 
 void hl_cycle_tick(hl_cycle_t *c, int64_t now_us)

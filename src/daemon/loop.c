@@ -20,7 +20,9 @@
 
 #define WHY(...) snprintf(why, HL_CONFIG_WHY_LEN, __VA_ARGS__)
 
-enum { TIMER_STATUS, TIMER_WATCHDOG, N_TIMERS };
+enum { TIMER_STATUS, TIMER_WATCHDOG, TIMER_ROBOT, N_TIMERS };
+
+#define ROBOT_TICK_MS 50    /* link keep-alive, timeouts and reconnection checks */
 
 typedef struct sub_ctx {
     hl_loop_t *loop;
@@ -31,6 +33,7 @@ struct hl_loop {
     hl_loop_params_t p;
     lcm_t *in, *out;            /* out == in unless a separate output URL */
     hl_cycle_t *cycle;
+    hl_robot_t *robot;          /* NULL without a live robot */
     char channel[HL_CH_COUNT][HL_BUS_CHANNEL_MAX];
     sub_ctx_t subs[HL_CH_COUNT];
     int sfd, tfd;
@@ -62,9 +65,24 @@ static void emit_cb(void *ctx, hl_chan_t ch, const void *data, size_t len)
     }
 }
 
+static void destination_cb(void *ctx, const hl_bus_destination_t *d, int64_t now_us)
+{
+    hl_loop_t *l = ctx;
+    if (l->robot)
+        hl_robot_destination(l->robot, d, now_us / 1000);
+    else
+        hl_cycle_answer(l->cycle, d->seq, HL_BUS_REPLY_NO_ROBOT, "the robot is not attached yet");
+}
+
 hl_cycle_io_t hl_loop_io(hl_loop_t *l)
 {
-    return (hl_cycle_io_t){ .emit = emit_cb, .now_us = clock_cb, .ctx = l };
+    return (hl_cycle_io_t){ .emit = emit_cb, .now_us = clock_cb,
+                            .destination = l->p.robot ? destination_cb : NULL, .ctx = l };
+}
+
+void hl_loop_attach_robot(hl_loop_t *l, hl_robot_t *robot)
+{
+    l->robot = robot;
 }
 
 static void on_lcm(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
@@ -88,9 +106,11 @@ static void channel_regex(const char *name, char *out, size_t cap)
 
 static bool subscribe(hl_loop_t *l, char *why)
 {
-    static const hl_chan_t inputs[] = { HL_CH_SONAR, HL_CH_ODOMETRY, HL_CH_DESTINATION,
-                                        HL_CH_COMMAND };
-    for (size_t i = 0; i < sizeof inputs / sizeof inputs[0]; i++) {
+    static const hl_chan_t inputs[] = { HL_CH_DESTINATION, HL_CH_COMMAND, HL_CH_SONAR,
+                                        HL_CH_ODOMETRY };
+    /* with a live robot the scans come from it: what it publishes is not read back */
+    size_t n = l->p.robot ? 2 : sizeof inputs / sizeof inputs[0];
+    for (size_t i = 0; i < n; i++) {
         hl_chan_t ch = inputs[i];
         char regex[2 * HL_BUS_CHANNEL_MAX];
         channel_regex(l->channel[ch], regex, sizeof regex);
@@ -200,6 +220,8 @@ static void run_timers(hl_loop_t *l)
         l->due[i] += ((now - l->due[i]) / l->period[i] + 1) * l->period[i];
         if (i == TIMER_STATUS)
             hl_cycle_tick(l->cycle, now);
+        else if (i == TIMER_ROBOT)
+            hl_robot_tick(l->robot, now / 1000);
         else
             sd_notify(0, "WATCHDOG=1");
     }
@@ -213,6 +235,8 @@ static void start_timers(hl_loop_t *l)
     uint64_t watchdog_us = 0;
     if (sd_watchdog_enabled(0, &watchdog_us) > 0 && watchdog_us > 0)
         l->period[TIMER_WATCHDOG] = (int64_t)watchdog_us / 2;  /* as systemd advises */
+    if (l->robot)
+        l->period[TIMER_ROBOT] = ROBOT_TICK_MS * 1000;
     for (int i = 0; i < N_TIMERS; i++)
         l->due[i] = now + l->period[i];
     arm_timer(l);
@@ -267,13 +291,17 @@ int hl_loop_run(hl_loop_t *l, hl_cycle_t *cycle)
 {
     l->cycle = cycle;
     start_timers(l);
-    struct pollfd fds[3] = {
+    struct pollfd fds[4] = {
         { .fd = lcm_get_fileno(l->in), .events = POLLIN },
         { .fd = l->tfd, .events = POLLIN },
         { .fd = l->sfd, .events = POLLIN },
+        { .fd = -1 },               /* the robot link, when connected */
     };
     while (!l->stop && !l->input_ended && !l->faulted) {
-        if (poll(fds, 3, -1) < 0) {
+        fds[3].fd = l->robot ? hl_robot_fd(l->robot) : -1;
+        fds[3].events = l->robot ? hl_robot_events(l->robot) : 0;
+        fds[3].revents = 0;
+        if (poll(fds, 4, -1) < 0) {
             if (errno == EINTR)
                 continue;
             hl_log(HL_LOG_ERR, "poll: %s", strerror(errno));
@@ -284,12 +312,16 @@ int hl_loop_run(hl_loop_t *l, hl_cycle_t *cycle)
             on_signal(l);
         if (fds[0].revents & (POLLIN | POLLHUP | POLLERR))
             on_lcm_readable(l);
+        if (fds[3].fd >= 0 && fds[3].revents)
+            hl_robot_on_ready(l->robot, fds[3].revents, mono_us() / 1000);
         if (hl_cycle_save_due(cycle))
             hl_loop_save(l, cycle);
         if (fds[1].revents & POLLIN)
             run_timers(l);
     }
     sd_notify(0, "STOPPING=1");
+    if (l->robot)
+        hl_robot_stop(l->robot, mono_us() / 1000);
     int8_t state = l->faulted ? HL_BUS_STATE_FAULT : HL_BUS_STATE_STOPPING;
     hl_cycle_set_state(cycle, state, mono_us());
     hl_cycle_flush_map(cycle);

@@ -1,8 +1,9 @@
 /*
  * loop.h - houghlocd's event loop: one thread, one poll() over the LCM file descriptor,
- * a timerfd and a signalfd (the robot link's fd joins them in a later version). LCM
- * messages go to the cycle, one lcm_handle per readable event; timers publish STATUS and
- * feed systemd's watchdog; SIGTERM and SIGINT stop the loop cleanly, SIGHUP saves the map.
+ * a timerfd, a signalfd and, with a live robot, the robot link's fd. LCM messages go to
+ * the cycle, one lcm_handle per readable event; timers publish STATUS, keep the robot
+ * link alive and feed systemd's watchdog; SIGTERM and SIGINT stop the loop cleanly (the
+ * robot is stopped first), SIGHUP saves the map.
  */
 #ifndef HOUGHLOC_DAEMON_LOOP_H
 #define HOUGHLOC_DAEMON_LOOP_H
@@ -11,6 +12,7 @@
 
 #include "config.h"
 #include "cycle.h"
+#include "robot.h"
 
 typedef struct hl_loop hl_loop_t;
 
@@ -22,6 +24,8 @@ typedef struct hl_loop_params {
     int queue;                  /* liblcm queue per subscription */
     int status_period_ms;
     const char *map_path;       /* where to save */
+    bool robot;                 /* a live robot will be attached: SONAR and ODOMETRY come
+                                   from it, not from LCM, and it answers destinations */
 } hl_loop_params_t;
 
 /**
@@ -34,6 +38,9 @@ void hl_loop_destroy(hl_loop_t *l);     /* accepts NULL */
 
 /** The io the cycle publishes and reads the clock through. */
 hl_cycle_io_t hl_loop_io(hl_loop_t *l);
+
+/** Attaches the live robot (params.robot): its fd joins the poll, its timer the loop's. */
+void hl_loop_attach_robot(hl_loop_t *l, hl_robot_t *robot);
 
 /** Runs until a signal or the end of a replayed log; saves the map on the way out.
  *  @return the process exit code: 0 after a clean stop, 1 after a fault. */

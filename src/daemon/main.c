@@ -232,6 +232,21 @@ static bool cycle_params(const hl_config_t *cfg, hl_cycle_params_t *p)
     return true;
 }
 
+/* The live robot's parameters from the configuration (robot.link set). */
+static bool robot_params(const hl_config_t *cfg, hl_robot_params_t *p)
+{
+    char why[HL_LINK_WHY_LEN];
+    *p = (hl_robot_params_t){ .sounder = cfg->sounder, .drive = cfg->drive, .rlink = cfg->rlink,
+                              .conv = HL_ARCOS_CONV_PIONEER,
+                              .reconnect_max_ms = cfg->robot_reconnect_max_ms,
+                              .sound_on_connect = cfg->robot_sound_on_connect };
+    if (!hl_link_spec_parse(cfg->robot_link, &p->link, why))
+        return fprintf(stderr, "houghlocd: %s\n", why), false;
+    if (hl_robot_profile_find(cfg->robot_profile, &p->profile) != HL_OK)
+        return fprintf(stderr, "houghlocd: unknown robot profile '%s'\n", cfg->robot_profile), false;
+    return true;
+}
+
 static int run(const hl_config_t *cfg, const options_t *o)
 {
     char path[HL_CONFIG_PATH_MAX], log_path[HL_CONFIG_PATH_MAX], why[HL_CONFIG_WHY_LEN];
@@ -250,6 +265,13 @@ static int run(const hl_config_t *cfg, const options_t *o)
                (unsigned long long)info.events);
     }
     const char *out_url = cfg->lcm_out[0] ? cfg->lcm_out : reads_log ? live : in_url;
+    bool live_robot = cfg->robot_link[0] != '\0';
+    hl_robot_params_t rp;
+    if (live_robot && reads_log == 1)
+        return fprintf(stderr, "houghlocd: robot.link and a log to replay (lcm.url %s) exclude "
+                       "each other\n", in_url), 1;
+    if (live_robot && !robot_params(cfg, &rp))
+        return 1;
 
     map_path(cfg, path, sizeof path);
     hl_cycle_params_t cp;
@@ -257,17 +279,23 @@ static int run(const hl_config_t *cfg, const options_t *o)
         return 1;
     hl_loop_params_t lp = { .in_url = in_url, .out_url = out_url, .batch = reads_log == 1,
                             .prefix = cfg->prefix, .queue = cfg->queue,
-                            .status_period_ms = cfg->status_period_ms, .map_path = path };
+                            .status_period_ms = cfg->status_period_ms, .map_path = path,
+                            .robot = live_robot };
     hl_loop_t *loop = hl_loop_create(&lp, why);
     if (!loop)
         return fprintf(stderr, "houghlocd: %s\n", why), 1;
     hl_cycle_io_t io = hl_loop_io(loop);
     hl_cycle_t *cycle = hl_cycle_create(&cp, &io);
+    hl_robot_t *robot = cycle && live_robot ? hl_robot_create(&rp, cycle, &io) : NULL;
     int rc = 1;
-    if (!cycle)
+    if (!cycle || (live_robot && !robot))
         fprintf(stderr, "houghlocd: out of memory for a map of %u vectors\n",
                 cfg->slam.map_capacity);
     else if (load_map(cycle, path, o->fresh_map, cfg->slam.map_capacity)) {
+        hl_loop_attach_robot(loop, robot);
+        if (live_robot)
+            hl_log(HL_LOG_INFO, "robot: %s, profile %s, %d x %d readings per sounding",
+                   cfg->robot_link, rp.profile.name, rp.profile.transducers, rp.sounder.steps);
         hl_log(HL_LOG_INFO, "houghlocd %s ready: in %s, out %s, channel prefix '%s', %s mode, "
                "map %s, requests %s", HL_VERSION, in_url, out_url, cfg->prefix, cfg->mode, path,
                cp.authenticate ? "authenticated" : "NOT authenticated");
@@ -282,6 +310,7 @@ static int run(const hl_config_t *cfg, const options_t *o)
                n->scans, n->accepted, n->rejected_wild, n->odometry_only, n->bad_messages,
                n->rejected_requests, n->saves, ru.ru_maxrss);
     }
+    hl_robot_destroy(robot);
     hl_cycle_destroy(cycle);
     hl_loop_destroy(loop);
     return rc;

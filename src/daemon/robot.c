@@ -1,0 +1,488 @@
+/* robot.c - the live robot: connection, session, sounding and driving (see robot.h). */
+#include "robot.h"
+
+#include <poll.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "log.h"
+
+#define SIP_PERIOD_MS 100           /* ARCOS's standard SIP cycle: robot time per SIP */
+#define FIRST_BACKOFF_MS 250
+
+struct hl_robot {
+    hl_robot_params_t p;
+    hl_cycle_t *cycle;
+    hl_cycle_io_t io;
+
+    hl_link_t *link;
+    hl_rlink_t rlink;
+    bool up;                        /* the session was UP at the last check */
+    int64_t retry_at_ms, backoff_ms;
+    char last_fault[HL_LINK_WHY_LEN];   /* logged once until it changes */
+
+    hl_sounder_t sounder;
+    hl_drive_t drive;
+    int64_t dest_seq;               /* the destination being driven to, -1 if none */
+    bool dest_pending;              /* accepted during a sounding: starts after it */
+    hl_bus_destination_t pending;
+    bool sounded_once;
+
+    /* odometry: unwrapped robot units -> the robot's frame -> the published frame */
+    hl_arcos_odom_t odom;
+    bool anchored;                  /* offset set since this connection began */
+    hl_pose_t offset;               /* published = offset o robot */
+    bool have_published;
+    hl_pose_t published;            /* last published odometry pose */
+    hl_drive_in_t last_in;          /* the last SIP, as the drive sees it */
+
+    int64_t robot_ms;               /* robot time: SIP_PERIOD_MS per SIP */
+    int64_t epoch_us;               /* utime of robot time 0 (the wall clock at start) */
+    int32_t scan_seq;
+    uint64_t bad_reported;
+
+    hl_bus_scan_t msg;              /* too big for the stack */
+    uint8_t buf[HL_BUS_SCAN_MAX_BYTES];
+};
+
+hl_robot_t *hl_robot_create(const hl_robot_params_t *p, hl_cycle_t *cycle,
+                            const hl_cycle_io_t *io)
+{
+    hl_robot_t *r = calloc(1, sizeof *r);
+    if (!r)
+        return NULL;
+    r->p = *p;
+    r->cycle = cycle;
+    r->io = *io;
+    r->dest_seq = -1;
+    if (hl_rlink_init(&r->rlink, &p->rlink) != HL_OK ||
+        hl_sounder_init(&r->sounder, &p->sounder, &p->profile) != HL_OK ||
+        hl_drive_init(&r->drive, &p->drive) != HL_OK || p->reconnect_max_ms < FIRST_BACKOFF_MS) {
+        free(r);
+        return NULL;
+    }
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    r->epoch_us = (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+    r->backoff_ms = FIRST_BACKOFF_MS;
+    return r;
+}
+
+void hl_robot_destroy(hl_robot_t *r)
+{
+    if (!r)
+        return;
+    hl_link_close(r->link);
+    free(r);
+}
+
+int hl_robot_fd(const hl_robot_t *r)
+{
+    return r->link ? hl_link_fd(r->link) : -1;
+}
+
+short hl_robot_events(const hl_robot_t *r)
+{
+    if (!r->link)
+        return 0;
+    return (short)(POLLIN | (hl_link_connecting(r->link) || r->rlink.out_len ? POLLOUT : 0));
+}
+
+/* ---- messages out: published, and handed to the cycle as if they came from LCM -------- */
+
+static void deliver(hl_robot_t *r, hl_chan_t ch, int len, int64_t now_ms)
+{
+    if (len <= 0) {
+        hl_log(HL_LOG_ERR, "cannot encode a %s message", hl_chan_name(ch));
+        return;
+    }
+    r->io.emit(r->io.ctx, ch, r->buf, (size_t)len);
+    hl_cycle_on_message(r->cycle, ch, r->buf, (size_t)len, now_ms * 1000);
+}
+
+static int64_t utime_now(const hl_robot_t *r)
+{
+    return r->epoch_us + r->robot_ms * 1000;
+}
+
+static void reply(hl_robot_t *r, int64_t seq, int8_t result, const char *what)
+{
+    hl_cycle_answer(r->cycle, seq, result, what);
+}
+
+static void set_state(hl_robot_t *r, int8_t state, int64_t now_ms)
+{
+    hl_cycle_set_destination(r->cycle, r->dest_seq);
+    hl_cycle_set_state(r->cycle, state, now_ms * 1000);
+}
+
+/* ---- commands to the base ------------------------------------------------------------ */
+
+static void command(hl_robot_t *r, uint8_t number, bool has_arg, int32_t arg, int64_t now_ms)
+{
+    bool ok = has_arg ? hl_rlink_send_int(&r->rlink, number, arg, now_ms)
+                      : hl_rlink_send(&r->rlink, number, now_ms);
+    hl_rlink_sent_at(&r->rlink, r->robot_ms);
+    if (!ok)
+        hl_log(HL_LOG_WARNING, "robot command %u not sent (link down or output full)", number);
+}
+
+static void end_destination(hl_robot_t *r, int8_t result, const char *what, int64_t now_ms)
+{
+    if (r->dest_seq < 0)
+        return;
+    hl_log(result == HL_BUS_REPLY_ARRIVED ? HL_LOG_INFO : HL_LOG_WARNING,
+           "destination %lld: %s", (long long)r->dest_seq, what);
+    reply(r, r->dest_seq, result, what);
+    if (result != HL_BUS_REPLY_ARRIVED)
+        hl_cycle_note_error(r->cycle, what);
+    r->dest_seq = -1;
+    set_state(r, HL_BUS_STATE_IDLE, now_ms);
+}
+
+static void start_sounding(hl_robot_t *r, int64_t now_ms)
+{
+    hl_sounder_start(&r->sounder);
+    set_state(r, HL_BUS_STATE_SOUNDING, now_ms);
+}
+
+static void drive_do(hl_robot_t *r, const hl_drive_out_t *out, int64_t now_ms)
+{
+    switch (out->cmd) {
+    case HL_DRIVE_CMD_STOP: command(r, HL_ARCOS_STOP, false, 0, now_ms); break;
+    case HL_DRIVE_CMD_HEAD: command(r, HL_ARCOS_HEAD, true, out->arg, now_ms); break;
+    case HL_DRIVE_CMD_MOVE: command(r, HL_ARCOS_MOVE, true, out->arg, now_ms); break;
+    case HL_DRIVE_CMD_SOUND: start_sounding(r, now_ms); break;
+    case HL_DRIVE_CMD_NONE: break;
+    }
+    if (out->cmd == HL_DRIVE_CMD_HEAD || out->cmd == HL_DRIVE_CMD_MOVE)
+        set_state(r, HL_BUS_STATE_MOVING, now_ms);
+    char what[HL_BUS_TEXT_MAX];
+    switch (hl_drive_phase(&r->drive)) {
+    case HL_DRIVE_ARRIVED:
+        snprintf(what, sizeof what, "arrived %.3f m from the destination after %d legs",
+                 hl_drive_remaining(&r->drive, hl_cycle_estimate(r->cycle)) / 1000.0,
+                 r->drive.legs);
+        end_destination(r, HL_BUS_REPLY_ARRIVED, what, now_ms);
+        break;
+    case HL_DRIVE_FAILED:
+        end_destination(r, HL_BUS_REPLY_FAILED, hl_drive_why(&r->drive), now_ms);
+        break;
+    default:
+        break;
+    }
+}
+
+static void begin_destination(hl_robot_t *r, const hl_bus_destination_t *d, int64_t now_ms)
+{
+    r->dest_seq = d->seq;
+    r->last_in.estimate = hl_cycle_estimate(r->cycle);
+    hl_log(HL_LOG_INFO, "destination %lld: to (%.3f, %.3f) m", (long long)d->seq,
+           d->x_mm / 1000.0, d->y_mm / 1000.0);
+    hl_drive_out_t out;
+    hl_drive_start(&r->drive, d->x_mm, d->y_mm, d->has_heading, d->heading, &r->last_in, &out);
+    drive_do(r, &out, now_ms);
+}
+
+void hl_robot_destination(hl_robot_t *r, const hl_bus_destination_t *d, int64_t now_ms)
+{
+    if (!r->up) {
+        char what[HL_BUS_TEXT_MAX];
+        snprintf(what, sizeof what, "robot link down: %s",
+                 r->link ? "connecting" : hl_rlink_why(&r->rlink));
+        reply(r, d->seq, HL_BUS_REPLY_NO_ROBOT, what);
+        return;
+    }
+    if (r->dest_seq >= 0 || r->dest_pending) {
+        char what[HL_BUS_TEXT_MAX];
+        snprintf(what, sizeof what, "superseded by destination %lld", (long long)d->seq);
+        if (r->dest_pending)
+            reply(r, r->pending.seq, HL_BUS_REPLY_FAILED, what);
+        r->dest_pending = false;
+        hl_drive_fail(&r->drive, what);
+        end_destination(r, HL_BUS_REPLY_FAILED, what, now_ms);
+    }
+    reply(r, d->seq, HL_BUS_REPLY_ACCEPTED, "under way");
+    if (hl_sounder_state(&r->sounder) == HL_SOUNDER_BUSY) {
+        r->pending = *d;            /* the sounding in progress ends first */
+        r->dest_pending = true;
+        return;
+    }
+    command(r, HL_ARCOS_STOP, false, 0, now_ms);
+    begin_destination(r, d, now_ms);
+}
+
+/* ---- the robot's packets -------------------------------------------------------------- */
+
+/* The SIP's odometry in the published frame, anchored at the first SIP of a connection
+ * so that it continues where the last one (or the saved map) left off. */
+static bool odometry_of(hl_robot_t *r, const hl_arcos_sip_t *sip, hl_pose_t *robot_frame,
+                        hl_pose_t *published)
+{
+    if (!r->anchored)
+        hl_arcos_odom_init(&r->odom, r->p.conv.angle_units_per_turn);
+    if (hl_arcos_odom_unwrap(&r->odom, sip) != HL_OK)
+        return false;
+    int64_t x = r->odom.x * r->p.conv.dist_um / 1000, y = r->odom.y * r->p.conv.dist_um / 1000;
+    if (x < -HL_COORD_MAX_MM || x > HL_COORD_MAX_MM || y < -HL_COORD_MAX_MM || y > HL_COORD_MAX_MM)
+        return false;
+    *robot_frame = (hl_pose_t){ (hl_mm_t)x, (hl_mm_t)y,
+                                hl_arcos_angle_to_bam(&r->p.conv, r->odom.th) };
+    if (!r->anchored) {
+        hl_pose_t anchor;
+        bool have = r->have_published || hl_cycle_odometry(r->cycle, &anchor);
+        if (r->have_published)
+            anchor = r->published;
+        r->offset = have ? hl_pose_compose(anchor, hl_pose_between(*robot_frame,
+                                                                    (hl_pose_t){ 0, 0, 0 }))
+                         : (hl_pose_t){ 0, 0, 0 };
+        r->anchored = true;
+    }
+    *published = hl_pose_compose(r->offset, *robot_frame);
+    return hl_pose_in_range(*published);
+}
+
+static void publish_odometry(hl_robot_t *r, const hl_arcos_sip_t *sip, hl_pose_t pose,
+                             int64_t now_ms)
+{
+    int32_t v = (sip->vel_left + sip->vel_right) / 2 * (int32_t)r->p.conv.vel_um_s / 1000;
+    hl_bus_odometry_t o = { .utime = utime_now(r), .pose = pose,
+                            .velocity_mm_s = (int16_t)(v < -32768 ? -32768 : v > 32767 ? 32767 : v),
+                            .stopped = sip->type == HL_ARCOS_SIP_STOPPED };
+    r->published = pose;
+    r->have_published = true;
+    deliver(r, HL_CH_ODOMETRY, hl_bus_encode_odometry(&o, r->buf, sizeof r->buf), now_ms);
+}
+
+static void finish_sounding(hl_robot_t *r, int64_t now_ms)
+{
+    hl_pose_t robot_frame;
+    if (hl_sounder_take(&r->sounder, &r->msg.scan, &robot_frame) != HL_OK)
+        return;
+    r->msg.utime = utime_now(r);
+    r->msg.seq = ++r->scan_seq;
+    r->msg.odometry = hl_pose_compose(r->offset, robot_frame);
+    deliver(r, HL_CH_SONAR, hl_bus_encode_scan(&r->msg, r->buf, sizeof r->buf), now_ms);
+    r->sounded_once = true;
+    r->last_in.estimate = hl_cycle_estimate(r->cycle);
+    if (r->dest_pending) {
+        r->dest_pending = false;
+        begin_destination(r, &r->pending, now_ms);
+    } else if (r->dest_seq >= 0 && hl_drive_phase(&r->drive) == HL_DRIVE_SOUND) {
+        hl_drive_out_t out;
+        hl_drive_localized(&r->drive, &r->last_in, &out);
+        drive_do(r, &out, now_ms);
+    } else {
+        set_state(r, HL_BUS_STATE_IDLE, now_ms);
+    }
+}
+
+static void sounder_step(hl_robot_t *r, const hl_arcos_sip_t *sip, hl_pose_t robot_frame,
+                         int64_t now_ms)
+{
+    hl_sounder_sip_t in = { .robot_ms = r->robot_ms, .odometry = robot_frame,
+                            .moving = sip->type == HL_ARCOS_SIP_MOVING,
+                            .readings = sip->sonar_count };
+    for (int32_t i = 0; i < in.readings; i++) {
+        in.transducer[i] = sip->sonar[i].transducer;
+        in.raw[i] = sip->sonar[i].range;
+    }
+    int32_t head = 0;
+    hl_sounder_cmd_t cmd = hl_sounder_on_sip(&r->sounder, &in, &head);
+    if (cmd == HL_SOUNDER_CMD_STOP)
+        command(r, HL_ARCOS_STOP, false, 0, now_ms);
+    else if (cmd == HL_SOUNDER_CMD_HEAD)
+        command(r, HL_ARCOS_HEAD, true, head, now_ms);
+    if (hl_sounder_state(&r->sounder) == HL_SOUNDER_DONE) {
+        finish_sounding(r, now_ms);
+    } else if (hl_sounder_state(&r->sounder) == HL_SOUNDER_FAILED) {
+        hl_log(HL_LOG_WARNING, "%s", hl_sounder_why(&r->sounder));
+        hl_cycle_note_error(r->cycle, hl_sounder_why(&r->sounder));
+        hl_sounder_cancel(&r->sounder);
+        hl_drive_fail(&r->drive, hl_sounder_why(&r->sounder));
+        end_destination(r, HL_BUS_REPLY_FAILED, hl_sounder_why(&r->sounder), now_ms);
+        set_state(r, HL_BUS_STATE_IDLE, now_ms);
+    }
+}
+
+typedef struct sip_ctx {
+    hl_robot_t *r;
+    int64_t now_ms;
+} sip_ctx_t;
+
+static void on_sip(void *ctx, const hl_arcos_sip_t *sip)
+{
+    sip_ctx_t *c = ctx;
+    hl_robot_t *r = c->r;
+    r->robot_ms += SIP_PERIOD_MS;
+    hl_pose_t robot_frame, published;
+    if (!odometry_of(r, sip, &robot_frame, &published)) {
+        hl_cycle_note_error(r->cycle, "robot odometry out of range");
+        return;
+    }
+    publish_odometry(r, sip, published, c->now_ms);
+    hl_rlink_keepalive(&r->rlink, r->robot_ms);
+    r->last_in = (hl_drive_in_t){
+        .robot_ms = r->robot_ms, .estimate = hl_cycle_estimate(r->cycle),
+        .odometry = robot_frame, .moving = sip->type == HL_ARCOS_SIP_MOVING,
+        .stalled = (sip->stall_bumpers & (HL_ARCOS_STALL_LEFT | HL_ARCOS_STALL_RIGHT)) != 0 };
+    if (hl_sounder_state(&r->sounder) == HL_SOUNDER_BUSY) {
+        sounder_step(r, sip, robot_frame, c->now_ms);
+    } else if (r->dest_seq >= 0) {
+        hl_drive_out_t out;
+        hl_drive_on_sip(&r->drive, &r->last_in, &out);
+        drive_do(r, &out, c->now_ms);
+    }
+}
+
+/* ---- the connection ------------------------------------------------------------------- */
+
+static void note_fault(hl_robot_t *r, const char *what)
+{
+    if (strcmp(what, r->last_fault) != 0)
+        hl_log(HL_LOG_WARNING, "robot link: %s", what);
+    snprintf(r->last_fault, sizeof r->last_fault, "%s", what);
+    hl_cycle_note_error(r->cycle, what);
+}
+
+static void drop_link(hl_robot_t *r, const char *why, int64_t now_ms)
+{
+    char what[HL_BUS_TEXT_MAX];
+    snprintf(what, sizeof what, "%s; retrying in %.2f s", why, r->backoff_ms / 1000.0);
+    note_fault(r, what);
+    hl_link_close(r->link);
+    r->link = NULL;
+    r->up = false;
+    hl_rlink_lost(&r->rlink, why);
+    hl_sounder_cancel(&r->sounder);
+    if (r->dest_pending) {
+        reply(r, r->pending.seq, HL_BUS_REPLY_FAILED, "robot link lost");
+        r->dest_pending = false;
+    }
+    snprintf(what, sizeof what, "robot link lost: %s", why);
+    hl_drive_fail(&r->drive, what);
+    end_destination(r, HL_BUS_REPLY_FAILED, what, now_ms);
+    r->retry_at_ms = now_ms + r->backoff_ms;
+    r->backoff_ms = r->backoff_ms * 2 > r->p.reconnect_max_ms ? r->p.reconnect_max_ms
+                                                              : r->backoff_ms * 2;
+    set_state(r, HL_BUS_STATE_FAULT, now_ms);
+}
+
+/* Follows the session's state after anything that may change it. */
+static void check_session(hl_robot_t *r, int64_t now_ms)
+{
+    uint64_t bad = hl_rlink_bad_packets(&r->rlink);
+    if (bad != r->bad_reported) {
+        hl_cycle_set_bad_packets(r->cycle, (int32_t)(bad > INT32_MAX ? INT32_MAX : bad));
+        r->bad_reported = bad;
+    }
+    if (r->link && !hl_link_connecting(r->link) && hl_rlink_state(&r->rlink) == HL_RLINK_DOWN) {
+        drop_link(r, hl_rlink_why(&r->rlink), now_ms);
+        return;
+    }
+    if (r->up || hl_rlink_state(&r->rlink) != HL_RLINK_UP)
+        return;
+    r->up = true;
+    r->anchored = false;
+    r->backoff_ms = FIRST_BACKOFF_MS;
+    r->last_fault[0] = '\0';
+    hl_log(HL_LOG_NOTICE, "robot '%s' (%s %s) connected", r->rlink.id.name, r->rlink.id.cls,
+           r->rlink.id.subclass);
+    if (r->p.sound_on_connect && !r->sounded_once)
+        start_sounding(r, now_ms);
+    else
+        set_state(r, HL_BUS_STATE_IDLE, now_ms);
+}
+
+static void flush(hl_robot_t *r, int64_t now_ms)
+{
+    char why[HL_LINK_WHY_LEN];
+    size_t n;
+    const uint8_t *out = hl_rlink_pending(&r->rlink, &n);
+    while (r->link && !hl_link_connecting(r->link) && n > 0) {
+        ssize_t put = hl_link_write(r->link, out, n, why);
+        if (put < 0) {
+            drop_link(r, why, now_ms);
+            return;
+        }
+        if (put == 0)
+            return;     /* the socket is full: POLLOUT brings us back */
+        hl_rlink_sent(&r->rlink, (size_t)put);
+        out = hl_rlink_pending(&r->rlink, &n);
+    }
+}
+
+static void connect_now(hl_robot_t *r, int64_t now_ms)
+{
+    char why[HL_LINK_WHY_LEN];
+    r->link = hl_link_open(&r->p.link, why);
+    if (!r->link) {
+        drop_link(r, why, now_ms);
+        return;
+    }
+    if (!hl_link_connecting(r->link))
+        hl_rlink_begin(&r->rlink, now_ms);
+}
+
+void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms)
+{
+    char why[HL_LINK_WHY_LEN];
+    if (!r->link)
+        return;
+    if (hl_link_connecting(r->link)) {
+        if (!(revents & (POLLOUT | POLLERR | POLLHUP)))
+            return;
+        if (!hl_link_connected(r->link, why)) {
+            drop_link(r, why, now_ms);
+            return;
+        }
+        hl_rlink_begin(&r->rlink, now_ms);
+    } else if (revents & (POLLIN | POLLERR | POLLHUP)) {
+        uint8_t in[512];
+        sip_ctx_t ctx = { r, now_ms };
+        for (int rounds = 0; r->link && rounds < 16; rounds++) {
+            ssize_t got = hl_link_read(r->link, in, sizeof in, why);
+            if (got < 0) {
+                drop_link(r, why, now_ms);
+                return;
+            }
+            if (got == 0)
+                break;
+            hl_rlink_feed(&r->rlink, in, (size_t)got, now_ms, on_sip, &ctx);
+            check_session(r, now_ms);
+        }
+    }
+    check_session(r, now_ms);
+    flush(r, now_ms);
+}
+
+void hl_robot_tick(hl_robot_t *r, int64_t now_ms)
+{
+    if (!r->link) {
+        if (now_ms >= r->retry_at_ms)
+            connect_now(r, now_ms);
+    } else if (!hl_link_connecting(r->link)) {
+        hl_rlink_tick(&r->rlink, now_ms);
+    }
+    check_session(r, now_ms);
+    flush(r, now_ms);
+}
+
+void hl_robot_stop(hl_robot_t *r, int64_t now_ms)
+{
+    if (r->dest_pending)
+        reply(r, r->pending.seq, HL_BUS_REPLY_FAILED, "houghlocd is stopping");
+    r->dest_pending = false;
+    hl_drive_fail(&r->drive, "houghlocd is stopping");
+    end_destination(r, HL_BUS_REPLY_FAILED, "houghlocd is stopping", now_ms);
+    if (r->link && r->up) {
+        command(r, HL_ARCOS_STOP, false, 0, now_ms);
+        hl_rlink_close(&r->rlink, "houghlocd stopped", now_ms);
+        flush(r, now_ms);
+    }
+    hl_link_close(r->link);
+    r->link = NULL;
+    r->up = false;
+}
