@@ -1,0 +1,239 @@
+// test_server.cpp - houghloc-sim end to end over a real loopback socket, server and client
+// driven from one thread: handshake, a MOVE, one client at a time, injected garbage,
+// corrupt checksums and a dropped connection, and the robot kept across clients.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include "server.hpp"
+
+// cmocka last: its macros (fail, ...) clash with standard headers included after it.
+#include "test_support.hpp"
+
+using namespace hlsim;
+
+namespace {
+
+struct Rig {
+    World world;
+    std::vector<std::string> lines;
+    Log log{[this](const std::string &s) { lines.push_back(s); }};
+    SimConfig cfg;
+    SimRobot robot;
+    Session session;
+    Server server;
+    explicit Rig(const Faults &f)
+        : world(make_world()), cfg(config()), robot(world, cfg, Pose{}, log),
+          session(robot, log), server(robot, session, log, f, 1)
+    {
+        std::string err;
+        assert_true(server.listen("127.0.0.1", 0, &err));
+        assert_true(server.port() > 0);
+    }
+    static World make_world()
+    {
+        World w;
+        std::string err;
+        w.parse("polygon -3000 -3000 3000 -3000 3000 3000 -3000 3000\n", "room", &err);
+        return w;
+    }
+    static SimConfig config()
+    {
+        SimConfig c;
+        sim_profile("bonnie", &c.profile);
+        return c;
+    }
+    // Serves the sockets for up to @p ms (until nothing happens for that long).
+    void serve(int ms = 20)
+    {
+        struct pollfd pfd[2];
+        std::size_t n = server.pollfds(pfd);
+        if (poll(pfd, n, ms) > 0)
+            server.handle(pfd, n);
+    }
+    // Serves the sockets until @p done holds (at most 2 s).
+    template <class F> void serve_until(F done)
+    {
+        for (int k = 0; k < 100 && !done(); k++)
+            serve();
+        assert_true(done());
+    }
+    int connect_client()
+    {
+        int fd = socket(AF_INET, SOCK_STREAM, 0);
+        struct sockaddr_in a {};
+        a.sin_family = AF_INET;
+        a.sin_port = htons(server.port());
+        inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+        assert_int_equal(connect(fd, reinterpret_cast<struct sockaddr *>(&a), sizeof a), 0);
+        serve();
+        return fd;
+    }
+};
+
+void send_cmd(int fd, uint8_t n, int32_t arg, bool has_arg)
+{
+    uint8_t b[HL_ARCOS_PACKET_MAX];
+    std::size_t len = 0;
+    hl_status_t st = has_arg ? hl_arcos_encode_int(b, sizeof b, n, arg, &len)
+                             : hl_arcos_encode_none(b, sizeof b, n, &len);
+    assert_int_equal(st, HL_OK);
+    assert_int_equal(send(fd, b, len, 0), static_cast<ssize_t>(len));
+}
+
+// The client's side: everything readable now, parsed.
+struct Reader {
+    hl_arcos_parser_t parser;
+    std::vector<hl_arcos_packet_t> packets;
+    bool eof = false;
+    Reader() { hl_arcos_parser_init(&parser); }
+    void drain(int fd)
+    {
+        uint8_t buf[4096];
+        for (;;) {
+            ssize_t r = recv(fd, buf, sizeof buf, MSG_DONTWAIT);
+            if (r == 0)
+                eof = true;
+            if (r <= 0)
+                return;
+            std::size_t off = 0, used = 0;
+            hl_arcos_packet_t p;
+            while (hl_arcos_parse(&parser, buf + off, static_cast<std::size_t>(r) - off,
+                                  &used, &p) == HL_OK) {
+                off += used;
+                packets.push_back(p);
+            }
+        }
+    }
+};
+
+// Connects, synchronizes and opens; returns the client's socket.
+int open_session(Rig &r, Reader &rd)
+{
+    int fd = r.connect_client();
+    for (uint8_t k = 0; k < 3; k++) {
+        send_cmd(fd, k, 0, false);
+        for (int i = 0; i < 100 && rd.packets.size() < k + 1u; i++) {
+            r.serve();
+            rd.drain(fd);
+        }
+        assert_int_equal(rd.packets.size(), k + 1u);
+        if (k < 2)
+            assert_true(hl_arcos_is_sync_echo(&rd.packets[k], k));
+    }
+    hl_arcos_robot_id_t id;
+    assert_int_equal(hl_arcos_decode_sync2(&rd.packets[2], &id), HL_OK);
+    assert_string_equal(id.subclass, "bonnie");
+    rd.packets.clear();
+    send_cmd(fd, HL_ARCOS_OPEN, 0, false);
+    send_cmd(fd, HL_ARCOS_ENABLE, 1, true);
+    r.serve_until([&r] { return r.session.streaming() && r.robot.motors_on(); });
+    return fd;
+}
+
+// Runs @p steps SIP periods, serving the sockets and pulsing between them; returns the
+// SIPs the client decoded.
+std::vector<hl_arcos_sip_t> run(Rig &r, Reader &rd, int fd, int steps)
+{
+    std::vector<hl_arcos_sip_t> sips;
+    for (int k = 0; k < steps; k++) {
+        uint64_t seq = 0;
+        r.server.step(&seq);
+        if (k % 5 == 0 && r.server.connected())
+            send_cmd(fd, HL_ARCOS_PULSE, 0, false);
+        r.serve(1);
+        rd.drain(fd);
+    }
+    r.serve(5);
+    rd.drain(fd);
+    for (const hl_arcos_packet_t &p : rd.packets) {
+        hl_arcos_sip_t s;
+        if (hl_arcos_is_sip(&p) && hl_arcos_decode_sip(&p, &s) == HL_OK)
+            sips.push_back(s);
+    }
+    rd.packets.clear();
+    return sips;
+}
+
+}  // namespace
+
+static void test_move_over_tcp(void **state)
+{
+    (void)state;
+    Rig r(Faults{});
+    Reader rd;
+    int fd = open_session(r, rd);
+    send_cmd(fd, HL_ARCOS_MOVE, 500, true);
+    r.serve_until([&r] { return r.robot.base().moving(); });
+    std::vector<hl_arcos_sip_t> sips = run(r, rd, fd, 40);
+    assert_int_equal(sips.size(), 40);
+    assert_int_equal(r.server.counts().sips, 40);
+    assert_int_equal(sips.front().type, HL_ARCOS_SIP_MOVING);
+    assert_int_equal(sips.back().type, HL_ARCOS_SIP_STOPPED);
+    assert_int_equal(sips.back().x, 500);
+    // A second client is turned away; the first keeps its session.
+    int fd2 = r.connect_client();
+    r.serve_until([&r] { return r.server.counts().refused == 1; });
+    char c;
+    assert_true(recv(fd2, &c, 1, 0) <= 0);
+    assert_int_equal(r.server.counts().refused, 1);
+    assert_true(r.server.connected());
+    close(fd2);
+    close(fd);
+    r.serve();
+    assert_false(r.server.connected());
+    assert_false(r.robot.motors_on());
+}
+
+static void test_faults(void **state)
+{
+    (void)state;
+    Faults f;
+    f.garbage_every = 3;
+    f.corrupt_every = 4;
+    f.drop_after_s = 3.0;
+    Rig r(f);
+    Reader rd;
+    int fd = open_session(r, rd);
+    send_cmd(fd, HL_ARCOS_MOVE, 300, true);
+    r.serve_until([&r] { return r.robot.base().moving(); });
+    // 30 SIPs go out before the drop at 3 s of robot time (the stream opened at 0 s):
+    // every 4th (7) fails its checksum, the garbage before every 3rd (10) is skipped.
+    std::vector<hl_arcos_sip_t> sips = run(r, rd, fd, 35);
+    const ServerCounts &c = r.server.counts();
+    assert_int_equal(c.sips, 30);
+    assert_int_equal(c.corrupt, 7);
+    assert_int_equal(c.garbage, 10);
+    assert_int_equal(c.drops, 1);
+    assert_int_equal(c.faults(), 18);
+    assert_true(rd.parser.bad_checksums >= 7);
+    assert_true(sips.size() >= 20 && sips.size() <= 23);   // a rare phantom may eat one
+    assert_true(rd.eof);
+    assert_false(r.server.connected());
+    uint16_t x = sips.back().x;
+    assert_true(x > 250 && x <= 300);
+    close(fd);
+    // The robot stood still meanwhile; a new client finds it where it was.
+    for (int k = 0; k < 10; k++) {
+        uint64_t seq;
+        assert_false(r.server.step(&seq));
+    }
+    Reader rd2;
+    int fd2 = open_session(r, rd2);
+    std::vector<hl_arcos_sip_t> again = run(r, rd2, fd2, 12);
+    assert_true(again.size() >= 8);
+    assert_int_equal(again.back().type, HL_ARCOS_SIP_STOPPED);
+    assert_int_equal(again.back().x, 300);
+    assert_int_equal(r.server.counts().drops, 1);   // once
+    close(fd2);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_move_over_tcp),
+        cmocka_unit_test(test_faults),
+    };
+    return cmocka_run_group_tests(tests, nullptr, nullptr);
+}

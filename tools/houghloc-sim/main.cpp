@@ -1,0 +1,231 @@
+// main.cpp - houghloc-sim: a simulated ARCOS robot on TCP for houghlocd (README, section
+// "Simulated robot"; docs/arcos.md for the protocol subset).
+//
+// One thread, one poll loop: the listening socket, the client, a signalfd for SIGINT and
+// SIGTERM, and the SIP clock. Robot time runs --speed times wall time: a SIP is due every
+// 100 / K ms of wall time from the start. When the loop falls behind, no period is
+// skipped: the SIPs go out back to back, each still 100 ms of robot time (robot time is
+// what the SIPs say, and the daemon counts them), the sockets still served between them.
+// Each SIP sent is matched by one GROUND_TRUTH message with the true pose.
+#include <lcm/lcm.h>
+#include <signal.h>
+#include <sys/signalfd.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <ctime>
+#include <vector>
+
+#include "houghloc/bus.h"
+#include "houghloc/fixed.h"
+#include "houghloc/slam.h"
+#include "options.hpp"
+#include "tour.hpp"
+
+using namespace hlsim;
+
+namespace {
+
+int64_t mono_ns()
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return static_cast<int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+// The true start pose: --start, else the world's tour start (snapped to its tile grid,
+// where hl-sim-logs starts its tour), heading 0. Checked to be free space.
+bool start_pose(const World &w, const SimOptions &o, Pose *out, std::string *err)
+{
+    if (o.has_start) {
+        *out = Pose{o.start_x_m * 1000.0, o.start_y_m * 1000.0, wrap_pi(deg2rad(o.start_deg))};
+    } else if (w.has_tour) {
+        std::vector<TourStop> stops = tour_order(w, w.tour_start, w.tile_mm, kTourClearanceMm);
+        Vec2 p = stops.empty() ? w.tour_start : stops[0].at;
+        *out = Pose{p.x, p.y, 0.0};
+    } else {
+        *err = "--start: the world declares no tour start; give --start X,Y,DEG";
+        return false;
+    }
+    char where[96];
+    std::snprintf(where, sizeof where, "(%.3f, %.3f) m", out->x / 1000.0, out->y / 1000.0);
+    double c = w.clearance(out->pos());
+    if (c < Base::kRadiusMm) {
+        *err = std::string("--start: ") + where + " is not in free space: " +
+               std::to_string(static_cast<long>(c)) + " mm from a surface, the robot's " +
+               "radius is 250 mm";
+        return false;
+    }
+    std::string why;
+    if (!w.enclosed(out->pos(), &why)) {
+        *err = std::string("--start: ") + where + " is not in free space: " + why;
+        return false;
+    }
+    return true;
+}
+
+struct Truth {
+    lcm_t *lcm = nullptr;
+    char channel[HL_BUS_CHANNEL_MAX] = "";
+    std::vector<uint8_t> buf = std::vector<uint8_t>(HL_BUS_POSE_BYTES);
+
+    void publish(const SimRobot &robot, uint64_t seq, Log &log)
+    {
+        if (!lcm)
+            return;
+        const Pose &p = robot.base().truth();
+        hl_bus_pose_t g{};
+        g.utime = robot.utime();
+        g.scan_seq = static_cast<int32_t>(seq & 0x7FFFFFFF);
+        g.pose = hl_pose_t{static_cast<hl_mm_t>(std::lround(p.x)),
+                           static_cast<hl_mm_t>(std::lround(p.y)), hl_bam_from_rad(p.theta)};
+        g.status = HL_SLAM_ACCEPTED;
+        int len = hl_bus_encode_pose(&g, buf.data(), buf.size());
+        if (len < 0)
+            log.once("truth-encode", "GROUND_TRUTH: the true pose does not encode (out of "
+                     "range?): not published");
+        else if (lcm_publish(lcm, channel, buf.data(), static_cast<unsigned>(len)) != 0)
+            log.once("truth-publish", "GROUND_TRUTH: lcm_publish failed (logged once)");
+    }
+};
+
+// Blocks SIGINT and SIGTERM and returns a signalfd for them (-1 on failure).
+int signal_fd()
+{
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    if (sigprocmask(SIG_BLOCK, &set, nullptr) != 0)
+        return -1;
+    signal(SIGPIPE, SIG_IGN);
+    return signalfd(-1, &set, SFD_NONBLOCK | SFD_CLOEXEC);
+}
+
+void summary(const Server &server, const Session &session, const SimRobot &robot)
+{
+    const ServerCounts &c = server.counts();
+    std::fprintf(stderr,
+                 "houghloc-sim: summary: sips_sent=%llu commands=%llu bad_commands=%llu "
+                 "client_garbage_bytes=%llu faults=%llu (drop %llu, garbage %llu, corrupt "
+                 "%llu, stall %llu) clients=%llu refused=%llu robot_time_s=%.1f\n",
+                 static_cast<unsigned long long>(c.sips),
+                 static_cast<unsigned long long>(session.commands()),
+                 static_cast<unsigned long long>(session.bad_commands()),
+                 static_cast<unsigned long long>(session.garbage_bytes()),
+                 static_cast<unsigned long long>(c.faults()),
+                 static_cast<unsigned long long>(c.drops),
+                 static_cast<unsigned long long>(c.garbage),
+                 static_cast<unsigned long long>(c.corrupt),
+                 static_cast<unsigned long long>(c.stalls),
+                 static_cast<unsigned long long>(c.clients),
+                 static_cast<unsigned long long>(c.refused),
+                 static_cast<double>(robot.utime()) / 1e6);
+}
+
+// The poll loop; returns when a signal arrives (0) or poll fails (1).
+int run(Server &server, SimRobot &robot, Truth &truth, Log &log, int sigfd, double speed)
+{
+    const int64_t period_ns = std::llround(1e8 / speed);   // 100 ms of robot time
+    int64_t next_ns = mono_ns() + period_ns;
+    for (;;) {
+        struct pollfd pfd[3];
+        pfd[0] = {sigfd, POLLIN, 0};
+        std::size_t n = 1 + server.pollfds(pfd + 1);
+        int64_t wait = next_ns - mono_ns();
+        if (wait < 0)
+            wait = 0;
+        struct timespec ts = {static_cast<time_t>(wait / 1000000000),
+                              static_cast<long>(wait % 1000000000)};
+        int r = ppoll(pfd, n, &ts, nullptr);
+        if (r < 0 && errno != EINTR) {
+            log.line("poll: %s", std::strerror(errno));
+            return 1;
+        }
+        if (r > 0 && (pfd[0].revents & POLLIN)) {
+            struct signalfd_siginfo si;
+            if (read(sigfd, &si, sizeof si) == static_cast<ssize_t>(sizeof si))
+                log.line("%s: shutting down", strsignal(static_cast<int>(si.ssi_signo)));
+            return 0;
+        }
+        if (r > 0)
+            server.handle(pfd + 1, n - 1);
+        if (mono_ns() >= next_ns) {
+            uint64_t seq = 0;
+            if (server.step(&seq))
+                truth.publish(robot, seq, log);
+            next_ns += period_ns;   // never skipped: behind, the next is due at once
+        }
+    }
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    SimOptions o;
+    std::string err;
+    switch (parse_options(argc, argv, &o, &err)) {
+    case ParseResult::Help:
+        print_usage(stdout);
+        return 0;
+    case ParseResult::Error:
+        std::fprintf(stderr, "houghloc-sim: %s\n", err.c_str());
+        return 2;
+    case ParseResult::Run:
+        break;
+    }
+    World world;
+    if (!World::load_or_lab(o.world, &world, &err)) {
+        std::fprintf(stderr, "houghloc-sim: --world: %s\n", err.c_str());
+        return 2;
+    }
+    Pose start;
+    if (!start_pose(world, o, &start, &err)) {
+        std::fprintf(stderr, "houghloc-sim: %s\n", err.c_str());
+        return 2;
+    }
+    SimConfig cfg;
+    sim_profile(o.profile, &cfg.profile);
+    cfg.sonar.model = o.cone ? SonarParams::Model::Cone : SonarParams::Model::Physical;
+    cfg.seed = o.seed;
+    cfg.watchdog_us = std::llround(o.watchdog_s * 1e6);
+
+    Log log;
+    SimRobot robot(world, cfg, start, log);
+    Session session(robot, log);
+    Server server(robot, session, log, o.faults, o.seed);
+    if (!server.listen(o.bind, o.port, &err)) {
+        std::fprintf(stderr, "houghloc-sim: %s\n", err.c_str());
+        return 1;
+    }
+    Truth truth;
+    if (o.truth) {
+        hl_bus_channel(o.prefix.c_str(), HL_CHANNEL_GROUND_TRUTH, truth.channel);
+        truth.lcm = lcm_create(o.lcm_url.empty() ? nullptr : o.lcm_url.c_str());
+        if (!truth.lcm) {
+            std::fprintf(stderr, "houghloc-sim: --lcm-url: cannot open LCM '%s'\n",
+                         o.lcm_url.empty() ? "(default)" : o.lcm_url.c_str());
+            return 1;
+        }
+    }
+    int sigfd = signal_fd();
+    if (sigfd < 0) {
+        std::fprintf(stderr, "houghloc-sim: signalfd: %s\n", std::strerror(errno));
+        return 1;
+    }
+    log.set_clock(robot.clock());
+    log.line("listening on %s:%u (profile %s, speed %g, %s sonar, start (%.3f, %.3f) m "
+             "%.1f deg, %s)", o.bind.c_str(), server.port(), o.profile.c_str(), o.speed,
+             o.cone ? "cone" : "physical", start.x / 1000.0, start.y / 1000.0,
+             rad2deg(start.theta), o.truth ? truth.channel : "no GROUND_TRUTH");
+    int rc = run(server, robot, truth, log, sigfd, o.speed);
+    server.shutdown();
+    summary(server, session, robot);
+    close(sigfd);
+    if (truth.lcm)
+        lcm_destroy(truth.lcm);
+    return rc;
+}

@@ -1,0 +1,236 @@
+// server.cpp - TCP sockets, the SIP stream and fault injection for houghloc-sim.
+#include "server.hpp"
+
+#include <arpa/inet.h>
+#include <cerrno>
+#include <cstring>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+namespace hlsim {
+
+namespace {
+
+std::string peer_name(const struct sockaddr_in &a)
+{
+    char ip[INET_ADDRSTRLEN] = "?";
+    inet_ntop(AF_INET, &a.sin_addr, ip, sizeof ip);
+    return std::string(ip) + ":" + std::to_string(ntohs(a.sin_port));
+}
+
+}  // namespace
+
+Server::Server(SimRobot &robot, Session &session, Log &log, const Faults &faults,
+               uint64_t seed)
+    : robot_(robot), session_(session), log_(log), faults_(faults),
+      rng_(seed ^ 0x6761726261676521ULL)
+{
+}
+
+Server::~Server()
+{
+    shutdown();
+}
+
+bool Server::listen(const std::string &addr, int port, std::string *err)
+{
+    struct sockaddr_in a {};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    if (inet_pton(AF_INET, addr.c_str(), &a.sin_addr) != 1) {
+        *err = "--bind: '" + addr + "' is not an IPv4 address";
+        return false;
+    }
+    int fd = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+    if (fd < 0) {
+        *err = std::string("socket: ") + std::strerror(errno);
+        return false;
+    }
+    int one = 1;
+    setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    socklen_t alen = sizeof a;
+    if (bind(fd, reinterpret_cast<struct sockaddr *>(&a), sizeof a) != 0 ||
+        ::listen(fd, 4) != 0 ||
+        getsockname(fd, reinterpret_cast<struct sockaddr *>(&a), &alen) != 0) {
+        *err = addr + ":" + std::to_string(port) + ": " + std::strerror(errno);
+        close(fd);
+        return false;
+    }
+    listen_ = fd;
+    port_ = ntohs(a.sin_port);
+    return true;
+}
+
+std::size_t Server::pollfds(struct pollfd *pfd) const
+{
+    std::size_t n = 0;
+    if (listen_ >= 0)
+        pfd[n++] = {listen_, POLLIN, 0};
+    if (client_ >= 0)
+        pfd[n++] = {client_, static_cast<short>(POLLIN | (out_.empty() ? 0 : POLLOUT)), 0};
+    return n;
+}
+
+void Server::handle(const struct pollfd *pfd, std::size_t n)
+{
+    for (std::size_t i = 0; i < n; i++) {
+        if (pfd[i].revents == 0)
+            continue;
+        if (pfd[i].fd == listen_ && listen_ >= 0) {
+            accept_client();
+        } else if (pfd[i].fd == client_ && client_ >= 0) {
+            if (pfd[i].revents & POLLOUT)
+                flush();
+            if (client_ >= 0 && (pfd[i].revents & (POLLIN | POLLHUP | POLLERR)))
+                read_client();
+        }
+    }
+}
+
+void Server::accept_client()
+{
+    struct sockaddr_in a {};
+    socklen_t alen = sizeof a;
+    int fd = accept4(listen_, reinterpret_cast<struct sockaddr *>(&a), &alen,
+                     SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (fd < 0) {
+        if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)
+            log_.line("accept: %s", std::strerror(errno));
+        return;
+    }
+    if (client_ >= 0) {
+        counts_.refused++;
+        log_.line("refused a second client from %s: one client at a time",
+                  peer_name(a).c_str());
+        close(fd);
+        return;
+    }
+    int one = 1;
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);  // SIPs are small
+    client_ = fd;
+    out_.clear();
+    counts_.clients++;
+    session_.begin();
+    log_.line("client connected from %s", peer_name(a).c_str());
+}
+
+void Server::read_client()
+{
+    uint8_t buf[4096];
+    for (;;) {
+        ssize_t r = recv(client_, buf, sizeof buf, 0);
+        if (r > 0) {
+            session_.feed(buf, static_cast<std::size_t>(r), &out_);
+            if (session_.closed()) {
+                flush();
+                close_client("the client sent CLOSE");
+                return;
+            }
+            continue;
+        }
+        if (r == 0) {
+            close_client("the client disconnected");
+        } else if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
+            std::string why = std::string("client connection: ") + std::strerror(errno);
+            close_client(why.c_str());
+        }
+        break;
+    }
+    flush();
+}
+
+void Server::flush()
+{
+    std::size_t off = 0;
+    while (client_ >= 0 && off < out_.size()) {
+        ssize_t w = send(client_, out_.data() + off, out_.size() - off,
+                         MSG_NOSIGNAL | MSG_DONTWAIT);
+        if (w > 0) {
+            off += static_cast<std::size_t>(w);
+        } else if (w < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) {
+            break;
+        } else {
+            std::string why = std::string("client connection: ") + std::strerror(errno);
+            close_client(why.c_str());
+            return;
+        }
+    }
+    out_.erase(out_.begin(), out_.begin() + static_cast<std::ptrdiff_t>(off));
+    if (out_.size() > kMaxBacklog)
+        close_client("the client does not read its SIPs");
+}
+
+void Server::close_client(const char *why)
+{
+    if (client_ < 0)
+        return;
+    close(client_);
+    client_ = -1;
+    out_.clear();
+    session_.end();
+    log_.line("%s: connection closed; the robot is stopped and keeps its pose", why);
+}
+
+void Server::shutdown()
+{
+    close_client("shutting down");
+    if (listen_ >= 0)
+        close(listen_);
+    listen_ = -1;
+}
+
+bool Server::queue_sip(const hl_arcos_sip_t &sip)
+{
+    uint64_t k = counts_.sips + 1;   // this SIP's place in the stream, from 1
+    if (faults_.garbage_every > 0 && k % faults_.garbage_every == 0) {
+        int64_t n = rng_.uniform_int(1, 64);
+        for (int64_t i = 0; i < n; i++)
+            out_.push_back(static_cast<uint8_t>(rng_.uniform_int(0, 255)));
+        counts_.garbage++;
+        log_.line("fault: %lld garbage bytes before SIP %llu", static_cast<long long>(n),
+                  static_cast<unsigned long long>(k - 1));
+    }
+    uint8_t buf[HL_ARCOS_PACKET_MAX];
+    std::size_t len = 0;
+    if (hl_arcos_encode_sip(buf, sizeof buf, &sip, &len) != HL_OK) {
+        log_.once("encode-sip", "a SIP failed to encode: not sent (a bug)");
+        return false;
+    }
+    if (faults_.corrupt_every > 0 && k % faults_.corrupt_every == 0) {
+        buf[len - 1] ^= 0x5A;   // the checksum's low byte
+        counts_.corrupt++;
+        log_.line("fault: SIP %llu sent with a wrong checksum",
+                  static_cast<unsigned long long>(k - 1));
+    }
+    out_.insert(out_.end(), buf, buf + len);
+    counts_.sips++;
+    return true;
+}
+
+bool Server::step(uint64_t *seq)
+{
+    const double t = static_cast<double>(robot_.utime()) / 1e6;
+    if (!stalled_ && faults_.stall_after_s >= 0.0 && t >= faults_.stall_after_s) {
+        stalled_ = true;
+        counts_.stalls++;
+        robot_.stall_wheels();
+        log_.line("fault: the wheels stall from now on (--stall-after %g)", faults_.stall_after_s);
+    }
+    if (!dropped_ && faults_.drop_after_s >= 0.0 && t >= faults_.drop_after_s &&
+        client_ >= 0) {
+        dropped_ = true;
+        counts_.drops++;
+        close_client("fault: dropping the client (--drop-after)");
+    }
+    hl_arcos_sip_t sip = robot_.step();
+    if (client_ < 0 || !session_.streaming())
+        return false;
+    *seq = counts_.sips;
+    bool queued = queue_sip(sip);
+    flush();
+    return queued;
+}
+
+}  // namespace hlsim

@@ -1,0 +1,98 @@
+// server.hpp - houghloc-sim's TCP side: one client at a time, its ARCOS session, the SIP
+// stream, and the injected faults.
+//
+// Non-blocking sockets for the caller's poll() loop: pollfds() says what to wait for,
+// handle() does what became ready, step() runs one SIP period of the robot and queues the
+// SIP for the client. Output waits in a buffer while the socket is full; a client that
+// stops reading altogether is dropped rather than let the buffer grow.
+#ifndef HLSIMROBOT_SERVER_HPP
+#define HLSIMROBOT_SERVER_HPP
+
+#include <poll.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "log.hpp"
+#include "rng.hpp"
+#include "session.hpp"
+#include "simrobot.hpp"
+
+namespace hlsim {
+
+/** Faults to inject (for tests); a negative time or a 0 period means never. */
+struct Faults {
+    double drop_after_s = -1.0;   // close the client's connection at this robot time, once
+    uint64_t garbage_every = 0;   // every Nth SIP is preceded by 1..64 random bytes
+    uint64_t corrupt_every = 0;   // every Nth SIP has a wrong checksum
+    double stall_after_s = -1.0;  // from this robot time on the wheels do not turn
+};
+
+struct ServerCounts {
+    uint64_t sips = 0;       // SIPs queued for a client
+    uint64_t clients = 0;    // connections taken
+    uint64_t refused = 0;    // connections refused while one was open
+    uint64_t drops = 0;      // injected: connections dropped
+    uint64_t garbage = 0;    // injected: garbage runs
+    uint64_t corrupt = 0;    // injected: bad checksums
+    uint64_t stalls = 0;     // injected: wheel stalls
+    uint64_t faults() const { return drops + garbage + corrupt + stalls; }
+};
+
+class Server {
+public:
+    /** A client that has this much output unread is dropped. */
+    static constexpr std::size_t kMaxBacklog = 256 * 1024;
+
+    /** @p robot, @p session and @p log must outlive the server. */
+    Server(SimRobot &robot, Session &session, Log &log, const Faults &faults, uint64_t seed);
+    ~Server();
+    Server(const Server &) = delete;
+    Server &operator=(const Server &) = delete;
+
+    /** Listens on IPv4 @p addr, TCP @p port (0: any free port). @return false with one
+     *  line in @p err. */
+    bool listen(const std::string &addr, int port, std::string *err);
+    /** The port listened on. */
+    uint16_t port() const { return port_; }
+
+    /** Fills up to 2 pollfds (listening socket, client) and returns how many. */
+    std::size_t pollfds(struct pollfd *pfd) const;
+    /** Handles what poll() reported for the pollfds() entries. */
+    void handle(const struct pollfd *pfd, std::size_t n);
+
+    /**
+     * One SIP period: the faults due at this robot time, the robot's step, and the SIP
+     * queued for the client when the stream is open. @return true with @p seq set to
+     * the SIP's number (0, 1, ... over all clients) if one was queued.
+     */
+    bool step(uint64_t *seq);
+
+    /** Closes the client and the listening socket. */
+    void shutdown();
+
+    bool connected() const { return client_ >= 0; }
+    const ServerCounts &counts() const { return counts_; }
+
+private:
+    void accept_client();
+    void read_client();
+    void flush();
+    void close_client(const char *why);
+    bool queue_sip(const hl_arcos_sip_t &sip);
+
+    SimRobot &robot_;
+    Session &session_;
+    Log &log_;
+    Faults faults_;
+    Rng rng_;          // garbage bytes only: the robot's stream stays seed-determined
+    int listen_ = -1, client_ = -1;
+    uint16_t port_ = 0;
+    std::vector<uint8_t> out_;
+    bool dropped_ = false, stalled_ = false;
+    ServerCounts counts_;
+};
+
+}  // namespace hlsim
+#endif

@@ -1,0 +1,73 @@
+// session.hpp - one client's ARCOS session with the simulated robot, pure: client bytes
+// in, reply bytes out (no sockets).
+//
+// A session starts at the SYNC handshake: SYNC0 and SYNC1 are echoed, SYNC2 is answered
+// with the robot's name, class and subclass. After it, command numbers 0, 1 and 2 mean
+// PULSE, OPEN and CLOSE; OPEN starts the SIP stream (the server asks streaming()), CLOSE
+// ends the session (the robot stops; the server hangs up). Every other command of the
+// subset goes to the robot. Bytes are reassembled by arcos.h's parser, so packets may
+// arrive cut anywhere. Malformed, unsupported and out-of-order packets are logged once
+// per kind, counted and ignored; every well-framed packet feeds the robot's watchdog.
+#ifndef HLSIMROBOT_SESSION_HPP
+#define HLSIMROBOT_SESSION_HPP
+
+#include <cstdint>
+#include <vector>
+
+#include "houghloc/arcos.h"
+#include "log.hpp"
+#include "simrobot.hpp"
+
+namespace hlsim {
+
+class Session {
+public:
+    enum class State {
+        Idle,     // no client
+        Sync0,    // waiting for SYNC0
+        Sync1,
+        Sync2,
+        Ready,    // handshake done, waiting for OPEN
+        Open,     // SIPs flow
+        Closed,   // CLOSE received
+    };
+
+    /** @p robot and @p log must outlive the session. */
+    Session(SimRobot &robot, Log &log);
+
+    /** A client connected: the handshake starts over with an empty parser. */
+    void begin();
+    /**
+     * Takes @p n bytes from the client and appends any reply (SYNC echoes, the SYNC2
+     * answer) to @p out. Does nothing unless a session is under way.
+     */
+    void feed(const uint8_t *in, std::size_t n, std::vector<uint8_t> *out);
+    /** The client is gone (or CLOSE came): the robot stops; the session is Idle. */
+    void end();
+
+    State state() const { return state_; }
+    bool streaming() const { return state_ == State::Open; }
+    bool closed() const { return state_ == State::Closed; }
+
+    uint64_t commands() const { return commands_; }          // commands taken
+    uint64_t bad_commands() const { return bad_; }           // malformed, unsupported, ...
+    uint64_t garbage_bytes() const { return garbage_; }      // bytes outside any packet
+
+private:
+    void packet(const hl_arcos_packet_t &pkt, std::vector<uint8_t> *out);
+    bool handshake(const hl_arcos_packet_t &pkt, std::vector<uint8_t> *out);
+    void take(const hl_arcos_cmd_t &cmd);
+    void bad(const std::string &kind, const char *what, unsigned number);
+    void count_parser();
+
+    SimRobot &robot_;
+    Log &log_;
+    hl_arcos_robot_id_t id_{};
+    hl_arcos_parser_t parser_{};
+    State state_ = State::Idle;
+    uint64_t commands_ = 0, bad_ = 0, garbage_ = 0;
+    uint64_t seen_checksums_ = 0, seen_lengths_ = 0, seen_garbage_ = 0;
+};
+
+}  // namespace hlsim
+#endif
