@@ -34,7 +34,7 @@ val() {     # val FILE KEY: the number after KEY=
 }
 "$BIN/hl-eval" score --quiet "$LOG" "$tmp/o.lcmlog" >"$tmp/hl"
 rmse=$(sed -n 's/.* rmse_mm=\([0-9.]*\) .*/\1/p' "$tmp/hl")
-odo=$(sed -n 's/.* odometry_rmse_mm=\([0-9.]*\)$/\1/p' "$tmp/hl")
+odo=$(sed -n 's/.* odometry_rmse_mm=\([0-9.]*\) wild_accepted=[0-9]*$/\1/p' "$tmp/hl")
 check "aligned ATE <= hl-eval's unaligned RMSE ($rmse mm)" \
     awk -v a="$(val "$tmp/tsv" ate_rmse_m)" -v b="$rmse" 'BEGIN { exit !(a * 1000 <= b + 0.05) }'
 check "max error >= ATE RMSE" \

@@ -4,7 +4,10 @@
  *   hl-eval start IN.lcmlog             the first scan's true pose: "X_M Y_M HEADING_DEG"
  *   hl-eval score IN.lcmlog OUT.lcmlog  error of every POSE against GROUND_TRUTH, the
  *                                       odometry-only error, and a last line
- *       demo stops=<n> rmse_mm=<x> max_mm=<y> odometry_rmse_mm=<z>
+ *       demo stops=<n> rmse_mm=<x> max_mm=<y> odometry_rmse_mm=<z> wild_accepted=<k>
+ *   hl-eval live LOG [OUT.lcmlog]       the same for a live run's one log (make demo):
+ *                                       each scan against the last GROUND_TRUTH before it;
+ *                                       with OUT, the POSE of a replay of LOG instead
  *   hl-eval extract LOG CHANNEL FILE    the payloads of every event on CHANNEL, each as
  *                                       a 4-byte big-endian length and the bytes, so that
  *                                       two runs compare with cmp(1)
@@ -29,11 +32,13 @@
 
 #include "houghloc/bus.h"
 #include "houghloc/logcheck.h"
+#include "houghloc/slam.h"
 #include "runlog.h"
 
 static const char usage[] =
     "Usage: hl-eval start IN.lcmlog\n"
     "       hl-eval score [--quiet] IN.lcmlog OUT.lcmlog\n"
+    "       hl-eval live [--quiet] LOG [OUT.lcmlog]\n"
     "       hl-eval extract LOG CHANNEL FILE\n"
     "       hl-eval status LOG\n"
     "       hl-eval split LOG N FIRST REST\n"
@@ -41,8 +46,10 @@ static const char usage[] =
     "Scores houghlocd's POSE output (OUT) against the GROUND_TRUTH of its input (IN),\n"
     "or extracts one channel's payloads for a byte-for-byte comparison.\n"
     "score prints the error at every stop and ends with the line\n"
-    "  demo stops=<n> rmse_mm=<x> max_mm=<y> odometry_rmse_mm=<z>\n"
-    "where the odometry error integrates the scans' odometry from the first true pose.\n";
+    "  demo stops=<n> rmse_mm=<x> max_mm=<y> odometry_rmse_mm=<z> wild_accepted=<k>\n"
+    "where the odometry error integrates the scans' odometry from the first true pose and\n"
+    "wild_accepted counts ACCEPTED poses more than 0.5 m from the truth. live does the\n"
+    "same for the one log of a live run, each scan against the last GROUND_TRUTH before it.\n";
 
 typedef hl_runlog_stop_t stop_t;
 
@@ -76,15 +83,16 @@ static int cmd_start(const char *in)
     return rc;
 }
 
-static int cmd_score(const char *in, const char *out, bool quiet)
+#define WILD_MM 500.0   /* the paper's wild error */
+
+/* Prints the error at every stop of @p r and the last line; @p what names the output. */
+static int score(hl_runlog_t *r, int rc, const char *in, const char *out, bool quiet)
 {
-    hl_runlog_t r = { .prog = "hl-eval" };
-    int rc = hl_runlog_load_input(&r, in) || hl_runlog_load_output(&r, out);
     const stop_t *first = NULL;
     double se = 0, se_odo = 0, max = 0;
-    size_t n = 0, missing = 0;
-    for (size_t i = 0; rc == 0 && i < r.n; i++) {
-        const stop_t *s = &r.stops[i];
+    size_t n = 0, missing = 0, wild = 0;
+    for (size_t i = 0; rc == 0 && i < r->n; i++) {
+        const stop_t *s = &r->stops[i];
         if (!s->has_scan || !s->has_truth)
             continue;
         if (!s->has_pose) {
@@ -98,6 +106,7 @@ static int cmd_score(const char *in, const char *out, bool quiet)
         se += e * e;
         se_odo += e_odo * e_odo;
         max = e > max ? e : max;
+        wild += s->status == HL_SLAM_ACCEPTED && e > WILD_MM;
         n++;
         if (!quiet)
             printf("stop %4zu  scan %5d  error %7.0f mm  odometry %7.0f mm\n", n, s->seq, e, e_odo);
@@ -111,10 +120,26 @@ static int cmd_score(const char *in, const char *out, bool quiet)
         rc = 1;
     }
     if (rc == 0)
-        printf("demo stops=%zu rmse_mm=%.1f max_mm=%.1f odometry_rmse_mm=%.1f\n", n,
-               sqrt(se / (double)n), max, sqrt(se_odo / (double)n));
-    hl_runlog_free(&r);
+        printf("demo stops=%zu rmse_mm=%.1f max_mm=%.1f odometry_rmse_mm=%.1f wild_accepted=%zu\n",
+               n, sqrt(se / (double)n), max, sqrt(se_odo / (double)n), wild);
+    hl_runlog_free(r);
     return rc;
+}
+
+static int cmd_score(const char *in, const char *out, bool quiet)
+{
+    hl_runlog_t r = { .prog = "hl-eval" };
+    int rc = hl_runlog_load_input(&r, in) || hl_runlog_load_output(&r, out);
+    return score(&r, rc, in, out, quiet);
+}
+
+static int cmd_live(const char *log, const char *out, bool quiet)
+{
+    hl_runlog_t r = { .prog = "hl-eval" };
+    int rc = hl_runlog_load_live(&r, log, out == NULL);
+    if (rc == 0 && out)
+        rc = hl_runlog_load_output(&r, out);
+    return score(&r, rc, log, out ? out : log, quiet);
 }
 
 typedef struct extract {
@@ -287,6 +312,8 @@ int main(int argc, char **argv)
         return cmd_start(argv[2]);
     if (argc == 4 + quiet && strcmp(argv[1], "score") == 0)
         return cmd_score(argv[2 + quiet], argv[3 + quiet], quiet);
+    if ((argc == 3 + quiet || argc == 4 + quiet) && strcmp(argv[1], "live") == 0)
+        return cmd_live(argv[2 + quiet], argc == 4 + quiet ? argv[3 + quiet] : NULL, quiet);
     if (argc == 5 && strcmp(argv[1], "extract") == 0)
         return cmd_extract(argv[2], argv[3], argv[4]);
     if (argc == 3 && strcmp(argv[1], "status") == 0)
@@ -306,7 +333,7 @@ int main(int argc, char **argv)
         writer_t w = { .rng = 12345 };
         return cmd_write(argv[2], on_garble, &w, argv[3], NULL);
     }
-    fprintf(stderr, "hl-eval: expected start, score, extract, status, split or garble with their "
+    fprintf(stderr, "hl-eval: expected start, score, live, extract, status, split or garble with their "
             "arguments (try --help)\n");
     return 2;
 }

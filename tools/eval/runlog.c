@@ -125,6 +125,51 @@ int hl_runlog_load_input(hl_runlog_t *r, const char *path)
     return 1;
 }
 
+/* A live run's one log: every scan takes the last GROUND_TRUTH before it (a robot stands
+ * still while it sounds), and its POSE by seq. */
+typedef struct live {
+    hl_runlog_t *r;
+    bool poses;                 /* take the POSE messages of this log too */
+    hl_pose_t truth;
+    bool has_truth;
+} live_t;
+
+static bool on_live(void *user, const lcm_eventlog_event_t *ev, char *why)
+{
+    live_t *l = user;
+    if (hl_runlog_is_channel(ev, HL_CHANNEL_GROUND_TRUTH)) {
+        hl_bus_pose_t p;
+        if (hl_bus_decode_pose(ev->data, (size_t)ev->datalen, &p, why) != HL_OK)
+            return false;
+        l->truth = p.pose;
+        l->has_truth = true;
+        return true;
+    }
+    if (hl_runlog_is_channel(ev, HL_CHANNEL_POSE))
+        return !l->poses || on_output(l->r, ev, why);
+    if (!hl_runlog_is_channel(ev, HL_CHANNEL_SONAR))
+        return true;
+    size_t n = l->r->n;
+    if (!on_input(l->r, ev, why))
+        return false;
+    if (l->r->n == n)
+        return snprintf(why, HL_BUS_WHY_LEN, "a second SONAR scan with seq %d",
+                        l->r->stops[n - 1].seq), false;
+    l->r->stops[n].truth = l->truth;
+    l->r->stops[n].has_truth = l->has_truth;
+    return true;
+}
+
+int hl_runlog_load_live(hl_runlog_t *r, const char *path, bool poses)
+{
+    r->n = 0;
+    r->stops = calloc(HL_RUNLOG_MAX_STOPS, sizeof *r->stops);
+    if (!r->stops)
+        return fprintf(stderr, "%s: out of memory\n", r->prog), 1;
+    live_t l = { .r = r, .poses = poses };
+    return hl_runlog_each_event(r->prog, path, on_live, &l);
+}
+
 int hl_runlog_load_output(hl_runlog_t *r, const char *path)
 {
     return hl_runlog_each_event(r->prog, path, on_output, r);

@@ -78,6 +78,17 @@ int hl_runlog_load_input(hl_runlog_t *r, const char *path);
  */
 int hl_runlog_load_output(hl_runlog_t *r, const char *path);
 
+/**
+ * Reads the one log of a live run (lcm-logger on the daemon and a simulated robot):
+ * SONAR and POSE as above, and for each scan the last GROUND_TRUTH logged before it (the
+ * simulated robot publishes its true pose with every packet, and stands still while it
+ * sounds). With @p poses false the log's POSE messages are left out (a replay's output,
+ * read with hl_runlog_load_output, gives them). Allocates r->stops like
+ * hl_runlog_load_input.
+ * @return 0, or 1 after printing why.
+ */
+int hl_runlog_load_live(hl_runlog_t *r, const char *path, bool poses);
+
 /** Frees r->stops. Accepts a run that never loaded. */
 void hl_runlog_free(hl_runlog_t *r);
 
