@@ -62,11 +62,11 @@ gain_q16 = 70124
 offset_mm = -35
 EOF
 
-pids=""
+pids="" client=""
 cleanup() {
-    for p in $pids; do kill -TERM "$p" 2>/dev/null; done
-    for p in $pids; do wait "$p" 2>/dev/null; done
-    pids=""
+    for p in $client $pids; do kill -TERM "$p" 2>/dev/null; done
+    for p in $client $pids; do wait "$p" 2>/dev/null; done
+    pids="" client=""
 }
 trap 'cleanup; exit 130' INT TERM
 trap cleanup EXIT
@@ -100,9 +100,13 @@ while read -r x y h; do
     i=$((i + 1))
     tries=0
     while :; do
+        # in the background, so that a signal interrupts the wait and the trap runs at once
         # shellcheck disable=SC2086
-        "$BIN/houghloc-goto" --lcm-url "$URL" --timeout 120 "$x" "$y" $h >"$OUT/goto.out" 2>&1
+        "$BIN/houghloc-goto" --lcm-url "$URL" --timeout 120 "$x" "$y" $h >"$OUT/goto.out" 2>&1 &
+        client=$!
+        wait "$client"
         rc=$?
+        client=""
         # 4: the robot link is not up yet (the daemon is starting): ask again
         [ $rc -eq 4 ] && [ $tries -lt 100 ] || break
         tries=$((tries + 1))
