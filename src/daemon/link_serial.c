@@ -1,9 +1,12 @@
 /* link_serial.c - the robot's serial port through libserialport (link.h). */
+#define _XOPEN_SOURCE 700   /* realpath */
 #include "link.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <libserialport.h>
+#include <limits.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -24,9 +27,16 @@ static void explain(char *why, const char *name, const char *step)
 
 bool hl_link_open_serial(hl_link_t *l, const hl_link_spec_t *spec, char *why)
 {
-    if (sp_get_port_by_name(spec->device, &l->port) != SP_OK) {
+    /* libserialport knows a port only by its /dev name (it looks it up under
+     * /sys/class/tty), so the stable udev links (/dev/serial/by-id/...) are resolved */
+    char real[PATH_MAX];
+    if (!realpath(spec->device, real)) {
+        WHY("%.200s: %s (is the robot's cable plugged in?)", l->name, strerror(errno));
+        return false;
+    }
+    if (sp_get_port_by_name(real, &l->port) != SP_OK) {
         l->port = NULL;
-        WHY("%.200s: no such serial device (is the robot's cable plugged in?)", l->name);
+        WHY("%.150s: %.100s is not a serial port libserialport knows", l->name, real);
         return false;
     }
     if (sp_open(l->port, SP_MODE_READ_WRITE) != SP_OK) {

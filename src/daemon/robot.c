@@ -339,19 +339,24 @@ static void on_sip(void *ctx, const hl_arcos_sip_t *sip)
 
 /* ---- the connection ------------------------------------------------------------------- */
 
-static void note_fault(hl_robot_t *r, const char *what)
+/* A link fault: logged once until a different one happens, with the wait before the next
+ * attempt; STATUS's last_error always has it. */
+static void note_fault(hl_robot_t *r, const char *why)
 {
-    if (strcmp(what, r->last_fault) != 0)
-        hl_log(HL_LOG_WARNING, "robot link: %s", what);
-    snprintf(r->last_fault, sizeof r->last_fault, "%s", what);
+    char what[HL_BUS_TEXT_MAX];
+    snprintf(what, sizeof what, "%s; retrying in %.2f s", why, r->backoff_ms / 1000.0);
+    if (strcmp(why, r->last_fault) != 0)
+        hl_log(HL_LOG_WARNING, "robot link: %s (retrying, the wait doubling from %.2f s to "
+               "%.1f s; logged again when the fault changes)", why, r->backoff_ms / 1000.0,
+               r->p.reconnect_max_ms / 1000.0);
+    snprintf(r->last_fault, sizeof r->last_fault, "%s", why);
     hl_cycle_note_error(r->cycle, what);
 }
 
 static void drop_link(hl_robot_t *r, const char *why, int64_t now_ms)
 {
     char what[HL_BUS_TEXT_MAX];
-    snprintf(what, sizeof what, "%s; retrying in %.2f s", why, r->backoff_ms / 1000.0);
-    note_fault(r, what);
+    note_fault(r, why);
     hl_link_close(r->link);
     r->link = NULL;
     r->up = false;

@@ -12,6 +12,7 @@
  *                                       a 4-byte big-endian length and the bytes, so that
  *                                       two runs compare with cmp(1)
  *   hl-eval status LOG                  the last STATUS in LOG as one line of key=value
+ *   hl-eval truth LOG                   the last GROUND_TRUTH pose in LOG as X,Y,DEG
  *   hl-eval split LOG N FIRST REST      FIRST gets the events before the N-th SONAR scan
  *                                       (counting from 0), REST the others
  *   hl-eval garble LOG OUT              OUT is LOG with hostile events between the real
@@ -41,6 +42,7 @@ static const char usage[] =
     "       hl-eval live [--quiet] LOG [OUT.lcmlog]\n"
     "       hl-eval extract LOG CHANNEL FILE\n"
     "       hl-eval status LOG\n"
+    "       hl-eval truth LOG\n"
     "       hl-eval split LOG N FIRST REST\n"
     "       hl-eval garble LOG OUT\n"
     "Scores houghlocd's POSE output (OUT) against the GROUND_TRUTH of its input (IN),\n"
@@ -190,12 +192,40 @@ static int cmd_status(const char *log)
         return 1;
     if (s.utime == 0)
         return fprintf(stderr, "hl-eval: %s: no STATUS message\n", log), 1;
-    printf("status state=%d scans=%d accepted=%d rejected_wild=%d odometry_only=%d "
-           "bad_messages=%d rejected_requests=%d map_vectors=%d map_version=%d saves=%d "
-           "compute_median_us=%d compute_p99_us=%d compute_samples=%d\n",
-           s.state, s.scans, s.accepted, s.rejected_wild, s.odometry_only, s.bad_messages,
-           s.rejected_requests, s.map_vectors, s.map_version, s.saves, s.compute_median_us,
-           s.compute_p99_us, s.compute_samples);
+    printf("status state=%d destination_seq=%lld scans=%d accepted=%d rejected_wild=%d "
+           "odometry_only=%d bad_packets=%d bad_messages=%d rejected_requests=%d "
+           "map_vectors=%d map_version=%d saves=%d compute_median_us=%d compute_p99_us=%d "
+           "compute_samples=%d\n",
+           s.state, (long long)s.destination_seq, s.scans, s.accepted, s.rejected_wild,
+           s.odometry_only, s.bad_packets, s.bad_messages, s.rejected_requests, s.map_vectors,
+           s.map_version, s.saves, s.compute_median_us, s.compute_p99_us, s.compute_samples);
+    return 0;
+}
+
+typedef struct last_truth {
+    hl_bus_pose_t pose;
+    bool seen;
+} last_truth_t;
+
+static bool on_truth(void *user, const lcm_eventlog_event_t *ev, char *why)
+{
+    last_truth_t *t = user;
+    if (!is_channel(ev, HL_CHANNEL_GROUND_TRUTH))
+        return true;
+    t->seen = true;
+    return hl_bus_decode_pose(ev->data, ev->datalen, &t->pose, why) == HL_OK;
+}
+
+/* The last GROUND_TRUTH pose of a log as X,Y,DEG (houghloc-sim's --start syntax). */
+static int cmd_truth(const char *log)
+{
+    last_truth_t t = { .seen = false };
+    if (each_event(log, on_truth, &t) != 0)
+        return 1;
+    if (!t.seen)
+        return fprintf(stderr, "hl-eval: %s: no GROUND_TRUTH message\n", log), 1;
+    printf("%.3f,%.3f,%.2f\n", t.pose.pose.x_mm / 1000.0, t.pose.pose.y_mm / 1000.0,
+           hl_bam_to_sdeg(t.pose.pose.theta));
     return 0;
 }
 
@@ -318,6 +348,8 @@ int main(int argc, char **argv)
         return cmd_extract(argv[2], argv[3], argv[4]);
     if (argc == 3 && strcmp(argv[1], "status") == 0)
         return cmd_status(argv[2]);
+    if (argc == 3 && strcmp(argv[1], "truth") == 0)
+        return cmd_truth(argv[2]);
     if (argc == 6 && strcmp(argv[1], "split") == 0) {
         const char *a = argv[3];
         char *end;
@@ -333,7 +365,7 @@ int main(int argc, char **argv)
         writer_t w = { .rng = 12345 };
         return cmd_write(argv[2], on_garble, &w, argv[3], NULL);
     }
-    fprintf(stderr, "hl-eval: expected start, score, live, extract, status, split or garble with their "
+    fprintf(stderr, "hl-eval: expected start, score, live, extract, status, truth, split or garble with their "
             "arguments (try --help)\n");
     return 2;
 }

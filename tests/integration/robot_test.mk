@@ -1,0 +1,5 @@
+# The live-robot integration test: houghlocd drives houghloc-sim over TCP on loopback
+# (destinations, a SIGKILLed and restarted robot, injected faults, the serial transport's
+# errors, and a replay of the live log); it needs houghlocd, houghloc-sim, houghloc-goto
+# and hl-eval, which `make all` builds.
+INTEGRATION_TESTS += tests/integration/test_robot.sh
