@@ -8,7 +8,8 @@
 # checksums still gets the robot to its destination while STATUS counts the bad packets;
 # the serial transport's errors (missing device, no permission, bad baud rate) and a
 # refused TCP address are clear and never fatal at run time; and a batch replay of the
-# live log gives the live run's POSE stream byte for byte. Every check names what it tests.
+# live log, and lcm-logplayer playing it into a daemon, give the live run's POSE stream
+# byte for byte. Every check names what it tests.
 set -u
 BIN=${BUILD:-build}/bin
 tmp=$(mktemp -d)
@@ -189,6 +190,21 @@ check "the replay's POSE stream equals the live run's, byte for byte" \
     sh -c "test -s $tmp/live.POSE && cmp -s $tmp/live.POSE $tmp/replay.POSE"
 check "... and so does its MAP stream" cmp -s "$tmp/live.MAP" "$tmp/replay.MAP"
 check "... and the saved map file" cmp -s "$tmp/live.hlmap" "$tmp/replay.hlmap"
+
+# ---- ... and so does lcm-logplayer playing it into a daemon on the network ----------------
+URL2="udpm://239.255.76.67:$((8900 + n))?ttl=0&recv_buf_size=4194304"
+lcm-logger -q -f --lcm-url="$URL2" "$tmp/played.lcmlog" >/dev/null 2>&1 &
+player_logger=$!; pids="$pids $player_logger"
+$D --set robot.link= --set lcm.url="$URL2" --fresh-map --map "$tmp/played.hlmap" 2>"$tmp/played.err" &
+player_daemon=$!; pids="$pids $player_daemon"
+sleep 0.5
+lcm-logplayer -s 4 -e 'SONAR|ODOMETRY' -l "$URL2" "$tmp/live.lcmlog" >/dev/null 2>&1
+sleep 0.5
+kill -TERM $player_daemon; wait $player_daemon
+kill -INT $player_logger; wait $player_logger
+"$BIN/hl-eval" extract "$tmp/played.lcmlog" POSE "$tmp/played.POSE"
+check "lcm-logplayer into a live daemon: the same POSE stream as the live run" \
+    cmp -s "$tmp/live.POSE" "$tmp/played.POSE"
 
 # ---- transport errors: clear, and never fatal once running -------------------------------
 # link_fails NAME TEXT [RUNNER...]: the daemon with robot.link=NAME keeps running for 1 s,
