@@ -190,6 +190,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
 {
     char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
     hl_bus_scan_t *in = &c->scan;
+    int64_t t0 = c->io.now_us(c->io.ctx);  /* the cycle's latency: from here to POSE out */
     if (!hl_cycle_decoded(c, hl_bus_decode_scan(data, len, in, why), HL_CHANNEL_SONAR,
                           "sonar decode", why))
         return;
@@ -198,6 +199,13 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
                  in->seq, (long long)in->utime, c->last_scan_seq, (long long)c->last_scan_utime);
         hl_cycle_fault(c, &c->n.bad_messages, "sonar order", what);
         return;
+    }
+    if (c->have_scan && in->seq - c->last_scan_seq > 1) {
+        /* a scan never seen: a full input queue or a lost network packet */
+        snprintf(what, sizeof what, "SONAR: %d scans missed before seq %d",
+                 in->seq - c->last_scan_seq - 1, in->seq);
+        c->n.missed_scans += in->seq - c->last_scan_seq - 1;
+        hl_cycle_fault(c, NULL, "sonar gap", what);
     }
     place_first_scan(c, in->odometry);
     c->have_scan = true;
@@ -209,9 +217,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
 
     uint32_t version = hl_map_version(hl_slam_map(c->slam));
     hl_slam_step_t step;
-    int64_t t0 = c->io.now_us(c->io.ctx);
     hl_status_t st = hl_slam_update(c->slam, &in->scan, in->odometry, &step);
-    hl_cycle_record_compute(c, c->io.now_us(c->io.ctx) - t0);
     if (st != HL_OK) {
         /* nothing changed (slam.h); answer with the prediction, as for an empty map */
         snprintf(what, sizeof what, "SONAR: scan seq %d not localized: %s", in->seq,
@@ -229,6 +235,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     c->n.rejected_wild += step.status == HL_SLAM_REJECTED_WILD;
     c->n.odometry_only += step.status == HL_SLAM_ODOMETRY_ONLY;
     publish_pose(c, in, &step);
+    hl_cycle_record_compute(c, c->io.now_us(c->io.ctx) - t0);
     if (hl_log_enabled(HL_LOG_DEBUG)) {
         static const char *const names[] = { "ACCEPTED", "REJECTED_WILD", "ODOMETRY_ONLY" };
         hl_log(HL_LOG_DEBUG, "scan %llu (seq %d): %s at (%.3f, %.3f) m, %.1f deg; map %u",

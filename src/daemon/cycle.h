@@ -65,6 +65,7 @@ typedef struct hl_cycle_params {
 typedef struct hl_cycle_counts {
     int32_t scans, accepted, rejected_wild, odometry_only;
     int32_t bad_messages, rejected_requests, saves;
+    int32_t missed_scans;       /* SONAR seqs skipped: never seen (not in STATUS; logged) */
 } hl_cycle_counts_t;
 
 typedef struct hl_cycle hl_cycle_t;

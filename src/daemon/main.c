@@ -306,9 +306,9 @@ static int run(const hl_config_t *cfg, const options_t *o)
         struct rusage ru;
         getrusage(RUSAGE_SELF, &ru);
         hl_log(HL_LOG_INFO, "stopped: %d scans (%d accepted, %d rejected, %d odometry only), "
-               "%d bad messages, %d requests refused, %d saves; peak memory %ld KiB",
-               n->scans, n->accepted, n->rejected_wild, n->odometry_only, n->bad_messages,
-               n->rejected_requests, n->saves, ru.ru_maxrss);
+               "%d missed, %d bad messages, %d requests refused, %d saves; peak memory %ld KiB",
+               n->scans, n->accepted, n->rejected_wild, n->odometry_only, n->missed_scans,
+               n->bad_messages, n->rejected_requests, n->saves, ru.ru_maxrss);
     }
     hl_robot_destroy(robot);
     hl_cycle_destroy(cycle);
