@@ -4,7 +4,8 @@
 #   bench daemon_replay scans=<n> wall_ms=<median> scans_per_s=<n> compute_median_us=<n>
 #         compute_p99_us=<n> peak_rss_kib=<n>
 # wall_ms is the whole process (start, replay, map save, exit); the compute figures are
-# houghlocd's own STATUS (localize + integrate per scan, over all scans of the last run);
+# houghlocd's own STATUS (the cycle's latency per scan, SONAR handler entry to POSE out,
+# over all scans of the last run);
 # peak_rss_kib is the largest resident set of the last run (getrusage).
 set -eu
 BIN=${BUILD:-build}/bin
