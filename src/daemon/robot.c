@@ -1,51 +1,14 @@
-/* robot.c - the live robot: connection, session, sounding and driving (see robot.h). */
+/* robot.c - the live robot: soundings, destinations and the robot's packets (robot.h);
+ * the connection is robot_link.c's. */
 #include "robot.h"
 
-#include <poll.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
 #include "log.h"
-
-#define SIP_PERIOD_MS 100           /* ARCOS's standard SIP cycle: robot time per SIP */
-#define FIRST_BACKOFF_MS 250
-
-struct hl_robot {
-    hl_robot_params_t p;
-    hl_cycle_t *cycle;
-    hl_cycle_io_t io;
-
-    hl_link_t *link;
-    hl_rlink_t rlink;
-    bool up;                        /* the session was UP at the last check */
-    int64_t retry_at_ms, backoff_ms;
-    char last_fault[HL_LINK_WHY_LEN];   /* logged once until it changes */
-
-    hl_sounder_t sounder;
-    hl_drive_t drive;
-    int64_t dest_seq;               /* the destination being driven to, -1 if none */
-    bool dest_pending;              /* accepted during a sounding: starts after it */
-    hl_bus_destination_t pending;
-    bool sounded_once;
-
-    /* odometry: unwrapped robot units -> the robot's frame -> the published frame */
-    hl_arcos_odom_t odom;
-    bool anchored;                  /* offset set since this connection began */
-    hl_pose_t offset;               /* published = offset o robot */
-    bool have_published;
-    hl_pose_t published;            /* last published odometry pose */
-    hl_drive_in_t last_in;          /* the last SIP, as the drive sees it */
-
-    int64_t robot_ms;               /* robot time: SIP_PERIOD_MS per SIP */
-    int64_t epoch_us;               /* utime of robot time 0 (the wall clock at start) */
-    int32_t scan_seq;
-    uint64_t bad_reported;
-
-    hl_bus_scan_t msg;              /* too big for the stack */
-    uint8_t buf[HL_BUS_SCAN_MAX_BYTES];
-};
+#include "robot_internal.h"
 
 hl_robot_t *hl_robot_create(const hl_robot_params_t *p, hl_cycle_t *cycle,
                             const hl_cycle_io_t *io)
@@ -78,18 +41,6 @@ void hl_robot_destroy(hl_robot_t *r)
     free(r);
 }
 
-int hl_robot_fd(const hl_robot_t *r)
-{
-    return r->link ? hl_link_fd(r->link) : -1;
-}
-
-short hl_robot_events(const hl_robot_t *r)
-{
-    if (!r->link)
-        return 0;
-    return (short)(POLLIN | (hl_link_connecting(r->link) || r->rlink.out_len ? POLLOUT : 0));
-}
-
 /* ---- messages out: published, and handed to the cycle as if they came from LCM -------- */
 
 static void deliver(hl_robot_t *r, hl_chan_t ch, int len, int64_t now_ms)
@@ -112,7 +63,7 @@ static void reply(hl_robot_t *r, int64_t seq, int8_t result, const char *what)
     hl_cycle_answer(r->cycle, seq, result, what);
 }
 
-static void set_state(hl_robot_t *r, int8_t state, int64_t now_ms)
+void robot_set_state(hl_robot_t *r, int8_t state, int64_t now_ms)
 {
     hl_cycle_set_destination(r->cycle, r->dest_seq);
     hl_cycle_set_state(r->cycle, state, now_ms * 1000);
@@ -120,7 +71,7 @@ static void set_state(hl_robot_t *r, int8_t state, int64_t now_ms)
 
 /* ---- commands to the base ------------------------------------------------------------ */
 
-static void command(hl_robot_t *r, uint8_t number, bool has_arg, int32_t arg, int64_t now_ms)
+void robot_command(hl_robot_t *r, uint8_t number, bool has_arg, int32_t arg, int64_t now_ms)
 {
     bool ok = has_arg ? hl_rlink_send_int(&r->rlink, number, arg, now_ms)
                       : hl_rlink_send(&r->rlink, number, now_ms);
@@ -139,26 +90,26 @@ static void end_destination(hl_robot_t *r, int8_t result, const char *what, int6
     if (result != HL_BUS_REPLY_ARRIVED)
         hl_cycle_note_error(r->cycle, what);
     r->dest_seq = -1;
-    set_state(r, HL_BUS_STATE_IDLE, now_ms);
+    robot_set_state(r, HL_BUS_STATE_IDLE, now_ms);
 }
 
 static void start_sounding(hl_robot_t *r, int64_t now_ms)
 {
     hl_sounder_start(&r->sounder);
-    set_state(r, HL_BUS_STATE_SOUNDING, now_ms);
+    robot_set_state(r, HL_BUS_STATE_SOUNDING, now_ms);
 }
 
 static void drive_do(hl_robot_t *r, const hl_drive_out_t *out, int64_t now_ms)
 {
     switch (out->cmd) {
-    case HL_DRIVE_CMD_STOP: command(r, HL_ARCOS_STOP, false, 0, now_ms); break;
-    case HL_DRIVE_CMD_HEAD: command(r, HL_ARCOS_HEAD, true, out->arg, now_ms); break;
-    case HL_DRIVE_CMD_MOVE: command(r, HL_ARCOS_MOVE, true, out->arg, now_ms); break;
+    case HL_DRIVE_CMD_STOP: robot_command(r, HL_ARCOS_STOP, false, 0, now_ms); break;
+    case HL_DRIVE_CMD_HEAD: robot_command(r, HL_ARCOS_HEAD, true, out->arg, now_ms); break;
+    case HL_DRIVE_CMD_MOVE: robot_command(r, HL_ARCOS_MOVE, true, out->arg, now_ms); break;
     case HL_DRIVE_CMD_SOUND: start_sounding(r, now_ms); break;
     case HL_DRIVE_CMD_NONE: break;
     }
     if (out->cmd == HL_DRIVE_CMD_HEAD || out->cmd == HL_DRIVE_CMD_MOVE)
-        set_state(r, HL_BUS_STATE_MOVING, now_ms);
+        robot_set_state(r, HL_BUS_STATE_MOVING, now_ms);
     char what[HL_BUS_TEXT_MAX];
     switch (hl_drive_phase(&r->drive)) {
     case HL_DRIVE_ARRIVED:
@@ -210,7 +161,7 @@ void hl_robot_destination(hl_robot_t *r, const hl_bus_destination_t *d, int64_t 
         r->dest_pending = true;
         return;
     }
-    command(r, HL_ARCOS_STOP, false, 0, now_ms);
+    robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
     begin_destination(r, d, now_ms);
 }
 
@@ -275,7 +226,7 @@ static void finish_sounding(hl_robot_t *r, int64_t now_ms)
         hl_drive_localized(&r->drive, &r->last_in, &out);
         drive_do(r, &out, now_ms);
     } else {
-        set_state(r, HL_BUS_STATE_IDLE, now_ms);
+        robot_set_state(r, HL_BUS_STATE_IDLE, now_ms);
     }
 }
 
@@ -292,9 +243,9 @@ static void sounder_step(hl_robot_t *r, const hl_arcos_sip_t *sip, hl_pose_t rob
     int32_t head = 0;
     hl_sounder_cmd_t cmd = hl_sounder_on_sip(&r->sounder, &in, &head);
     if (cmd == HL_SOUNDER_CMD_STOP)
-        command(r, HL_ARCOS_STOP, false, 0, now_ms);
+        robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
     else if (cmd == HL_SOUNDER_CMD_HEAD)
-        command(r, HL_ARCOS_HEAD, true, head, now_ms);
+        robot_command(r, HL_ARCOS_HEAD, true, head, now_ms);
     if (hl_sounder_state(&r->sounder) == HL_SOUNDER_DONE) {
         finish_sounding(r, now_ms);
     } else if (hl_sounder_state(&r->sounder) == HL_SOUNDER_FAILED) {
@@ -303,18 +254,13 @@ static void sounder_step(hl_robot_t *r, const hl_arcos_sip_t *sip, hl_pose_t rob
         hl_sounder_cancel(&r->sounder);
         hl_drive_fail(&r->drive, hl_sounder_why(&r->sounder));
         end_destination(r, HL_BUS_REPLY_FAILED, hl_sounder_why(&r->sounder), now_ms);
-        set_state(r, HL_BUS_STATE_IDLE, now_ms);
+        robot_set_state(r, HL_BUS_STATE_IDLE, now_ms);
     }
 }
 
-typedef struct sip_ctx {
-    hl_robot_t *r;
-    int64_t now_ms;
-} sip_ctx_t;
-
-static void on_sip(void *ctx, const hl_arcos_sip_t *sip)
+void robot_on_sip(void *ctx, const hl_arcos_sip_t *sip)
 {
-    sip_ctx_t *c = ctx;
+    robot_sip_ctx_t *c = ctx;
     hl_robot_t *r = c->r;
     r->robot_ms += SIP_PERIOD_MS;
     hl_pose_t robot_frame, published;
@@ -337,157 +283,21 @@ static void on_sip(void *ctx, const hl_arcos_sip_t *sip)
     }
 }
 
-/* ---- the connection ------------------------------------------------------------------- */
-
-/* A link fault: logged once until a different one happens, with the wait before the next
- * attempt; STATUS's last_error always has it. */
-static void note_fault(hl_robot_t *r, const char *why)
+void robot_link_up(hl_robot_t *r, int64_t now_ms)
 {
-    char what[HL_BUS_TEXT_MAX];
-    snprintf(what, sizeof what, "%s; retrying in %.2f s", why, r->backoff_ms / 1000.0);
-    if (strcmp(why, r->last_fault) != 0)
-        hl_log(HL_LOG_WARNING, "robot link: %s (retrying, the wait doubling from %.2f s to "
-               "%.1f s; logged again when the fault changes)", why, r->backoff_ms / 1000.0,
-               r->p.reconnect_max_ms / 1000.0);
-    snprintf(r->last_fault, sizeof r->last_fault, "%s", why);
-    hl_cycle_note_error(r->cycle, what);
-}
-
-static void drop_link(hl_robot_t *r, const char *why, int64_t now_ms)
-{
-    char what[HL_BUS_TEXT_MAX];
-    note_fault(r, why);
-    hl_link_close(r->link);
-    r->link = NULL;
-    r->up = false;
-    hl_rlink_lost(&r->rlink, why);
-    hl_sounder_cancel(&r->sounder);
-    if (r->dest_pending) {
-        reply(r, r->pending.seq, HL_BUS_REPLY_FAILED, "robot link lost");
-        r->dest_pending = false;
-    }
-    snprintf(what, sizeof what, "robot link lost: %s", why);
-    hl_drive_fail(&r->drive, what);
-    end_destination(r, HL_BUS_REPLY_FAILED, what, now_ms);
-    r->retry_at_ms = now_ms + r->backoff_ms;
-    r->backoff_ms = r->backoff_ms * 2 > r->p.reconnect_max_ms ? r->p.reconnect_max_ms
-                                                              : r->backoff_ms * 2;
-    set_state(r, HL_BUS_STATE_FAULT, now_ms);
-}
-
-/* Follows the session's state after anything that may change it. */
-static void check_session(hl_robot_t *r, int64_t now_ms)
-{
-    uint64_t bad = hl_rlink_bad_packets(&r->rlink);
-    if (bad != r->bad_reported) {
-        hl_cycle_set_bad_packets(r->cycle, (int32_t)(bad > INT32_MAX ? INT32_MAX : bad));
-        r->bad_reported = bad;
-    }
-    if (r->link && !hl_link_connecting(r->link) && hl_rlink_state(&r->rlink) == HL_RLINK_DOWN) {
-        drop_link(r, hl_rlink_why(&r->rlink), now_ms);
-        return;
-    }
-    if (r->up || hl_rlink_state(&r->rlink) != HL_RLINK_UP)
-        return;
-    r->up = true;
     r->anchored = false;
-    r->backoff_ms = FIRST_BACKOFF_MS;
-    r->last_fault[0] = '\0';
-    hl_log(HL_LOG_NOTICE, "robot '%s' (%s %s) connected", r->rlink.id.name, r->rlink.id.cls,
-           r->rlink.id.subclass);
     if (r->p.sound_on_connect && !r->sounded_once)
         start_sounding(r, now_ms);
     else
-        set_state(r, HL_BUS_STATE_IDLE, now_ms);
+        robot_set_state(r, HL_BUS_STATE_IDLE, now_ms);
 }
 
-static void flush(hl_robot_t *r, int64_t now_ms)
+void robot_abandon(hl_robot_t *r, const char *why, int64_t now_ms)
 {
-    char why[HL_LINK_WHY_LEN];
-    size_t n;
-    const uint8_t *out = hl_rlink_pending(&r->rlink, &n);
-    while (r->link && !hl_link_connecting(r->link) && n > 0) {
-        ssize_t put = hl_link_write(r->link, out, n, why);
-        if (put < 0) {
-            drop_link(r, why, now_ms);
-            return;
-        }
-        if (put == 0)
-            return;     /* the socket is full: POLLOUT brings us back */
-        hl_rlink_sent(&r->rlink, (size_t)put);
-        out = hl_rlink_pending(&r->rlink, &n);
-    }
-}
-
-static void connect_now(hl_robot_t *r, int64_t now_ms)
-{
-    char why[HL_LINK_WHY_LEN];
-    r->link = hl_link_open(&r->p.link, why);
-    if (!r->link) {
-        drop_link(r, why, now_ms);
-        return;
-    }
-    if (!hl_link_connecting(r->link))
-        hl_rlink_begin(&r->rlink, now_ms);
-}
-
-void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms)
-{
-    char why[HL_LINK_WHY_LEN];
-    if (!r->link)
-        return;
-    if (hl_link_connecting(r->link)) {
-        if (!(revents & (POLLOUT | POLLERR | POLLHUP)))
-            return;
-        if (!hl_link_connected(r->link, why)) {
-            drop_link(r, why, now_ms);
-            return;
-        }
-        hl_rlink_begin(&r->rlink, now_ms);
-    } else if (revents & (POLLIN | POLLERR | POLLHUP)) {
-        uint8_t in[512];
-        sip_ctx_t ctx = { r, now_ms };
-        for (int rounds = 0; r->link && rounds < 16; rounds++) {
-            ssize_t got = hl_link_read(r->link, in, sizeof in, why);
-            if (got < 0) {
-                drop_link(r, why, now_ms);
-                return;
-            }
-            if (got == 0)
-                break;
-            hl_rlink_feed(&r->rlink, in, (size_t)got, now_ms, on_sip, &ctx);
-            check_session(r, now_ms);
-        }
-    }
-    check_session(r, now_ms);
-    flush(r, now_ms);
-}
-
-void hl_robot_tick(hl_robot_t *r, int64_t now_ms)
-{
-    if (!r->link) {
-        if (now_ms >= r->retry_at_ms)
-            connect_now(r, now_ms);
-    } else if (!hl_link_connecting(r->link)) {
-        hl_rlink_tick(&r->rlink, now_ms);
-    }
-    check_session(r, now_ms);
-    flush(r, now_ms);
-}
-
-void hl_robot_stop(hl_robot_t *r, int64_t now_ms)
-{
+    hl_sounder_cancel(&r->sounder);
     if (r->dest_pending)
-        reply(r, r->pending.seq, HL_BUS_REPLY_FAILED, "houghlocd is stopping");
+        reply(r, r->pending.seq, HL_BUS_REPLY_FAILED, why);
     r->dest_pending = false;
-    hl_drive_fail(&r->drive, "houghlocd is stopping");
-    end_destination(r, HL_BUS_REPLY_FAILED, "houghlocd is stopping", now_ms);
-    if (r->link && r->up) {
-        command(r, HL_ARCOS_STOP, false, 0, now_ms);
-        hl_rlink_close(&r->rlink, "houghlocd stopped", now_ms);
-        flush(r, now_ms);
-    }
-    hl_link_close(r->link);
-    r->link = NULL;
-    r->up = false;
+    hl_drive_fail(&r->drive, why);
+    end_destination(r, HL_BUS_REPLY_FAILED, why, now_ms);
 }

@@ -1,0 +1,63 @@
+/* robot_internal.h - the live robot's state, shared by robot.c (what the robot does:
+ * soundings, destinations, its packets) and robot_link.c (the connection). */
+#ifndef HOUGHLOC_DAEMON_ROBOT_INTERNAL_H
+#define HOUGHLOC_DAEMON_ROBOT_INTERNAL_H
+
+#include "robot.h"
+
+#define SIP_PERIOD_MS 100           /* ARCOS's standard SIP cycle: robot time per SIP */
+#define FIRST_BACKOFF_MS 250
+
+struct hl_robot {
+    hl_robot_params_t p;
+    hl_cycle_t *cycle;
+    hl_cycle_io_t io;
+
+    hl_link_t *link;
+    hl_rlink_t rlink;
+    bool up;                        /* the session was UP at the last check */
+    int64_t retry_at_ms, backoff_ms;
+    char last_fault[HL_LINK_WHY_LEN];   /* logged once until it changes */
+
+    hl_sounder_t sounder;
+    hl_drive_t drive;
+    int64_t dest_seq;               /* the destination being driven to, -1 if none */
+    bool dest_pending;              /* accepted during a sounding: starts after it */
+    hl_bus_destination_t pending;
+    bool sounded_once;
+
+    /* odometry: unwrapped robot units -> the robot's frame -> the published frame */
+    hl_arcos_odom_t odom;
+    bool anchored;                  /* offset set since this connection began */
+    hl_pose_t offset;               /* published = offset o robot */
+    bool have_published;
+    hl_pose_t published;            /* last published odometry pose */
+    hl_drive_in_t last_in;          /* the last SIP, as the drive sees it */
+
+    int64_t robot_ms;               /* robot time: SIP_PERIOD_MS per SIP */
+    int64_t epoch_us;               /* utime of robot time 0 (the wall clock at start) */
+    int32_t scan_seq;
+    uint64_t bad_reported;
+
+    hl_bus_scan_t msg;              /* too big for the stack */
+    uint8_t buf[HL_BUS_SCAN_MAX_BYTES];
+};
+
+/* robot.c */
+typedef struct robot_sip_ctx {
+    hl_robot_t *r;
+    int64_t now_ms;
+} robot_sip_ctx_t;
+
+/** One SIP of the session (an hl_rlink_sip_fn; ctx is a robot_sip_ctx_t). */
+void robot_on_sip(void *ctx, const hl_arcos_sip_t *sip);
+/** The session is up: re-anchor the odometry; sound once if asked. */
+void robot_link_up(hl_robot_t *r, int64_t now_ms);
+/** Gives up the sounding and any destination (pending or under way) with @p why. */
+void robot_abandon(hl_robot_t *r, const char *why, int64_t now_ms);
+/** Publishes STATUS with @p state and the destination under way. */
+void robot_set_state(hl_robot_t *r, int8_t state, int64_t now_ms);
+/** Queues a command for the base (logged when it cannot be sent). */
+void robot_command(hl_robot_t *r, uint8_t number, bool has_arg, int32_t arg, int64_t now_ms);
+
+#endif

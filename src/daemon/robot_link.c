@@ -1,0 +1,159 @@
+/* robot_link.c - the live robot's connection: opening it, the session over it, losing it
+ * and trying again with a doubling wait (robot.h). */
+#include <poll.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "log.h"
+#include "robot_internal.h"
+
+int hl_robot_fd(const hl_robot_t *r)
+{
+    return r->link ? hl_link_fd(r->link) : -1;
+}
+
+short hl_robot_events(const hl_robot_t *r)
+{
+    if (!r->link)
+        return 0;
+    return (short)(POLLIN | (hl_link_connecting(r->link) || r->rlink.out_len ? POLLOUT : 0));
+}
+
+/* A link fault: logged once until a different one happens, with the wait before the next
+ * attempt; STATUS's last_error always has it. */
+static void note_fault(hl_robot_t *r, const char *why)
+{
+    char what[HL_BUS_TEXT_MAX];
+    snprintf(what, sizeof what, "%s; retrying in %.2f s", why, r->backoff_ms / 1000.0);
+    if (strcmp(why, r->last_fault) != 0)
+        hl_log(HL_LOG_WARNING, "robot link: %s (retrying, the wait doubling from %.2f s to "
+               "%.1f s; logged again when the fault changes)", why, r->backoff_ms / 1000.0,
+               r->p.reconnect_max_ms / 1000.0);
+    snprintf(r->last_fault, sizeof r->last_fault, "%s", why);
+    hl_cycle_note_error(r->cycle, what);
+}
+
+static void drop_link(hl_robot_t *r, const char *why, int64_t now_ms)
+{
+    char what[HL_BUS_TEXT_MAX];
+    note_fault(r, why);
+    hl_link_close(r->link);
+    r->link = NULL;
+    r->up = false;
+    hl_rlink_lost(&r->rlink, why);
+    snprintf(what, sizeof what, "robot link lost: %s", why);
+    robot_abandon(r, what, now_ms);
+    r->retry_at_ms = now_ms + r->backoff_ms;
+    r->backoff_ms = r->backoff_ms * 2 > r->p.reconnect_max_ms ? r->p.reconnect_max_ms
+                                                              : r->backoff_ms * 2;
+    robot_set_state(r, HL_BUS_STATE_FAULT, now_ms);
+}
+
+/* Follows the session's state after anything that may change it. */
+static void check_session(hl_robot_t *r, int64_t now_ms)
+{
+    uint64_t bad = hl_rlink_bad_packets(&r->rlink);
+    if (bad != r->bad_reported) {
+        hl_cycle_set_bad_packets(r->cycle, (int32_t)(bad > INT32_MAX ? INT32_MAX : bad));
+        r->bad_reported = bad;
+    }
+    if (r->link && !hl_link_connecting(r->link) && hl_rlink_state(&r->rlink) == HL_RLINK_DOWN) {
+        drop_link(r, hl_rlink_why(&r->rlink), now_ms);
+        return;
+    }
+    if (r->up || hl_rlink_state(&r->rlink) != HL_RLINK_UP)
+        return;
+    r->up = true;
+    r->backoff_ms = FIRST_BACKOFF_MS;
+    r->last_fault[0] = '\0';
+    hl_log(HL_LOG_NOTICE, "robot '%s' (%s %s) connected", r->rlink.id.name, r->rlink.id.cls,
+           r->rlink.id.subclass);
+    robot_link_up(r, now_ms);
+}
+
+static void flush(hl_robot_t *r, int64_t now_ms)
+{
+    char why[HL_LINK_WHY_LEN];
+    size_t n;
+    const uint8_t *out = hl_rlink_pending(&r->rlink, &n);
+    while (r->link && !hl_link_connecting(r->link) && n > 0) {
+        ssize_t put = hl_link_write(r->link, out, n, why);
+        if (put < 0) {
+            drop_link(r, why, now_ms);
+            return;
+        }
+        if (put == 0)
+            return;     /* the socket is full: POLLOUT brings us back */
+        hl_rlink_sent(&r->rlink, (size_t)put);
+        out = hl_rlink_pending(&r->rlink, &n);
+    }
+}
+
+static void connect_now(hl_robot_t *r, int64_t now_ms)
+{
+    char why[HL_LINK_WHY_LEN];
+    r->link = hl_link_open(&r->p.link, why);
+    if (!r->link) {
+        drop_link(r, why, now_ms);
+        return;
+    }
+    if (!hl_link_connecting(r->link))
+        hl_rlink_begin(&r->rlink, now_ms);
+}
+
+void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms)
+{
+    char why[HL_LINK_WHY_LEN];
+    if (!r->link)
+        return;
+    if (hl_link_connecting(r->link)) {
+        if (!(revents & (POLLOUT | POLLERR | POLLHUP)))
+            return;
+        if (!hl_link_connected(r->link, why)) {
+            drop_link(r, why, now_ms);
+            return;
+        }
+        hl_rlink_begin(&r->rlink, now_ms);
+    } else if (revents & (POLLIN | POLLERR | POLLHUP)) {
+        uint8_t in[512];
+        robot_sip_ctx_t ctx = { r, now_ms };
+        for (int rounds = 0; r->link && rounds < 16; rounds++) {
+            ssize_t got = hl_link_read(r->link, in, sizeof in, why);
+            if (got < 0) {
+                drop_link(r, why, now_ms);
+                return;
+            }
+            if (got == 0)
+                break;
+            hl_rlink_feed(&r->rlink, in, (size_t)got, now_ms, robot_on_sip, &ctx);
+            check_session(r, now_ms);
+        }
+    }
+    check_session(r, now_ms);
+    flush(r, now_ms);
+}
+
+void hl_robot_tick(hl_robot_t *r, int64_t now_ms)
+{
+    if (!r->link) {
+        if (now_ms >= r->retry_at_ms)
+            connect_now(r, now_ms);
+    } else if (!hl_link_connecting(r->link)) {
+        hl_rlink_tick(&r->rlink, now_ms);
+    }
+    check_session(r, now_ms);
+    flush(r, now_ms);
+}
+
+void hl_robot_stop(hl_robot_t *r, int64_t now_ms)
+{
+    robot_abandon(r, "houghlocd is stopping", now_ms);
+    if (r->link && r->up) {
+        robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
+        hl_rlink_close(&r->rlink, "houghlocd stopped", now_ms);
+        flush(r, now_ms);
+    }
+    hl_link_close(r->link);
+    r->link = NULL;
+    r->up = false;
+}
