@@ -3,7 +3,8 @@
 #
 # A program linking $(RENDER_LIB) also needs $(RENDER_LDLIBS) after it.
 
-RENDER_SRCS := tools/experiments/render.cpp
+RENDER_SRCS := tools/experiments/render.cpp tools/experiments/render_geom.cpp \
+               tools/experiments/render_out.cpp
 
 RENDER_LIB       := $(BUILD)/lib/libhoughloc_render.a
 RENDER_ASAN_LIB  := $(BUILD)/lib/libhoughloc_render_asan.a
