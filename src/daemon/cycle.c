@@ -83,8 +83,8 @@ void hl_cycle_fault(hl_cycle_t *c, int32_t *counter, const char *kind, const cha
             return;
     if (c->n_fault_kinds < HL_CYCLE_MAX_FAULT_KINDS)
         c->fault_kinds[c->n_fault_kinds++] = kind;
-    hl_log(HL_LOG_WARNING, "%s (further faults of this kind are counted in STATUS, not logged)",
-           what);
+    hl_log(HL_LOG_WARNING, "%s (further faults of this kind are not logged: %s)", what,
+           counter ? "STATUS counts them" : "STATUS's last_error shows the latest");
 }
 
 bool hl_cycle_decoded(hl_cycle_t *c, hl_status_t st, const char *channel, const char *kind,
@@ -202,8 +202,8 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     }
     if (c->have_scan && in->seq - c->last_scan_seq > 1) {
         /* a scan never seen: a full input queue or a lost network packet */
-        snprintf(what, sizeof what, "SONAR: %d scans missed before seq %d",
-                 in->seq - c->last_scan_seq - 1, in->seq);
+        snprintf(what, sizeof what, "SONAR: %d scan(s) missed before seq %d (all are counted "
+                 "in the last log line)", in->seq - c->last_scan_seq - 1, in->seq);
         c->n.missed_scans += in->seq - c->last_scan_seq - 1;
         hl_cycle_fault(c, NULL, "sonar gap", what);
     }

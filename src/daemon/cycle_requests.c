@@ -12,10 +12,11 @@ void hl_cycle_reply(hl_cycle_t *c, int64_t seq, int8_t result, const char *messa
     int len = hl_bus_encode_reply(&r, c->buf, sizeof c->buf);
     if (len > 0)
         c->io.emit(c->io.ctx, HL_CH_REPLY, c->buf, (size_t)len);
-    /* refusals are logged once per kind by hl_cycle_fault: a flood must not flood the log */
-    bool refused = result != HL_BUS_REPLY_ACCEPTED && result != HL_BUS_REPLY_ARRIVED &&
-                   result != HL_BUS_REPLY_NO_ROBOT;
-    hl_log(refused ? HL_LOG_DEBUG : HL_LOG_INFO, "request %lld: %s: %s", (long long)seq,
+    /* refusals are logged once per kind by hl_cycle_fault, and NO_ROBOT changes nothing: a
+     * flood of either must not flood the log */
+    bool quiet = result != HL_BUS_REPLY_ACCEPTED && result != HL_BUS_REPLY_ARRIVED &&
+                 result != HL_BUS_REPLY_FAILED;
+    hl_log(quiet ? HL_LOG_DEBUG : HL_LOG_INFO, "request %lld: %s: %s", (long long)seq,
            hl_bus_reply_name(result), message);
 }
 
