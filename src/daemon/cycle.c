@@ -64,6 +64,9 @@ hl_status_t hl_cycle_restore(hl_cycle_t *c, const hl_mapfile_t *m)
         return st;
     c->last_request_seq = m->last_request_seq;
     c->scans_total = m->scans;
+    /* the first change after a restart is saved at once: a daemon killed again and again
+     * before a save falls due would otherwise never write a newer file */
+    c->since_save = c->p.save_every > 0 ? c->p.save_every - 1 : 0;
     /* kept for the next save; the order check starts with this process's first scan, so
      * a log replayed again on a kept map is not refused */
     c->last_scan_utime = m->last_scan_utime;

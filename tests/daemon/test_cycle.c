@@ -413,6 +413,39 @@ static void test_restore_continues_exactly(void **state)
     free(cc);
 }
 
+/* A restored cycle saves after its first change: a daemon killed before every save would
+ * otherwise never write a newer file (found by the power-cut trial, docs/reliability.md). */
+static void test_restored_cycle_saves_first_change(void **state)
+{
+    (void)state;
+    capture_t *a = calloc(1, sizeof *a), *b = calloc(1, sizeof *b);
+    hl_cycle_params_t p = test_params();
+    p.save_every = 5;
+    hl_cycle_t *first = capture_cycle(a, &p);
+    load_tour();
+    size_t i = 0, scans = 0;
+    for (; i < n_tour && scans < 3; i++) {
+        hl_cycle_on_message(first, tour[i].ch, tour[i].data, tour[i].len, 0);
+        scans += tour[i].ch == HL_CH_SONAR;
+    }
+    assert_false(hl_cycle_save_due(first));
+    hl_mapfile_t m;
+    hl_cycle_snapshot(first, &m);
+    hl_cycle_t *second = capture_cycle(b, &p);
+    assert_int_equal(hl_cycle_restore(second, &m), HL_OK);
+    hl_cycle_destroy(first);
+    assert_false(hl_cycle_save_due(second));
+    uint32_t version = hl_map_version(hl_slam_map(hl_cycle_slam(second)));
+    for (; i < n_tour && hl_map_version(hl_slam_map(hl_cycle_slam(second))) == version; i++)
+        hl_cycle_on_message(second, tour[i].ch, tour[i].data, tour[i].len, 0);
+    assert_true(hl_cycle_save_due(second));
+    hl_cycle_destroy(second);
+    capture_clear(a);
+    capture_clear(b);
+    free(a);
+    free(b);
+}
+
 /* Bad parameters are refused at creation. */
 static void test_bad_params(void **state)
 {
@@ -446,6 +479,7 @@ int main(void)
         cmocka_unit_test(test_saving),
         cmocka_unit_test(test_compute_statistics),
         cmocka_unit_test(test_restore_continues_exactly),
+        cmocka_unit_test(test_restored_cycle_saves_first_change),
         cmocka_unit_test(test_bad_params),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,11 +1,13 @@
 // test_server.cpp - houghloc-sim end to end over a real loopback socket, server and client
 // driven from one thread: handshake, a MOVE, one client at a time, injected garbage,
-// corrupt checksums and a dropped connection, and the robot kept across clients.
+// corrupt checksums and a dropped connection, and the robot kept across clients; a
+// connection dropped again and again (--drop-every), each living its full period.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include "options.hpp"
 #include "server.hpp"
 
 // cmocka last: its macros (fail, ...) clash with standard headers included after it.
@@ -229,11 +231,64 @@ static void test_faults(void **state)
     close(fd2);
 }
 
+static void test_drop_every(void **state)
+{
+    (void)state;
+    Faults f;
+    f.drop_every_s = 1.5;
+    Rig r(f);
+    // Nobody connected for 3 s of robot time: the period starts at each connection, so
+    // the first client is not dropped at once for the time that passed before it came.
+    for (int k = 0; k < 30; k++) {
+        uint64_t seq;
+        assert_false(r.server.step(&seq));
+    }
+    assert_int_equal(r.server.counts().drops, 0);
+    for (uint64_t round = 1; round <= 3; round++) {
+        Reader rd;
+        int fd = open_session(r, rd);
+        uint64_t before = r.server.counts().sips;
+        // 15 SIP periods of 100 ms from the connection: the drop comes at the 16th step
+        // (the handshake took no robot time), so 15 SIPs get out each time.
+        std::vector<hl_arcos_sip_t> sips = run(r, rd, fd, 20);
+        assert_int_equal(r.server.counts().sips - before, 15);
+        assert_int_equal(sips.size(), 15);
+        assert_int_equal(r.server.counts().drops, round);
+        assert_true(rd.eof);
+        assert_false(r.server.connected());
+        close(fd);
+    }
+    assert_int_equal(r.server.counts().clients, 3);
+    assert_int_equal(r.server.counts().faults(), 3);
+}
+
+// --drop-every's value: seconds of robot time, 0.1 up; others refused naming it.
+static void test_drop_every_option(void **state)
+{
+    (void)state;
+    SimOptions o;
+    std::string err;
+    const char *ok[] = {"houghloc-sim", "--drop-every", "2.5"};
+    int rc = static_cast<int>(parse_options(3, const_cast<char **>(ok), &o, &err));
+    assert_int_equal(rc, static_cast<int>(ParseResult::Run));
+    assert_true(o.faults.drop_every_s == 2.5);
+    for (const char *v : {"0", "0.05", "-1", "1e8", "x", ""}) {
+        SimOptions o2;
+        const char *bad[] = {"houghloc-sim", "--drop-every", v};
+        rc = static_cast<int>(parse_options(3, const_cast<char **>(bad), &o2, &err));
+        assert_int_equal(rc, static_cast<int>(ParseResult::Error));
+        assert_true(err.find("--drop-every") == 0);
+        assert_true(o2.faults.drop_every_s < 0.0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_move_over_tcp),
         cmocka_unit_test(test_faults),
+        cmocka_unit_test(test_drop_every),
+        cmocka_unit_test(test_drop_every_option),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -52,7 +52,9 @@ bool start_pose(const World &w, const SimOptions &o, Pose *out, std::string *err
     char where[96];
     std::snprintf(where, sizeof where, "(%.3f, %.3f) m", out->x / 1000.0, out->y / 1000.0);
     double c = w.clearance(out->pos());
-    if (c < Base::kRadiusMm) {
+    // A robot stopped against a wall stands at its radius; GROUND_TRUTH's whole
+    // millimetres may put it a hair inside: 2 mm of tolerance let it restart there.
+    if (c < Base::kRadiusMm - 2.0) {
         *err = std::string("--start: ") + where + " is not in free space: " +
                std::to_string(static_cast<long>(c)) + " mm from a surface, the robot's " +
                "radius is 250 mm";

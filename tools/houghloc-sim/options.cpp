@@ -44,6 +44,8 @@ void print_usage(FILE *f)
         "                      packet, 0..60; 0: never (default 2, as ARCOS)\n"
         "Fault injection (each logged when it happens and counted in the summary):\n"
         "  --drop-after S      close the client's connection at S s of robot time, once\n"
+        "  --drop-every S      close each client's connection S s of robot time after it\n"
+        "                      connected, 0.1..1e7 (a drop every S s while one reconnects)\n"
         "  --garbage-every N   every Nth SIP is preceded by 1..64 random bytes\n"
         "  --corrupt-every N   every Nth SIP has a wrong checksum\n"
         "  --stall-after S     from S s of robot time on the wheels do not turn\n"
@@ -172,6 +174,10 @@ bool take(const std::string &a, const char *v, SimOptions *o, std::string *err)
         if (!parse_number(v, &d) || d < 0.0 || d > kMaxSeconds)
             return bad(err, a, "seconds of robot time, 0..1e7", v);
         (a == "--drop-after" ? o->faults.drop_after_s : o->faults.stall_after_s) = d;
+    } else if (a == "--drop-every") {
+        if (!parse_number(v, &d) || d < 0.1 || d > kMaxSeconds)
+            return bad(err, a, "seconds of robot time, 0.1..1e7", v);
+        o->faults.drop_every_s = d;
     } else if (a == "--garbage-every" || a == "--corrupt-every") {
         if (!parse_count(v, 1000000000, &n) || n < 1)
             return bad(err, a, "a SIP count 1..1000000000", v);
@@ -198,7 +204,8 @@ ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err
         static const char *const with_value[] = {
             "--port", "--bind", "--speed", "--seed", "--world", "--profile",
             "--sonar-model", "--start", "--lcm-url", "--prefix", "--drop-after",
-            "--stall-after", "--garbage-every", "--corrupt-every", "--watchdog"};
+            "--drop-every", "--stall-after", "--garbage-every", "--corrupt-every",
+            "--watchdog"};
         bool known = false;
         for (const char *name : with_value)
             known = known || a == name;

@@ -110,6 +110,7 @@ void Server::accept_client()
     int one = 1;
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);  // SIPs are small
     client_ = fd;
+    accepted_utime_ = robot_.utime();
     out_.clear();
     counts_.clients++;
     session_.begin();
@@ -223,6 +224,13 @@ bool Server::step(uint64_t *seq)
         dropped_ = true;
         counts_.drops++;
         close_client("fault: dropping the client (--drop-after)");
+    }
+    // Timed from each connection's start, not from 0: a client that takes a while to come
+    // back still gets its full period, so every connection can do some work.
+    if (faults_.drop_every_s > 0.0 && client_ >= 0 &&
+        static_cast<double>(robot_.utime() - accepted_utime_) / 1e6 >= faults_.drop_every_s) {
+        counts_.drops++;
+        close_client("fault: dropping the client (--drop-every)");
     }
     hl_arcos_sip_t sip = robot_.step();
     if (client_ < 0 || !session_.streaming())

@@ -24,6 +24,7 @@ namespace hlsim {
 /** Faults to inject (for tests); a negative time or a 0 period means never. */
 struct Faults {
     double drop_after_s = -1.0;   // close the client's connection at this robot time, once
+    double drop_every_s = -1.0;   // close each client's connection this long after it came
     uint64_t garbage_every = 0;   // every Nth SIP is preceded by 1..64 random bytes
     uint64_t corrupt_every = 0;   // every Nth SIP has a wrong checksum
     double stall_after_s = -1.0;  // from this robot time on the wheels do not turn
@@ -91,6 +92,7 @@ private:
     uint16_t port_ = 0;
     std::vector<uint8_t> out_;
     bool dropped_ = false, stalled_ = false;
+    int64_t accepted_utime_ = 0;    // robot time the client connected (--drop-every)
     ServerCounts counts_;
 };
 
