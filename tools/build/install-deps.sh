@@ -1,11 +1,13 @@
 #!/bin/sh
-# Installs the Debian packages houghloc needs, if any are missing.
+# Installs the Debian packages houghloc needs, if any are missing: those of the build
+# and the tests, or the ones given as arguments (make fuzz, make trials add theirs).
 # As root it runs apt-get; otherwise it prints the exact command and fails, so that
 # `make test` / `make demo` never half-build on a machine without the libraries.
 set -eu
 
 PKGS="make gcc g++ pkg-config liblcm-dev liblcm-bin libglib2.0-dev libserialport-dev \
 libcmocka-dev libeigen3-dev libcairo2-dev libinih-dev libsodium-dev libsystemd-dev zlib1g-dev"
+[ $# -gt 0 ] && PKGS="$*"
 
 missing=""
 for p in $PKGS; do

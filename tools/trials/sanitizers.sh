@@ -85,16 +85,8 @@ else
 fi
 
 # ---- 3. valgrind over a batch replay ----------------------------------------------------
-if ! command -v valgrind >/dev/null; then
-    if [ "$(id -u)" = 0 ]; then
-        say "installing valgrind (apt-get install valgrind) ..."
-        DEBIAN_FRONTEND=noninteractive apt-get update -qq >/dev/null &&
-            DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends valgrind >/dev/null
-    else
-        say "valgrind is missing; run this, then try again:"
-        say "    sudo apt-get install -y valgrind"
-    fi
-fi
+# (installed as every other package: apt-get as root, else the exact command is printed)
+command -v valgrind >/dev/null || sh tools/build/install-deps.sh valgrind >&2 || true
 verr=- vleak=- vg=ok
 if ! command -v valgrind >/dev/null; then
     vg=fail
