@@ -19,9 +19,9 @@
 #include "flood_msg.h"
 #include "houghloc/bus.h"
 #include "houghloc/version.h"
+#include "trial_args.h"
 
 #define PROG "hl-flood"
-#define EXIT_USAGE 2
 
 static const char usage[] =
     "Usage: hl-flood --lcm-url URL [--seconds S] [--rate N] [--seed N] [--prefix P]\n"
@@ -58,26 +58,6 @@ static void on_stop(int sig)
 {
     (void)sig;
     stop_requested = 1;
-}
-
-static int usage_error(const char *what, const char *value)
-{
-    fprintf(stderr, "%s: %s \"%s\"; try %s --help\n", PROG, what, value, PROG);
-    return EXIT_USAGE;
-}
-
-/* A whole-string number in [lo, hi]: no spaces, no hexadecimal, no trailing text. */
-static bool parse_double(const char *s, double lo, double hi, double *out)
-{
-    if (!*s || strpbrk(s, " \t\nxX"))
-        return false;
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (*end || errno || !(v >= lo && v <= hi))
-        return false;
-    *out = v;
-    return true;
 }
 
 static bool parse_ull(const char *s, unsigned long long *out)
@@ -148,44 +128,44 @@ static int parse_args(int argc, char **argv, options_t *o)
             if (strlen(names[j]) == n && strncmp(a, names[j], n) == 0)
                 k = j;
         if (k < 0)
-            return usage_error(a[0] == '-' ? "unknown option" : "unexpected argument", a);
+            return trial_usage_error(PROG, a[0] == '-' ? "unknown option" : "unexpected argument", a);
         const char *v = eq ? eq + 1 : i + 1 < argc ? argv[++i] : NULL;
         if (!v)
-            return usage_error("a value is missing after", a);
+            return trial_usage_error(PROG, "a value is missing after", a);
         double d;
         char channel[HL_BUS_CHANNEL_MAX];
         switch (k) {
         case 0: o->url = v; break;
         case 1:
-            if (!parse_double(v, 0.1, 3600.0, &d))
-                return usage_error("--seconds: give 0.1 to 3600, not", v);
+            if (!trial_parse_double(v, 0.1, 3600.0, &d))
+                return trial_usage_error(PROG, "--seconds: give 0.1 to 3600, not", v);
             o->seconds = d;
             break;
         case 2:
-            if (!parse_double(v, 1, 1e6, &d) || d != (long)d)
-                return usage_error("--rate: give a whole number 1 to 1000000, not", v);
+            if (!trial_parse_double(v, 1, 1e6, &d) || d != (long)d)
+                return trial_usage_error(PROG, "--rate: give a whole number 1 to 1000000, not", v);
             o->rate = (long)d;
             break;
         case 3:
             if (!parse_ull(v, &o->seed))
-                return usage_error("--seed: give a non-negative whole number, not", v);
+                return trial_usage_error(PROG, "--seed: give a non-negative whole number, not", v);
             break;
         case 4:
             if (!hl_bus_channel(v, HL_CHANNEL_DESTINATION, channel))
-                return usage_error("--prefix: at most 32 letters, digits, '_-./', not", v);
+                return trial_usage_error(PROG, "--prefix: at most 32 letters, digits, '_-./', not", v);
             o->prefix = v;
             break;
         default:
             if (!parse_channels(v, o->use))
-                return usage_error("--channels: a comma-separated subset of "
+                return trial_usage_error(PROG, "--channels: a comma-separated subset of "
                                    "SONAR,ODOMETRY,DESTINATION,COMMAND, not", v);
         }
     }
     if (!o->url)
         return fprintf(stderr, "%s: --lcm-url is required; try %s --help\n", PROG, PROG),
-               EXIT_USAGE;
+               TRIAL_EXIT_USAGE;
     if (!loopback_url(o->url))
-        return usage_error("refusing to flood beyond this host: give a udpm:// URL with "
+        return trial_usage_error(PROG, "refusing to flood beyond this host: give a udpm:// URL with "
                            "ttl=0, not", o->url);
     return -1;
 }

@@ -6,8 +6,10 @@
 # Like houghloc-goto they see include/ and src/daemon (for keyfile.h), never the generated
 # LCM headers: messages go through src/bus.
 
-FLOOD_OBJS := $(BUILD)/obj/tools/trials/flood.o $(BUILD)/obj/tools/trials/flood_msg.o
+FLOOD_OBJS := $(BUILD)/obj/tools/trials/flood.o $(BUILD)/obj/tools/trials/flood_msg.o \
+              $(BUILD)/obj/tools/trials/trial_args.o
 FORGE_OBJS := $(BUILD)/obj/tools/trials/forge.o $(BUILD)/obj/tools/trials/forge_req.o \
+              $(BUILD)/obj/tools/trials/trial_args.o \
               $(BUILD)/obj/src/daemon/keyfile.o
 
 BINS += $(BUILD)/bin/hl-flood $(BUILD)/bin/hl-forge

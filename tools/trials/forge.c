@@ -18,10 +18,10 @@
 
 #include "forge_req.h"
 #include "houghloc/version.h"
+#include "trial_args.h"
 #include "keyfile.h"
 
 #define PROG "hl-forge"
-#define EXIT_USAGE 2
 #define SHOW_WRONG 10       /* wrong answers printed one by one; the rest only counted */
 
 static const char usage[] =
@@ -56,25 +56,6 @@ typedef struct options {
     double timeout_s, fence_m;
 } options_t;
 
-static int usage_error(const char *what, const char *value)
-{
-    fprintf(stderr, "%s: %s \"%s\"; try %s --help\n", PROG, what, value, PROG);
-    return EXIT_USAGE;
-}
-
-static bool parse_double(const char *s, double lo, double hi, double *out)
-{
-    if (!*s || strpbrk(s, " \t\nxX"))
-        return false;
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (*end || errno || !(v >= lo && v <= hi))
-        return false;
-    *out = v;
-    return true;
-}
-
 /* @return -1 to go on, else an exit status (after --help or an error message). */
 static int parse_args(int argc, char **argv, options_t *o)
 {
@@ -93,42 +74,42 @@ static int parse_args(int argc, char **argv, options_t *o)
             if (strlen(names[j]) == n && strncmp(a, names[j], n) == 0)
                 k = j;
         if (k < 0)
-            return usage_error(a[0] == '-' ? "unknown option" : "unexpected argument", a);
+            return trial_usage_error(PROG, a[0] == '-' ? "unknown option" : "unexpected argument", a);
         const char *v = eq ? eq + 1 : i + 1 < argc ? argv[++i] : NULL;
         if (!v || !*v)
-            return usage_error("a value is missing after", a);
+            return trial_usage_error(PROG, "a value is missing after", a);
         double d;
         char channel[HL_BUS_CHANNEL_MAX];
         switch (k) {
         case 0: o->url = v; break;
         case 1: o->key_file = v; break;
         case 2:
-            if (!parse_double(v, 1, 10000, &d) || d != (long)d)
-                return usage_error("--rounds: give a whole number 1 to 10000, not", v);
+            if (!trial_parse_double(v, 1, 10000, &d) || d != (long)d)
+                return trial_usage_error(PROG, "--rounds: give a whole number 1 to 10000, not", v);
             o->rounds = (long)d;
             break;
         case 3:
-            if (!parse_double(v, 0, 1e15, &d) || d != (double)(unsigned long long)d)
-                return usage_error("--seed: give a whole number 0 to 10^15, not", v);
+            if (!trial_parse_double(v, 0, 1e15, &d) || d != (double)(unsigned long long)d)
+                return trial_usage_error(PROG, "--seed: give a whole number 0 to 10^15, not", v);
             o->seed = (unsigned long long)d;
             break;
         case 4:
             if (!hl_bus_channel(v, HL_CHANNEL_DESTINATION, channel))
-                return usage_error("--prefix: at most 32 letters, digits, '_-./', not", v);
+                return trial_usage_error(PROG, "--prefix: at most 32 letters, digits, '_-./', not", v);
             o->prefix = v;
             break;
         case 5:
-            if (!parse_double(v, 0.1, 60, &o->timeout_s))
-                return usage_error("--timeout: give 0.1 to 60 seconds, not", v);
+            if (!trial_parse_double(v, 0.1, 60, &o->timeout_s))
+                return trial_usage_error(PROG, "--timeout: give 0.1 to 60 seconds, not", v);
             break;
         default:
-            if (!parse_double(v, 1, 1000, &o->fence_m))
-                return usage_error("--fence-m: give 1 to 1000 metres, not", v);
+            if (!trial_parse_double(v, 1, 1000, &o->fence_m))
+                return trial_usage_error(PROG, "--fence-m: give 1 to 1000 metres, not", v);
         }
     }
     if (!o->url || !o->key_file)
         return fprintf(stderr, "%s: --lcm-url and --key are required; try %s --help\n", PROG,
-                       PROG), EXIT_USAGE;
+                       PROG), TRIAL_EXIT_USAGE;
     return -1;
 }
 
