@@ -1,6 +1,7 @@
 /* config.c - defaults, INI file (libinih), overrides, validation, printing. */
 #include "config.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <ini.h>
 #include <math.h>
@@ -163,6 +164,17 @@ static bool check_profile(const char *v, char *why)
     return REASON("'%s' is not a robot profile (bonnie or pioneer3)", v), false;
 }
 
+/* A value that --print-config writes as "key = value" must read back the same: inih
+ * takes a ';' or '#' at the start of a value or after a space for a comment. Such a value
+ * can still reach us (a continuation line, "key=;", an override), so it is refused. */
+static bool starts_comment(const char *v)
+{
+    for (const char *s = v; *s; s++)
+        if ((*s == ';' || *s == '#') && (s == v || isspace((unsigned char)s[-1])))
+            return true;
+    return false;
+}
+
 /* Sets one key from its text. @return false with the reason (no file or line). */
 static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, char *why)
 {
@@ -175,6 +187,9 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
     case HL_KEY_STR:
         if (strlen(v) >= k->size)
             return REASON("longer than %zu characters", k->size - 1), false;
+        if (starts_comment(v))
+            return REASON("'%s': a ';' or '#' at its start or after a space would read back "
+                          "as a comment", v), false;
         if (k->type == HL_KEY_LINK && *v && !check_link(v, why))
             return false;
         if (k->type == HL_KEY_PROFILE && !check_profile(v, why))

@@ -33,6 +33,24 @@ static char *print(const hl_config_t *c, size_t *len)
     return text;
 }
 
+/* Prints the first line where the two printed configurations differ. */
+static void first_difference(const char *a, const char *b)
+{
+    size_t line = 0;
+    while (*a && *a == *b) {
+        if (*a == '\n')
+            line = 0;
+        else
+            line++;
+        a++;
+        b++;
+    }
+    a -= line;
+    b -= line;
+    fprintf(stderr, "printed:                \"%.*s\"\nprinted after reloading: \"%.*s\"\n",
+            (int)strcspn(a, "\n"), a, (int)strcspn(b, "\n"), b);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     hl_config_t *c = malloc(sizeof *c), *again = malloc(sizeof *again);
@@ -50,7 +68,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         FUZZ_CHECK(reloaded);
         char *text2 = print(again, &n2);
         if (n1 != n2 || memcmp(text, text2, n1) != 0)
-            fprintf(stderr, "printed:\n%s\nprinted after reloading:\n%s\n", text, text2);
+            first_difference(text, text2);
         FUZZ_CHECK(n1 == n2 && memcmp(text, text2, n1) == 0);
         free(text2);
         free(text);

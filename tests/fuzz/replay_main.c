@@ -11,8 +11,8 @@
  * Each file is read into a heap block of exactly its size, so that a read past the input
  * is caught. Names starting with '.' and README files in a folder are not inputs. A
  * failing input aborts (a sanitizer report or a FUZZ_CHECK), and its name is printed
- * from the sanitizers' death callback or the SIGABRT handler; a folder that cannot be
- * read fails the run.
+ * after the report (AddressSanitizer's death callback, the SIGABRT handler for UBSan and
+ * FUZZ_CHECK); a folder that cannot be read fails the run.
  */
 #include <dirent.h>
 #include <errno.h>
@@ -45,6 +45,14 @@ static void say_current(void)
     r = write(STDERR_FILENO, current, strlen(current));
     r = write(STDERR_FILENO, "\n", 1);
     (void)r;
+}
+
+/* UBSan's runtime does not call the death callback that AddressSanitizer's takes: make
+ * it abort instead of exiting, so that the SIGABRT handler names the input. */
+const char *__ubsan_default_options(void);
+const char *__ubsan_default_options(void)
+{
+    return "abort_on_error=1";
 }
 
 static void on_abort(int sig)
@@ -144,14 +152,18 @@ int main(int argc, char **argv)
 #if defined(__SANITIZE_ADDRESS__)
     __sanitizer_set_death_callback(say_current);
 #endif
+    char counts[1024] = "";
+    size_t used = 0;
     long total = 0;
     for (int i = 0; i < n; i++) {
         long r = replay_path(paths[i]);
         if (r < 0)
             return 1;
-        printf("replay %s: %s: %ld inputs\n", HL_FUZZ_NAME, paths[i], r);
+        if (used < sizeof counts)
+            used += (size_t)snprintf(counts + used, sizeof counts - used, "%s%s: %ld",
+                                     i ? ", " : "", paths[i], r);
         total += r;
     }
-    printf("replay %s: %ld inputs, no failure\n", HL_FUZZ_NAME, total);
+    printf("replay %s: %ld inputs (%s), no failure\n", HL_FUZZ_NAME, total, counts);
     return 0;
 }

@@ -43,6 +43,9 @@ printf '[fence]\npolygon = 0,0 1,1 0,1 1,0\n' >"$tmp/bad.conf"
 rejects "a crossed fence polygon" 1 "bad.conf:2: key 'fence.polygon'" $BIN/houghlocd --config "$tmp/bad.conf"
 awk 'BEGIN { printf "[fence]\npolygon ="; for (i = 0; i < 40; i++) printf " %d,%d", i, i * i; print "" }' >"$tmp/bad.conf"
 rejects "a line longer than the reader takes: its number, not a misread" 1 "bad.conf:2: longer than" $BIN/houghlocd --config "$tmp/bad.conf"
+printf '[daemon]\nmap_file=a\n  b ;c\n' >"$tmp/bad.conf"
+rejects "a value that would print as a comment (found by fuzzing)" 1 "bad.conf:3: key 'daemon.map_file': 'b ;c'" $BIN/houghlocd --config "$tmp/bad.conf"
+rejects "--set of a value starting with ';'" 1 "would read back as a comment" $D --set 'daemon.map_file=;x'
 rejects "--set of an unknown key" 1 "unknown key 'slam.nope'" $D --set slam.nope=1
 rejects "--set without =" 1 "expected SECTION.KEY=VALUE" $D --set slam.map_capacity
 rejects "a combination the core refuses" 1 "config: the search window needs more raster cells than max_cells" $D --set localize.max_cells=1000
