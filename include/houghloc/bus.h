@@ -107,18 +107,28 @@ int hl_bus_encode_odometry(const hl_bus_odometry_t *in, void *buf, size_t cap);
 
 /* ---- POSE (and GROUND_TRUTH) ------------------------------------------------------- */
 
+/* POSE statuses beyond the slam's HL_SLAM_ACCEPTED .. HL_SLAM_ODOMETRY_ONLY (slam.h):
+ * the daemon's global search while it is lost (lcmtypes/houghloc_pose_t.lcm). */
+enum {
+    HL_BUS_POSE_RELOCALIZED = 3,
+    HL_BUS_POSE_LOST = 4,
+};
+
 typedef struct hl_bus_pose {
     int64_t utime;
     int32_t scan_seq;
     hl_pose_t pose;
-    int8_t status;              /* HL_SLAM_ACCEPTED .. HL_SLAM_ODOMETRY_ONLY (slam.h) */
+    int8_t status;              /* HL_SLAM_ACCEPTED .. HL_BUS_POSE_LOST */
     float confidence;           /* 0..1 */
     int32_t peak;               /* >= 0 */
     int32_t second_peak;        /* >= 0 */
     int32_t votes;              /* >= 0 */
+    float search_score;         /* 0..1: the global search's answer ... */
+    hl_pose_t runner_up;        /* ... its runner-up, position within +-HL_COORD_MAX_MM */
+    float runner_up_score;      /* 0..1 */
 } hl_bus_pose_t;                /* scan_seq >= 0; position within +-HL_COORD_MAX_MM */
 
-#define HL_BUS_POSE_BYTES (8 + 8 + 4 + 4 + 4 + 2 + 1 + 4 + 4 + 4 + 4)
+#define HL_BUS_POSE_BYTES (8 + 8 + 4 + 4 + 4 + 2 + 1 + 4 + 4 + 4 + 4 + 4 + 4 + 4 + 2 + 4)
 hl_status_t hl_bus_decode_pose(const void *data, size_t len, hl_bus_pose_t *out, char *why);
 int hl_bus_encode_pose(const hl_bus_pose_t *in, void *buf, size_t cap);
 
@@ -164,6 +174,7 @@ enum {
     HL_BUS_STATE_IDLE = 4,
     HL_BUS_STATE_FAULT = 5,
     HL_BUS_STATE_STOPPING = 6,
+    HL_BUS_STATE_LOST = 7,
 };
 
 #define HL_BUS_STATUS_MAX_BYTES (8 + 8 + 1 + 8 + 4 * 10 + 4 + 4 + 2 + 4 * 3 + 4 + HL_BUS_TEXT_MAX)

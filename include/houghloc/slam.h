@@ -46,6 +46,7 @@
 #include "houghloc/localize.h"
 #include "houghloc/map.h"
 #include "houghloc/refine.h"
+#include "houghloc/reloc.h"
 #include "houghloc/rng.h"
 
 #ifdef __cplusplus
@@ -94,6 +95,8 @@ typedef struct hl_slam_params {
                                    tours: RMSE 328 mm against 405 with the Hough's
                                    heading, docs/experiments.md) */
     hl_refine_params_t refine_params;
+    hl_reloc_params_t reloc;    /* the global search of hl_slam_relocalize (reloc.h); its
+                                   fine stage uses `loc` */
 } hl_slam_params_t;
 
 void hl_slam_params_default(hl_slam_params_t *p);
@@ -135,6 +138,17 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
 hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
                              hl_loc_result_t *loc, hl_pose_t *pose);
 hl_map_t *hl_slam_map(hl_slam_t *s);
+
+/**
+ * Where is the robot, heading unknown (the kidnapped robot, reloc.h): the scan at its
+ * echo bearings when the params ask, searched over the whole map, the answer refined
+ * when the params ask. Changes nothing: adopting the answer is hl_slam_set_pose's.
+ * @return as hl_reloc_run.
+ */
+hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_result_t *out);
+/** hl_reloc_judge of @p scan (at its echo bearings when the params ask) at @p pose against
+ *  the current map. */
+uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose);
 
 /**
  * Moves the estimate to @p pose and takes @p odometry as the base's odometry there

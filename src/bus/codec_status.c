@@ -21,7 +21,8 @@ _Static_assert(HOUGHLOC_STATUS_T_STARTING == HL_BUS_STATE_STARTING &&
                HOUGHLOC_STATUS_T_MOVING == HL_BUS_STATE_MOVING &&
                HOUGHLOC_STATUS_T_IDLE == HL_BUS_STATE_IDLE &&
                HOUGHLOC_STATUS_T_FAULT == HL_BUS_STATE_FAULT &&
-               HOUGHLOC_STATUS_T_STOPPING == HL_BUS_STATE_STOPPING,
+               HOUGHLOC_STATUS_T_STOPPING == HL_BUS_STATE_STOPPING &&
+               HOUGHLOC_STATUS_T_LOST == HL_BUS_STATE_LOST,
                "bus.h's HL_BUS_STATE_* disagree with lcmtypes/houghloc_status_t.lcm");
 
 /* The ten counters in wire order, with their names for the reason text. */
@@ -39,9 +40,9 @@ static hl_status_t check_status(const hl_bus_status_t *m, char *why)
     if (m->utime < 0)
         return hl_wire_fail(why, HL_ERR_RANGE, "status", "utime %lld is negative",
                             (long long)m->utime);
-    if (m->state < HOUGHLOC_STATUS_T_STARTING || m->state > HOUGHLOC_STATUS_T_STOPPING)
+    if (m->state < HOUGHLOC_STATUS_T_STARTING || m->state > HOUGHLOC_STATUS_T_LOST)
         return hl_wire_fail(why, HL_ERR_RANGE, "status", "state %d outside %d..%d", m->state,
-                            HOUGHLOC_STATUS_T_STARTING, HOUGHLOC_STATUS_T_STOPPING);
+                            HOUGHLOC_STATUS_T_STARTING, HOUGHLOC_STATUS_T_LOST);
     if (m->destination_seq != -1 && m->destination_seq < 1)
         return hl_wire_fail(why, HL_ERR_RANGE, "status",
                             "destination_seq %lld is neither -1 nor positive",

@@ -16,6 +16,7 @@ struct hl_slam {
                            yet: tracked_peak */
     hl_scan_t *echoed;  /* the scan at its echo bearings, when the params ask for it */
     hl_refiner_t *refiner;  /* when the params ask for refinement */
+    hl_reloc_t *reloc;      /* the global search (hl_slam_relocalize) */
 };
 
 void hl_slam_params_default(hl_slam_params_t *p)
@@ -40,6 +41,7 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->refine = true;
     p->refine_heading = true;
     hl_refine_params_default(&p->refine_params);
+    hl_reloc_params_default(&p->reloc);
 }
 
 const char *hl_slam_params_error(const hl_slam_params_t *p)
@@ -72,9 +74,9 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "min_peak_ratio must be in 0..1";
     if (p->echo_bearings && hl_echo_params_error(&p->echo))
         return hl_echo_params_error(&p->echo);
-    if (p->refine)
+    if (p->refine && hl_refine_params_error(&p->refine_params))
         return hl_refine_params_error(&p->refine_params);
-    return NULL;
+    return hl_reloc_params_error(&p->reloc);
 }
 
 hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
@@ -93,8 +95,10 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->loc = hl_loc_create(&lp);
     s->echoed = p->echo_bearings ? malloc(sizeof *s->echoed) : NULL;
     s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
+    s->reloc = hl_reloc_create(&p->reloc, &lp);
     if (!s->map || hl_map_set_density(s->map, p->map_square_mm, p->map_per_place) != HL_OK ||
-        !s->loc || (p->echo_bearings && !s->echoed) || (p->refine && !s->refiner)) {
+        !s->loc || (p->echo_bearings && !s->echoed) || (p->refine && !s->refiner) ||
+        !s->reloc) {
         hl_slam_destroy(s);
         return NULL;
     }
@@ -109,6 +113,7 @@ void hl_slam_destroy(hl_slam_t *s)
     hl_loc_destroy(s->loc);
     free(s->echoed);
     hl_refine_destroy(s->refiner);
+    hl_reloc_destroy(s->reloc);
     free(s);
 }
 
@@ -208,6 +213,29 @@ hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pred
     if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(predicted))
         return HL_ERR_RANGE;
     return localize(s, prepared(s, scan), predicted, loc, pose);
+}
+
+hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_result_t *out)
+{
+    if (!s || !scan || !out)
+        return HL_ERR_ARG;
+    if (hl_scan_check(scan) != HL_OK)
+        return HL_ERR_RANGE;
+    scan = prepared(s, scan);
+    const hl_vector_t *map = hl_map_vectors(s->map);
+    uint32_t n = hl_map_count(s->map);
+    hl_status_t st = hl_reloc_run(s->reloc, map, n, scan, out);
+    if (st == HL_OK && s->refiner)  /* a refused refinement leaves the search's pose */
+        hl_refine_run(s->refiner, map, n, scan, out->pose, s->p.refine_heading, &out->pose);
+    return st;
+}
+
+uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose)
+{
+    if (!s || !scan || hl_scan_check(scan) != HL_OK)
+        return 0;
+    return hl_reloc_judge(s->reloc, hl_map_vectors(s->map), hl_map_count(s->map),
+                          prepared(s, scan), pose);
 }
 
 /* Computes the whole cycle into locals first and commits at the end, so that every error

@@ -53,9 +53,13 @@ void hl_config_defaults(hl_config_t *c)
     c->status_period_ms = 1000;
     c->idle_after_ms = 5000;
     c->compute_window = 100;
+    c->lost_after = 2;
+    c->lost_peak_ratio = 0.5;
+    c->search_every = 1;
     c->log_level = HL_LOG_INFO;
     snprintf(c->robot_profile, sizeof c->robot_profile, "bonnie");
     c->robot_sound_on_connect = true;
+    c->robot_lost_soundings = 3;
     c->robot_reconnect_max_ms = 5000;
     hl_sounder_params_default(&c->sounder);
     hl_drive_params_default(&c->drive);

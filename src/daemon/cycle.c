@@ -149,17 +149,34 @@ void hl_cycle_flush_map(hl_cycle_t *c)
 
 /* ---- SONAR and ODOMETRY ------------------------------------------------------------- */
 
-static void publish_pose(hl_cycle_t *c, const hl_bus_scan_t *in, const hl_slam_step_t *step)
+static float share(uint32_t part, uint32_t whole)
 {
-    bool localized = step->status != HL_SLAM_ODOMETRY_ONLY;
+    return whole ? (float)part / (float)whole : 0.0f;
+}
+
+/* POSE for one scan: @p status is a slam status (with @p step's local search) or one of
+ * the global search's (with @p found). */
+static void publish_pose(hl_cycle_t *c, const hl_bus_scan_t *in, const hl_slam_step_t *step,
+                         int8_t status, const hl_reloc_result_t *found)
+{
+    bool localized = status == HL_SLAM_ACCEPTED || status == HL_SLAM_REJECTED_WILD;
+    bool searched = status == HL_BUS_POSE_RELOCALIZED || status == HL_BUS_POSE_LOST;
     hl_bus_pose_t m = {
-        .utime = in->utime, .scan_seq = in->seq, .pose = step->pose,
-        .status = (int8_t)step->status,
-        .confidence = localized ? (float)hl_loc_confidence(&step->loc) : 0.0f,
+        .utime = in->utime, .scan_seq = in->seq, .pose = step->pose, .status = status,
+        .confidence = localized ? (float)hl_loc_confidence(&step->loc)
+                    : searched ? (float)hl_reloc_confidence(found) : 0.0f,
         .peak = localized ? (int32_t)step->loc.peak : 0,
         .second_peak = localized ? (int32_t)step->loc.second : 0,
         .votes = localized ? (int32_t)step->loc.votes : 0,
     };
+    if (searched) {
+        uint32_t readings = 0;
+        for (uint32_t i = 0; i < in->scan.count; i++)
+            readings += in->scan.readings[i].valid;
+        m.search_score = share(found->score, readings);
+        m.runner_up = found->runner_up;
+        m.runner_up_score = share(found->runner_up_score, readings);
+    }
     int len = hl_bus_encode_pose(&m, c->buf, sizeof c->buf);
     if (len > 0)
         c->io.emit(c->io.ctx, HL_CH_POSE, c->buf, (size_t)len);
@@ -220,40 +237,54 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
 
     uint32_t version = hl_map_version(hl_slam_map(c->slam));
     hl_slam_step_t step;
-    hl_status_t st = hl_slam_update(c->slam, &in->scan, in->odometry, &step);
-    if (st != HL_OK) {
-        /* nothing changed (slam.h); answer with the prediction, as for an empty map */
-        snprintf(what, sizeof what, "SONAR: scan seq %d not localized: %s", in->seq,
-                 hl_status_str(st));
-        hl_cycle_fault(c, NULL, "sonar update", what);
-        step = (hl_slam_step_t){ .pose = prediction(c, in->odometry),
-                                 .status = HL_SLAM_ODOMETRY_ONLY };
+    hl_reloc_result_t found = { 0 };
+    int8_t status;
+    if (c->lost) {
+        status = hl_cycle_lost_scan(c, in, prediction(c, in->odometry), false, &step, &found,
+                                    now_us);
+    } else if (c->p.search_every > 0 && c->n.scans % c->p.search_every == 0 &&
+               hl_cycle_kidnapped(c, in, prediction(c, in->odometry), &step, &found, now_us)) {
+        status = HL_BUS_POSE_RELOCALIZED;
+    } else {
+        bool doubtful = hl_cycle_track(c, in, prediction(c, in->odometry), &step);
+        status = (int8_t)step.status;
+        c->doubtful_run = doubtful ? c->doubtful_run + 1 : 0;
+        if (c->p.lost_after > 0 && c->doubtful_run >= c->p.lost_after) {
+            snprintf(what, sizeof what, "%d doubtful scans in a row (daemon.lost_after)",
+                     c->doubtful_run);
+            hl_cycle_enter_lost(c, what, now_us);
+            status = hl_cycle_lost_scan(c, in, step.pose, true, &step, &found, now_us);
+        }
     }
     c->scan_odometry = in->odometry;
     if (!c->have_odometry || in->utime >= c->last_odometry_utime)
         c->odometry = in->odometry;
     c->n.scans++;
     c->scans_total++;
-    c->n.accepted += step.status == HL_SLAM_ACCEPTED;
-    c->n.rejected_wild += step.status == HL_SLAM_REJECTED_WILD;
-    c->n.odometry_only += step.status == HL_SLAM_ODOMETRY_ONLY;
-    publish_pose(c, in, &step);
+    c->n.accepted += status == HL_SLAM_ACCEPTED;
+    c->n.rejected_wild += status == HL_SLAM_REJECTED_WILD;
+    c->n.odometry_only += status == HL_SLAM_ODOMETRY_ONLY;
+    publish_pose(c, in, &step, status, &found);
     hl_cycle_record_compute(c, c->io.now_us(c->io.ctx) - t0);
+    bool changed = hl_map_version(hl_slam_map(c->slam)) != version;
     if (hl_log_enabled(HL_LOG_DEBUG)) {
-        static const char *const names[] = { "ACCEPTED", "REJECTED_WILD", "ODOMETRY_ONLY" };
-        hl_log(HL_LOG_DEBUG, "scan %llu (seq %d): %s at (%.3f, %.3f) m, %.1f deg; map %u",
-               (unsigned long long)c->scans_total, in->seq, names[step.status],
+        static const char *const names[] = { "ACCEPTED", "REJECTED_WILD", "ODOMETRY_ONLY",
+                                             "RELOCALIZED", "LOST" };
+        /* "changed": the scan went into the map, and counts towards daemon.save_every */
+        hl_log(HL_LOG_DEBUG, "scan %llu (seq %d): %s at (%.3f, %.3f) m, %.1f deg; map %u%s",
+               (unsigned long long)c->scans_total, in->seq, names[status],
                step.pose.x_mm / 1000.0, step.pose.y_mm / 1000.0, hl_bam_to_sdeg(step.pose.theta),
-               hl_map_count(hl_slam_map(c->slam)));
+               hl_map_count(hl_slam_map(c->slam)), changed ? ", changed" : "");
     }
 
-    if (hl_map_version(hl_slam_map(c->slam)) != version) {
+    if (changed) {
         c->map_changed_utime = in->utime;
         c->since_save++;
     }
     maybe_publish_map(c);
-    if (c->state != HL_BUS_STATE_LOCALIZING)
-        hl_cycle_set_state(c, HL_BUS_STATE_LOCALIZING, now_us);
+    int8_t state = c->lost ? HL_BUS_STATE_LOST : HL_BUS_STATE_LOCALIZING;
+    if (c->state != state)
+        hl_cycle_set_state(c, state, now_us);
 }
 
 static void on_odometry(hl_cycle_t *c, const void *data, size_t len)

@@ -48,6 +48,14 @@ struct hl_cycle {
     int n_fault_kinds;
     char last_error[HL_BUS_TEXT_MAX];
 
+    /* lost (cycle_lost.c) */
+    bool lost;
+    uint32_t lost_epoch;            /* times lost was entered */
+    int32_t doubtful_run;           /* doubtful tracking scans in a row (hl_cycle_track) */
+    int32_t accepted_run;           /* ... and well-matched ones while lost */
+    bool have_candidate;            /* the global search found this, to be confirmed */
+    hl_pose_t candidate, candidate_odometry;
+
     hl_bus_scan_t scan;             /* decode target: too big for the stack */
     uint8_t buf[HL_BUS_STATUS_MAX_BYTES + HL_BUS_REPLY_MAX_BYTES + HL_BUS_POSE_BYTES];
 };
@@ -66,5 +74,33 @@ void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t no
 void hl_cycle_reply(hl_cycle_t *c, int64_t seq, int8_t result, const char *message);
 void hl_cycle_publish_status(hl_cycle_t *c);
 void hl_cycle_record_compute(hl_cycle_t *c, int64_t us);
+
+/**
+ * The ordinary cycle on one scan (hl_slam_update; a failure answers @p prediction).
+ * @return true when the scan is doubtful: rejected, or accepted with a peak far below
+ *         the recent ones (daemon.lost_peak_ratio).
+ */
+bool hl_cycle_track(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t prediction,
+                    hl_slam_step_t *step);
+/**
+ * While tracking (daemon.search_every): the global search on this scan, and whether it
+ * finds the robot somewhere else that explains the scan clearly better than where
+ * tracking would put it. If so the daemon is lost with that candidate (to be confirmed by
+ * the next scan), @p step holds it and @p found the search, and nothing was tracked.
+ */
+bool hl_cycle_kidnapped(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t prediction,
+                        hl_slam_step_t *step, hl_reloc_result_t *found, int64_t now_us);
+/**
+ * One scan while lost (cycle_lost.c): confirms the candidate or searches the whole map.
+ * @param prediction  the pose to publish when nothing is found.
+ * @param tracked     this scan already went through hl_cycle_track (it made the daemon
+ *                    lost), with its result in @p step: it is not tracked again.
+ * @return the POSE status: HL_SLAM_ACCEPTED (tracking again), HL_BUS_POSE_RELOCALIZED
+ *         (a candidate found) or HL_BUS_POSE_LOST; @p step holds the pose (and the local
+ *         search of an accepted scan), @p found the search.
+ */
+int8_t hl_cycle_lost_scan(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t prediction,
+                          bool tracked, hl_slam_step_t *step, hl_reloc_result_t *found,
+                          int64_t now_us);
 
 #endif

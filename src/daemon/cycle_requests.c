@@ -86,10 +86,17 @@ static void set_pose(hl_cycle_t *c, const hl_bus_command_t *cmd, int64_t now_us)
         hl_cycle_reply(c, cmd->seq, HL_BUS_REPLY_REJECTED_INVALID, "pose out of range");
         return;
     }
+    if (c->lost)
+        hl_log(HL_LOG_NOTICE, "no longer lost: the pose was set by hand");
+    c->lost = false;
+    c->have_candidate = false;
+    c->doubtful_run = 0;
+    c->accepted_run = 0;
     snprintf(what, sizeof what, "pose set to (%.3f, %.3f) m, %.1f deg; map kept",
              cmd->pose.x_mm / 1000.0, cmd->pose.y_mm / 1000.0, hl_bam_to_sdeg(cmd->pose.theta));
     hl_cycle_reply(c, cmd->seq, HL_BUS_REPLY_ACCEPTED, what);
-    hl_cycle_set_state(c, c->state, now_us);   /* STATUS shows the new estimate at once */
+    /* STATUS shows the new estimate at once */
+    hl_cycle_set_state(c, c->state == HL_BUS_STATE_LOST ? HL_BUS_STATE_IDLE : c->state, now_us);
 }
 
 void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t now_us)
@@ -114,9 +121,13 @@ void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t no
         c->save_requested = true;
         c->save_request_seq = cmd.seq;
         break;
-    default:
-        hl_cycle_reply(c, cmd.seq, HL_BUS_REPLY_FAILED,
-                       "global relocalization is not available in this version");
+    case HL_BUS_COMMAND_RELOCALIZE:
+        hl_cycle_enter_lost(c, "RELOCALIZE command", now_us);
+        hl_cycle_reply(c, cmd.seq, HL_BUS_REPLY_ACCEPTED,
+                       "lost: the next scans search the whole map");
+        break;
+    default:    /* the decoder admits only the kinds above */
+        hl_cycle_reply(c, cmd.seq, HL_BUS_REPLY_REJECTED_INVALID, "unknown command kind");
         break;
     }
 }

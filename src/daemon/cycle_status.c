@@ -72,13 +72,16 @@ void hl_cycle_publish_status(hl_cycle_t *c)
 static const char *state_name(int8_t state)
 {
     static const char *const names[] = { "STARTING", "SOUNDING", "LOCALIZING", "MOVING",
-                                         "IDLE", "FAULT", "STOPPING" };
-    return state >= 0 && state <= HL_BUS_STATE_STOPPING ? names[state] : "?";
+                                         "IDLE", "FAULT", "STOPPING", "LOST" };
+    return state >= 0 && state <= HL_BUS_STATE_LOST ? names[state] : "?";
 }
 
 void hl_cycle_set_state(hl_cycle_t *c, int8_t state, int64_t now_us)
 {
     (void)now_us;
+    /* lost outranks what the robot is doing; a fault or the way out outranks lost */
+    if (c->lost && state != HL_BUS_STATE_FAULT && state != HL_BUS_STATE_STOPPING)
+        state = HL_BUS_STATE_LOST;
     if (state != c->state)
         hl_log(HL_LOG_INFO, "state %s -> %s", state_name(c->state), state_name(state));
     c->state = state;

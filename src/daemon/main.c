@@ -220,6 +220,8 @@ static bool cycle_params(const hl_config_t *cfg, hl_cycle_params_t *p)
         .slam = cfg->slam, .start = cfg->start, .fence = cfg->fence,
         .save_every = cfg->save_every, .map_period_ms = cfg->map_period_ms,
         .idle_after_ms = cfg->idle_after_ms, .compute_window = cfg->compute_window,
+        .lost_after = cfg->lost_after, .lost_peak_ratio = cfg->lost_peak_ratio,
+        .search_every = cfg->search_every,
     };
     if (!cfg->key_file[0])
         return true;
@@ -239,7 +241,8 @@ static bool robot_params(const hl_config_t *cfg, hl_robot_params_t *p)
     *p = (hl_robot_params_t){ .sounder = cfg->sounder, .drive = cfg->drive, .rlink = cfg->rlink,
                               .conv = HL_ARCOS_CONV_PIONEER,
                               .reconnect_max_ms = cfg->robot_reconnect_max_ms,
-                              .sound_on_connect = cfg->robot_sound_on_connect };
+                              .sound_on_connect = cfg->robot_sound_on_connect,
+                              .lost_soundings = cfg->robot_lost_soundings };
     if (!hl_link_spec_parse(cfg->robot_link, &p->link, why))
         return fprintf(stderr, "houghlocd: %s\n", why), false;
     if (hl_robot_profile_find(cfg->robot_profile, &p->profile) != HL_OK)

@@ -146,6 +146,11 @@ void hl_robot_destination(hl_robot_t *r, const hl_bus_destination_t *d, int64_t 
         reply(r, d->seq, HL_BUS_REPLY_NO_ROBOT, what);
         return;
     }
+    if (hl_cycle_lost(r->cycle)) {
+        reply(r, d->seq, HL_BUS_REPLY_FAILED, "lost: the pose is unknown; wait for the daemon "
+              "to relocalize, or send SET_POSE");
+        return;
+    }
     if (r->dest_seq >= 0 || r->dest_pending) {
         char what[HL_BUS_TEXT_MAX];
         snprintf(what, sizeof what, "superseded by destination %lld", (long long)d->seq);
@@ -207,6 +212,29 @@ static void publish_odometry(hl_robot_t *r, const hl_arcos_sip_t *sip, hl_pose_t
     deliver(r, HL_CH_ODOMETRY, hl_bus_encode_odometry(&o, r->buf, sizeof r->buf), now_ms);
 }
 
+/* While the daemon is lost the robot stands still and sounds, each sounding searching
+ * the whole map, up to lost_soundings times for each time it became lost; a destination
+ * under way is given up (the estimate it steers by is unknown). True when it acted. */
+static bool lost_sound(hl_robot_t *r, int64_t now_ms)
+{
+    if (!hl_cycle_lost(r->cycle))
+        return false;
+    if (r->dest_seq >= 0 || r->dest_pending)
+        robot_abandon(r, "lost: the pose is unknown (the daemon is relocalizing)", now_ms);
+    if (r->lost_epoch != hl_cycle_lost_epoch(r->cycle)) {
+        r->lost_epoch = hl_cycle_lost_epoch(r->cycle);
+        r->lost_soundings = 0;
+    }
+    if (r->lost_soundings >= r->p.lost_soundings)
+        return false;
+    if (++r->lost_soundings == r->p.lost_soundings)
+        hl_log(HL_LOG_INFO, "lost: sounding %d of %d (robot.lost_soundings), then waiting for "
+               "SET_POSE or RELOCALIZE", r->lost_soundings, r->p.lost_soundings);
+    robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
+    start_sounding(r, now_ms);
+    return true;
+}
+
 static void finish_sounding(hl_robot_t *r, int64_t now_ms)
 {
     hl_pose_t robot_frame;
@@ -218,6 +246,8 @@ static void finish_sounding(hl_robot_t *r, int64_t now_ms)
     deliver(r, HL_CH_SONAR, hl_bus_encode_scan(&r->msg, r->buf, sizeof r->buf), now_ms);
     r->sounded_once = true;
     r->last_in.estimate = hl_cycle_estimate(r->cycle);
+    if (lost_sound(r, now_ms))
+        return;
     if (r->dest_pending) {
         r->dest_pending = false;
         begin_destination(r, &r->pending, now_ms);
@@ -276,6 +306,8 @@ void robot_on_sip(void *ctx, const hl_arcos_sip_t *sip)
         .stalled = (sip->stall_bumpers & (HL_ARCOS_STALL_LEFT | HL_ARCOS_STALL_RIGHT)) != 0 };
     if (hl_sounder_state(&r->sounder) == HL_SOUNDER_BUSY) {
         sounder_step(r, sip, robot_frame, c->now_ms);
+    } else if (lost_sound(r, c->now_ms)) {
+        return;     /* lost by a command between soundings: sound now */
     } else if (r->dest_seq >= 0) {
         hl_drive_out_t out;
         hl_drive_on_sip(&r->drive, &r->last_in, &out);

@@ -34,6 +34,8 @@ typedef struct hl_robot_params {
     hl_arcos_conv_t conv;           /* the base's units */
     int32_t reconnect_max_ms;       /* longest wait between connection attempts */
     bool sound_on_connect;          /* sound once when the link first comes up */
+    int32_t lost_soundings;         /* soundings made standing still when the daemon is
+                                       lost, before it waits for an operator */
 } hl_robot_params_t;
 
 typedef struct hl_robot hl_robot_t;

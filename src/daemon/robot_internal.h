@@ -25,6 +25,8 @@ struct hl_robot {
     bool dest_pending;              /* accepted during a sounding: starts after it */
     hl_bus_destination_t pending;
     bool sounded_once;
+    uint32_t lost_epoch;            /* the cycle's lost epoch that lost_soundings counts */
+    int32_t lost_soundings;         /* soundings made for it */
 
     /* odometry: unwrapped robot units -> the robot's frame -> the published frame */
     hl_arcos_odom_t odom;

@@ -48,7 +48,7 @@ static void encode_all(fixture_t *f)
     for (int i = 0; i < 128; i++)
         f->scan.scan.readings[i] = (hl_reading_t){ 1000 + i, (hl_bam_t)(i * 512), 3, true };
     hl_bus_odometry_t odo = { 2, { 10, 20, 30 }, 5, true };
-    hl_bus_pose_t pose = { 3, 4, { 1, 2, 3 }, 1, 0.5f, 100, 50, 1000 };
+    hl_bus_pose_t pose = { 3, 4, { 1, 2, 3 }, 1, 0.5f, 100, 50, 1000, 0.5f, { 4, 5, 6 }, 0.25f };
     for (int i = 0; i < 64; i++)
         f->vectors[i] = (hl_vector_t){ i, -i, (hl_bam_t)i, 500 };
     hl_bus_map_t map = { 4, 5, 100, 64, f->vectors, 0 };

@@ -44,11 +44,14 @@ static hl_bus_pose_t random_pose(hl_rng_t *rng)
         .utime = tk_range(rng, 0, INT64_MAX),
         .scan_seq = (int32_t)tk_range(rng, 0, INT32_MAX),
         .pose = { coord(rng), coord(rng), (hl_bam_t)hl_rng_next(rng) },
-        .status = (int8_t)tk_range(rng, 0, 2),
+        .status = (int8_t)tk_range(rng, 0, 4),
         .confidence = (float)hl_rng_next(rng) / 4294967296.0f,
         .peak = (int32_t)tk_range(rng, 0, INT32_MAX),
         .second_peak = (int32_t)tk_range(rng, 0, INT32_MAX),
         .votes = (int32_t)tk_range(rng, 0, INT32_MAX),
+        .search_score = (float)hl_rng_next(rng) / 4294967296.0f,
+        .runner_up = { coord(rng), coord(rng), (hl_bam_t)hl_rng_next(rng) },
+        .runner_up_score = (float)hl_rng_next(rng) / 4294967296.0f,
     };
     return p;
 }
@@ -65,6 +68,11 @@ static void assert_pose_matches(const hl_bus_pose_t *p, const houghloc_pose_t *g
     assert_int_equal(g->peak, p->peak);
     assert_int_equal(g->second_peak, p->second_peak);
     assert_int_equal(g->votes, p->votes);
+    assert_memory_equal(&g->search_score, &p->search_score, sizeof(float));
+    assert_int_equal(g->runner_up_x_mm, p->runner_up.x_mm);
+    assert_int_equal(g->runner_up_y_mm, p->runner_up.y_mm);
+    assert_int_equal((hl_bam_t)g->runner_up_heading_bam, p->runner_up.theta);
+    assert_memory_equal(&g->runner_up_score, &p->runner_up_score, sizeof(float));
 }
 
 static void test_pose_matches_generated_code(void **state)
@@ -86,7 +94,7 @@ static void test_pose_matches_generated_code(void **state)
         assert_int_equal(houghloc_pose_t_encode(b, 0, sizeof b, &g), len);
         assert_memory_equal(a, b, sizeof a);
 
-        g.status = (int8_t)tk_range(&rng, 0, 2);
+        g.status = (int8_t)tk_range(&rng, 0, 4);
         g.votes = (int32_t)tk_range(&rng, 0, INT32_MAX);
         assert_int_equal(houghloc_pose_t_encode(b, 0, sizeof b, &g), len);
         assert_int_equal(hl_bus_decode_pose(b, sizeof b, &back, NULL), HL_OK);
@@ -109,13 +117,14 @@ static void test_pose_hostile_bytes(void **state)
     tk_check_bad_hash(&c, a, sizeof a);
     tk_check_small_buffers(&c, &p, sizeof a);
     /* offsets: 8 utime 16 scan_seq 20 x 24 y 28 heading 30 status 31 confidence 35 peak
-     * 39 second_peak 43 votes */
+     * 39 second_peak 43 votes 47 search_score 51 runner-up x 55 y 59 heading
+     * 61 runner_up_score */
     struct { size_t off; uint64_t v; size_t n; const char *field; } bad[] = {
         { 8, (uint64_t)-1, 8, "utime" },
         { 16, 0x80000000u, 4, "scan_seq" },
         { 20, HL_COORD_MAX_MM + 1, 4, "position" },
         { 24, (uint32_t)-HL_COORD_MAX_MM - 1, 4, "position" },
-        { 30, 3, 1, "status" },
+        { 30, 5, 1, "status" },
         { 30, 0xff, 1, "status" },
         { 31, 0x7fc00000u, 4, "confidence" },      /* NaN */
         { 31, 0x7f800000u, 4, "confidence" },      /* +inf */
@@ -125,6 +134,12 @@ static void test_pose_hostile_bytes(void **state)
         { 35, (uint32_t)-1, 4, "peak" },
         { 39, 0x80000000u, 4, "second_peak" },
         { 43, (uint32_t)-7, 4, "votes" },
+        { 47, 0x7fc00000u, 4, "search_score" },    /* NaN */
+        { 47, 0x3f800001u, 4, "search_score" },
+        { 51, HL_COORD_MAX_MM + 1, 4, "runner-up position" },
+        { 55, (uint32_t)-HL_COORD_MAX_MM - 1, 4, "runner-up position" },
+        { 61, 0xbf800000u, 4, "runner_up_score" }, /* -1 */
+        { 61, 0x7f800000u, 4, "runner_up_score" }, /* +inf */
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         memcpy(b, a, sizeof a);
@@ -138,7 +153,7 @@ static void test_pose_hostile_bytes(void **state)
         assert_int_equal(hl_bus_encode_pose(&q, a, sizeof a), -1);
     }
     hl_bus_pose_t q = p;
-    q.status = 3;
+    q.status = 5;
     assert_int_equal(hl_bus_encode_pose(&q, a, sizeof a), -1);
     q = p;
     q.peak = -1;
@@ -148,6 +163,39 @@ static void test_pose_hostile_bytes(void **state)
     assert_int_equal(hl_bus_encode_pose(&q, a, sizeof a), -1);
     assert_int_equal(hl_bus_encode_pose(&p, a, sizeof a), HL_BUS_POSE_BYTES);
     assert_in_range(tk_fuzz(&c, a, sizeof a, 5000, 33), 1, 4999);
+}
+
+/* POSE of logs made before the global search's fields (houghloc 0.x): the older layout,
+ * under its own fingerprint, still decodes, the new fields zero; re-encoding writes the
+ * current layout with the same leading fields. Its fingerprint at the current size, or
+ * the current fingerprint at its size, is refused. */
+static void test_pose_older_layout(void **state)
+{
+    (void)state;
+    hl_rng_t rng;
+    hl_rng_seed(&rng, 34);
+    hl_bus_pose_t p = random_pose(&rng), out;
+    uint8_t cur[HL_BUS_POSE_BYTES], old[HL_BUS_POSE_BYTES - 18];
+    assert_int_equal(hl_bus_encode_pose(&p, cur, sizeof cur), HL_BUS_POSE_BYTES);
+    memcpy(old, cur, sizeof old);
+    tk_put_be(old, 0, 0xd976510111d909d3ull, 8);
+    assert_int_equal(hl_bus_decode_pose(old, sizeof old, &out, NULL), HL_OK);
+    assert_int_equal(out.utime, p.utime);
+    assert_int_equal(out.pose.x_mm, p.pose.x_mm);
+    assert_int_equal(out.votes, p.votes);
+    assert_true(out.search_score == 0.0f && out.runner_up_score == 0.0f);
+    assert_int_equal(out.runner_up.x_mm, 0);
+    uint8_t again[HL_BUS_POSE_BYTES];
+    assert_int_equal(hl_bus_encode_pose(&out, again, sizeof again), HL_BUS_POSE_BYTES);
+    assert_memory_equal(again + 8, old + 8, sizeof old - 8);
+    char why[HL_BUS_WHY_LEN];
+    assert_int_equal(hl_bus_decode_pose(old, sizeof old - 1, &out, why), HL_ERR_PARSE);
+    tk_put_be(cur, 0, 0xd976510111d909d3ull, 8);
+    assert_int_equal(hl_bus_decode_pose(cur, sizeof cur, &out, why), HL_ERR_PARSE);
+    assert_non_null(strstr(why, "fingerprint"));
+    assert_int_equal(hl_bus_encode_pose(&p, cur, sizeof cur), HL_BUS_POSE_BYTES);
+    memcpy(old, cur, sizeof old);
+    assert_int_equal(hl_bus_decode_pose(old, sizeof old, &out, why), HL_ERR_PARSE);
 }
 
 /* ---- MAP --------------------------------------------------------------------------- */
@@ -307,6 +355,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pose_matches_generated_code),
         cmocka_unit_test(test_pose_hostile_bytes),
+        cmocka_unit_test(test_pose_older_layout),
         cmocka_unit_test(test_map_matches_generated_code),
         cmocka_unit_test(test_map_hostile_bytes),
         cmocka_unit_test(test_empty_map),

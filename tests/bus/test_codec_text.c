@@ -43,7 +43,7 @@ static hl_bus_status_t random_status(hl_rng_t *rng)
 {
     hl_bus_status_t s = {
         .utime = tk_range(rng, 0, INT64_MAX),
-        .state = (int8_t)tk_range(rng, 0, 6),
+        .state = (int8_t)tk_range(rng, 0, 7),
         .destination_seq = hl_rng_below(rng, 4) ? tk_range(rng, 1, INT64_MAX) : -1,
         .scans = counter(rng), .accepted = counter(rng), .rejected_wild = counter(rng),
         .odometry_only = counter(rng), .bad_packets = counter(rng),
@@ -166,7 +166,7 @@ static void test_status_hostile_bytes(void **state)
      * 75 compute_median_us 79 p99 83 samples 87 last_error */
     struct { size_t off; uint64_t v; size_t n; const char *field; } bad[] = {
         { 8, (uint64_t)-1, 8, "utime" },
-        { 16, 7, 1, "state" },
+        { 16, 8, 1, "state" },
         { 16, 0xff, 1, "state" },
         { 17, 0, 8, "destination_seq" },
         { 17, (uint64_t)-2, 8, "destination_seq" },
@@ -190,7 +190,7 @@ static void test_status_hostile_bytes(void **state)
     memset(q.last_error, 'x', sizeof q.last_error);         /* no NUL */
     assert_int_equal(hl_bus_encode_status(&q, b, sizeof b), -1);
     q = s;
-    q.state = 7;
+    q.state = 8;
     assert_int_equal(hl_bus_encode_status(&q, b, sizeof b), -1);
     q = s;
     q.destination_seq = 0;

@@ -304,7 +304,11 @@ static void test_set_pose(void **state)
     assert_int_equal(now.y_mm, 500);
     assert_int_equal(hl_map_count(hl_slam_map(hl_cycle_slam(c))), vectors);
     send_command(c, 3, HL_BUS_COMMAND_RELOCALIZE, moved, NULL);
-    assert_int_equal(last_reply(cap).result, HL_BUS_REPLY_FAILED);
+    assert_int_equal(last_reply(cap).result, HL_BUS_REPLY_ACCEPTED);
+    assert_true(hl_cycle_lost(c));
+    send_command(c, 4, HL_BUS_COMMAND_SET_POSE, moved, NULL);
+    assert_int_equal(last_reply(cap).result, HL_BUS_REPLY_ACCEPTED);
+    assert_false(hl_cycle_lost(c));
     hl_cycle_destroy(c);
     capture_clear(cap);
     free(cap);

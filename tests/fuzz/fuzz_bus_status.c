@@ -15,7 +15,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     /* The ranges bus.h gives. */
     FUZZ_CHECK(m.utime >= 0);
-    FUZZ_CHECK(m.state >= HL_BUS_STATE_STARTING && m.state <= HL_BUS_STATE_STOPPING);
+    FUZZ_CHECK(m.state >= HL_BUS_STATE_STARTING && m.state <= HL_BUS_STATE_LOST);
     FUZZ_CHECK(m.destination_seq == -1 || m.destination_seq > 0);
     const int32_t counters[] = { m.scans, m.accepted, m.rejected_wild, m.odometry_only,
                                  m.bad_packets, m.bad_messages, m.rejected_requests,

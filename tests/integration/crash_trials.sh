@@ -46,7 +46,7 @@ while [ $i -lt "$N" ]; do
     fi
     saved=$(echo "$info" | sed -n 's/.* \([0-9]*\) scans,.*/\1/p')
     [ "$last" -gt 0 ] && [ "$last" -lt 128 ] && mid=$((mid + 1))
-    behind=$(awk -v s="${saved:-0}" '$2 == "scan" && $3 > s && $6 != "REJECTED_WILD" { n++ }
+    behind=$(awk -v s="${saved:-0}" '$2 == "scan" && $3 > s && /, changed$/ { n++ }
                                      END { print n + 0 }' "$tmp/err")
     if [ -z "$saved" ] || [ "$behind" -gt $EVERY ]; then
         echo "trial $i: map file holds ${saved:-?} scans, $behind integrations behind scan $last"

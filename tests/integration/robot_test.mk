@@ -3,3 +3,6 @@
 # errors, and a replay of the live log); it needs houghlocd, houghloc-sim, houghloc-goto
 # and hl-eval, which `make all` builds.
 INTEGRATION_TESTS += tests/integration/test_robot.sh
+# The kidnapped robot: houghloc-sim teleports the robot; the daemon notices, is lost, finds
+# it again within three soundings (docs/kidnap.md).
+INTEGRATION_TESTS += tests/integration/test_lost.sh

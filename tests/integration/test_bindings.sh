@@ -17,12 +17,12 @@ check() {   # check DESCRIPTION COMMAND...: the command must succeed
 }
 
 # One pose, every field away from zero and of both signs; 0.75 is exact in a float.
-POSE="1700000000123456 42 -1234 5678 -16384 1 0.75 65536 1024 9000"
+POSE="1700000000123456 42 -1234 5678 -16384 1 0.75 65536 1024 9000 0.5 -300 400 8192 0.25"
 # shellcheck disable=SC2086
 c_hex=$("$BUILD/bin/hl-pose-bytes" $POSE)
-check "hl-pose-bytes encodes a pose (8 + 39 bytes)" test "${#c_hex}" -eq 94
+check "hl-pose-bytes encodes a pose (8 + 57 bytes)" test "${#c_hex}" -eq 130
 check "hl-pose-bytes rejects a heading out of int16 range" \
-    sh -c '! "$1" 1 2 3 4 40000 1 0.5 1 1 1 2>/dev/null' - "$BUILD/bin/hl-pose-bytes"
+    sh -c '! "$1" 1 2 3 4 40000 1 0.5 1 1 1 0 0 0 0 0 2>/dev/null' - "$BUILD/bin/hl-pose-bytes"
 
 if command -v python3 >/dev/null 2>&1; then
     names=$(for f in lcmtypes/houghloc_*.lcm; do basename "$f" .lcm; done |
@@ -36,8 +36,8 @@ sys.modules["lcm"] = None          # any "import lcm" now fails: the types must 
 import houghloc
 
 c_bytes = bytes.fromhex(sys.argv[2])
-v = sys.argv[3:13]
-names = sys.argv[13:]
+v = sys.argv[3:18]
+names = sys.argv[18:]
 bad = 0
 def expect(desc, ok):
     global bad
@@ -57,13 +57,18 @@ p = houghloc.pose_t()
 (p.utime, p.scan_seq, p.x_mm, p.y_mm, p.heading_bam, p.status) = map(int, v[0:6])
 p.confidence = float(v[6])
 (p.peak, p.second_peak, p.votes) = map(int, v[7:10])
+p.search_score = float(v[10])
+(p.runner_up_x_mm, p.runner_up_y_mm, p.runner_up_heading_bam) = map(int, v[11:14])
+p.runner_up_score = float(v[14])
 expect("python pose_t encodes the bytes the C types do", p.encode() == c_bytes)
 expect("python pose_t fingerprint is the C hash", houghloc.pose_t._get_packed_fingerprint() == c_bytes[:8])
 q = houghloc.pose_t.decode(c_bytes)
 expect("python pose_t decodes the C bytes to the same fields",
        [q.utime, q.scan_seq, q.x_mm, q.y_mm, q.heading_bam, q.status, q.confidence,
-        q.peak, q.second_peak, q.votes] ==
-       [int(x) for x in v[0:6]] + [0.75] + [int(x) for x in v[7:10]])
+        q.peak, q.second_peak, q.votes, q.search_score, q.runner_up_x_mm, q.runner_up_y_mm,
+        q.runner_up_heading_bam, q.runner_up_score] ==
+       [int(x) for x in v[0:6]] + [0.75] + [int(x) for x in v[7:10]] + [0.5] +
+       [int(x) for x in v[11:14]] + [0.25])
 try:
     houghloc.odometry_t.decode(c_bytes)
     expect("python refuses a pose as odometry (fingerprint)", False)
@@ -121,6 +126,7 @@ EOF
     check "the Java probe compiles" test $? -eq 0
     set -- $POSE
     fields="utime=$1 scan_seq=$2 x_mm=$3 y_mm=$4 heading_bam=$5 status=$6 confidence=$7 peak=$8 second_peak=$9 votes=${10}"
+    fields="$fields search_score=${11} runner_up_x_mm=${12} runner_up_y_mm=${13} runner_up_heading_bam=${14} runner_up_score=${15}"
     fp=$(printf '%s' "$c_hex" | cut -c1-16)
     # shellcheck disable=SC2086
     CLASSPATH=$jar java -Djava.awt.headless=true -cp "$LCM_JAR:$tmp" Probe "$fp" $fields \

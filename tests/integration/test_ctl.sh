@@ -3,7 +3,8 @@
 # --help and --version exit 0, with nobody answering on a private LCM port it gives up
 # after --timeout with exit 6; then against real daemons on that port: save writes a map
 # file that loads, set-pose moves the estimate (seen in the map file the daemon saves
-# when it stops), relocalize is answered FAILED (exit 5), and a daemon with a key refuses
+# when it stops), relocalize is accepted (the daemon is lost until its scans find the
+# robot; with no scans here, it stays so), and a daemon with a key refuses
 # an unsigned command (exit 3) and takes a signed one.
 set -u
 BIN=${BUILD:-build}/bin
@@ -102,7 +103,8 @@ succeeds "save: ACCEPTED (exit 0)" "houghloc-ctl: ACCEPTED: map saved" $C save
 check "... the saved map file loads" sh -c "$D --map $tmp/open.hlmap --check-map >/dev/null"
 succeeds "set-pose 1 2 90: ACCEPTED (exit 0)" \
     "houghloc-ctl: ACCEPTED: pose set to (1.000, 2.000) m, 90.0 deg; map kept" $C set-pose 1 2 90
-exits "relocalize: FAILED (exit 5)" 5 "houghloc-ctl: FAILED: " $C relocalize
+succeeds "relocalize: ACCEPTED (exit 0)" \
+    "houghloc-ctl: ACCEPTED: lost: the next scans search the whole map" $C relocalize
 stop_daemon open
 $D --map "$tmp/open.hlmap" --check-map >"$tmp/check" 2>&1
 check "the daemon kept the pose set: (1, 2) m, 90 deg" grep -q -F "pose (1.000, 2.000) m 90.00 deg" "$tmp/check"
@@ -114,7 +116,7 @@ exits "unsigned save: REJECTED_AUTH (exit 3)" 3 "houghloc-ctl: REJECTED_AUTH: " 
 succeeds "signed set-pose: ACCEPTED (exit 0)" "houghloc-ctl: ACCEPTED: pose set to (-3.250, 0.500) m, -90.0 deg" \
     $C --key "$tmp/key" set-pose -3.25 0.5 270
 succeeds "signed save: ACCEPTED (exit 0)" "houghloc-ctl: ACCEPTED: map saved" $C --key "$tmp/key" save
-exits "signed relocalize: FAILED (exit 5)" 5 "houghloc-ctl: FAILED: " $C --key "$tmp/key" relocalize
+succeeds "signed relocalize: ACCEPTED (exit 0)" "houghloc-ctl: ACCEPTED: lost: " $C --key "$tmp/key" relocalize
 stop_daemon keyed
 check "the keyed daemon logged the refusal" grep -q 'REJECTED_AUTH' "$tmp/keyed.err"
 

@@ -20,6 +20,13 @@
  * and a fifth a laser's scan: w5_laser15k (360 readings against 15,000 vectors in a
  * +-1 m window, 48 mm groups, as w3), in the first line's format. The reference runs at most 20 times
  * for w3 and 5 for w5 (it takes a quarter of a second and more per run there).
+ *
+ * The sixth times the global search of a kidnapped robot (reloc.h, hl_reloc_run at its
+ * defaults): 128 readings against 1,500 vectors over a room the size of the lab (12 m x
+ * 9 m), heading unknown; at most 40 runs (tens of milliseconds each). correct_pct is the
+ * share of runs whose answer is found and within 0.5 m and 5 degrees of the truth:
+ *
+ *   bench w6_reloc_lab median_us=<n> p90_us=<n> correct_pct=<n> mem_bytes=<n>
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -31,6 +38,7 @@
 #include "houghloc/echo.h"
 #include "houghloc/localize.h"
 #include "houghloc/refine.h"
+#include "houghloc/reloc.h"
 #include "../testkit/ref_localize.h"
 #include "timing.h"
 #include "../testkit/synthroom.h"
@@ -46,6 +54,7 @@ typedef struct workload {
     hl_mm_t group_mm;       /* localize.group_mm: 0 (default) or 48 for a dense map */
     int max_ref_runs;       /* the reference is slow: cap its runs */
     bool echo_refine;       /* w4: what improved mode adds, not a search (run_echo_refine) */
+    bool reloc;             /* w6: the global search, heading unknown (run_reloc) */
 } workload_t;
 
 
@@ -180,10 +189,67 @@ static int run_echo_refine(int runs)
     return 0;
 }
 
+#define RELOC_MAX_RUNS 40
+
+static int run_reloc(int runs)
+{
+    static sr_room_t room;
+    static hl_scan_t scans[POSES];
+    sr_room_make(&room, 0, 0, 12000, 9000, 30, 42);   /* the lab's size */
+    if (runs > RELOC_MAX_RUNS)
+        runs = RELOC_MAX_RUNS;
+    hl_vector_t *map = malloc(1500 * sizeof *map);
+    double *t = malloc((size_t)runs * sizeof *t);
+    if (!map || !t) {
+        fprintf(stderr, "bench: out of memory\n");
+        return 1;
+    }
+    uint32_t n = sr_make_map(&room, 1500, 128, 8000, 10, map);
+    hl_pose_t truth[POSES];
+    for (int i = 0; i < POSES; i++) {   /* sr_free_pose draws the heading too */
+        truth[i] = sr_free_pose(&room, 500);
+        sr_sound(&room, truth[i], 128, 8000, 10, &scans[i]);
+    }
+    hl_loc_params_t lp;
+    hl_loc_params_default(&lp);
+    lp.max_map_vectors = n;
+    hl_reloc_params_t rp;
+    hl_reloc_params_default(&rp);
+    hl_reloc_t *r = hl_reloc_create(&rp, &lp);
+    if (!r) {
+        fprintf(stderr, "bench: cannot create the global search\n");
+        return 1;
+    }
+    int correct = 0;
+    for (int i = 0; i < runs; i++) {
+        hl_reloc_result_t res;
+        const hl_pose_t *want = &truth[i % POSES];
+        double t0 = now_us();
+        hl_status_t st = hl_reloc_run(r, map, n, &scans[i % POSES], &res);
+        t[i] = now_us() - t0;
+        if (st != HL_OK && st != HL_ERR_EMPTY) {
+            fprintf(stderr, "bench: w6_reloc_lab: %s\n", hl_status_str(st));
+            return 1;
+        }
+        double dx = res.pose.x_mm - want->x_mm, dy = res.pose.y_mm - want->y_mm;
+        int32_t dt = hl_bam_diff(res.pose.theta, want->theta);
+        correct += st == HL_OK && res.found && dx * dx + dy * dy <= 500.0 * 500.0 &&
+                   abs(dt) <= hl_bam_from_deg(5.0);
+    }
+    printf("bench w6_reloc_lab median_us=%.0f p90_us=%.0f correct_pct=%.0f mem_bytes=%zu\n",
+           quantile(t, runs, 0.5), quantile(t, runs, 0.9), 100.0 * correct / runs,
+           hl_reloc_mem_bytes(r));
+    fflush(stdout);
+    hl_reloc_destroy(r);
+    free(map);
+    free(t);
+    return 0;
+}
+
 static const char usage[] =
     "usage: hl-bench [RUNS [WORKLOAD]]\n"
     "Times the localizer on synthetic rooms, one line per workload (RUNS 1..100000,\n"
-    "default 200; WORKLOAD w1 .. w5 or its full name, default all).\n";
+    "default 200; WORKLOAD w1 .. w6 or its full name, default all).\n";
 
 int main(int argc, char **argv)
 {
@@ -208,11 +274,12 @@ int main(int argc, char **argv)
         runs = (int)v;
     }
     const workload_t w[] = {
-        { "w1_global_xy", 1500, 0, false, 128, 0, 200, false },
-        { "w2_local_xyt", 1500, 1000, true, 128, 0, 200, false },
-        { "w3_map15k", 15000, 1000, true, 128, 48, 20, false },
-        { "w4_echo_refine", 0, 0, false, 0, 0, 0, true },
-        { "w5_laser15k", 15000, 1000, true, 360, 48, 5, false },
+        { "w1_global_xy", 1500, 0, false, 128, 0, 200, false, false },
+        { "w2_local_xyt", 1500, 1000, true, 128, 0, 200, false, false },
+        { "w3_map15k", 15000, 1000, true, 128, 48, 20, false, false },
+        { "w4_echo_refine", 0, 0, false, 0, 0, 0, true, false },
+        { "w5_laser15k", 15000, 1000, true, 360, 48, 5, false, false },
+        { "w6_reloc_lab", 1500, 0, true, 128, 0, 0, false, true },
     };
     bool any = false;
     for (size_t i = 0; i < sizeof w / sizeof w[0]; i++) {
@@ -220,12 +287,14 @@ int main(int argc, char **argv)
             (strncmp(only, w[i].name, 2) != 0 || only[2] != '\0'))
             continue;
         any = true;
-        int bad = w[i].echo_refine ? run_echo_refine(runs) : run_workload(&w[i], runs, runs);
+        int bad = w[i].echo_refine ? run_echo_refine(runs)
+                  : w[i].reloc     ? run_reloc(runs)
+                                   : run_workload(&w[i], runs, runs);
         if (bad)
             return 1;
     }
     if (!any) {
-        fprintf(stderr, "hl-bench: no workload '%s' (w1 .. w5)\n", only);
+        fprintf(stderr, "hl-bench: no workload '%s' (w1 .. w6)\n", only);
         return 2;
     }
     return 0;

@@ -3,6 +3,7 @@
  * from the arguments with the generated C types, as lowercase hex on one line.
  *
  *   hl-pose-bytes UTIME SCAN_SEQ X_MM Y_MM HEADING_BAM STATUS CONFIDENCE PEAK SECOND VOTES
+ *                 SEARCH_SCORE RUNNER_X_MM RUNNER_Y_MM RUNNER_HEADING_BAM RUNNER_SCORE
  *
  * tests/integration/test_bindings.sh encodes the same message with the generated Python
  * (and Java) types and compares the bytes, so the bindings handed to users (scripts,
@@ -18,7 +19,7 @@
 
 #include "houghloc_pose_t.h"
 
-#define NARGS 10
+#define NARGS 15
 
 /* Parses a whole decimal integer in [lo, hi]; false on anything else. */
 static int parse_int(const char *s, long long lo, long long hi, long long *out)
@@ -40,12 +41,16 @@ int main(int argc, char **argv)
         { "HEADING_BAM", INT16_MIN, INT16_MAX }, { "STATUS", INT8_MIN, INT8_MAX },
         { "CONFIDENCE", 0, 0 },            { "PEAK", INT32_MIN, INT32_MAX },
         { "SECOND", INT32_MIN, INT32_MAX }, { "VOTES", INT32_MIN, INT32_MAX },
+        { "SEARCH_SCORE", 0, 0 },          { "RUNNER_X_MM", INT32_MIN, INT32_MAX },
+        { "RUNNER_Y_MM", INT32_MIN, INT32_MAX }, { "RUNNER_HEADING_BAM", INT16_MIN, INT16_MAX },
+        { "RUNNER_SCORE", 0, 0 },
     };
     long long v[NARGS] = { 0 };
-    float confidence = 0.0f;
+    float f[NARGS] = { 0 };     /* the float fields: CONFIDENCE, SEARCH_SCORE, RUNNER_SCORE */
 
     static const char usage[] = "usage: hl-pose-bytes UTIME SCAN_SEQ X_MM Y_MM HEADING_BAM "
-                                "STATUS CONFIDENCE PEAK SECOND VOTES\n"
+                                "STATUS CONFIDENCE PEAK SECOND VOTES SEARCH_SCORE RUNNER_X_MM "
+                                "RUNNER_Y_MM RUNNER_HEADING_BAM RUNNER_SCORE\n"
                                 "Prints the LCM encoding of one houghloc_pose_t, in hex (the "
                                 "bindings' cross-language check).\n";
     if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
@@ -53,15 +58,15 @@ int main(int argc, char **argv)
         return 0;
     }
     if (argc != NARGS + 1) {
-        fputs("hl-pose-bytes: want 10 fields (--help)\n", stderr);
+        fputs("hl-pose-bytes: want 15 fields (--help)\n", stderr);
         return 2;
     }
     for (int i = 0; i < NARGS; i++) {
         const char *a = argv[i + 1];
-        if (i == 6) {   /* the one float field */
+        if (i == 6 || i == 10 || i == 14) {     /* the float fields */
             char *end;
             errno = 0;
-            confidence = strtof(a, &end);
+            f[i] = strtof(a, &end);
             if (errno == 0 && end != a && *end == '\0')
                 continue;
         } else if (parse_int(a, spec[i].lo, spec[i].hi, &v[i])) {
@@ -74,8 +79,10 @@ int main(int argc, char **argv)
     houghloc_pose_t p = {
         .utime = v[0], .scan_seq = (int32_t)v[1], .x_mm = (int32_t)v[2],
         .y_mm = (int32_t)v[3], .heading_bam = (int16_t)v[4], .status = (int8_t)v[5],
-        .confidence = confidence, .peak = (int32_t)v[7], .second_peak = (int32_t)v[8],
-        .votes = (int32_t)v[9],
+        .confidence = f[6], .peak = (int32_t)v[7], .second_peak = (int32_t)v[8],
+        .votes = (int32_t)v[9], .search_score = f[10], .runner_up_x_mm = (int32_t)v[11],
+        .runner_up_y_mm = (int32_t)v[12], .runner_up_heading_bam = (int16_t)v[13],
+        .runner_up_score = f[14],
     };
     /* Encoded size = 8 fingerprint bytes + the fields; a fixed-size message, but ask. */
     uint8_t buf[128];

@@ -19,7 +19,9 @@ static const char usage_text[] =
     "  save\n"
     "      save the map file now; answered once the file is written\n"
     "  relocalize\n"
-    "      search the whole map for the robot (not in this version: answered FAILED)\n"
+    "      forget the pose: the daemon is LOST, and its next scans search the whole\n"
+    "      map until one finds the robot and the next confirms it (STATUS shows\n"
+    "      LOST until then; a robot stands still and sounds, robot.lost_soundings)\n"
     "\n"
     "Options:\n"
     "  --lcm-url URL  the LCM network (default $LCM_DEFAULT_URL, else\n"
@@ -52,8 +54,7 @@ static const char usage_text[] =
     "  3  rejected: missing or wrong MAC (REJECTED_AUTH), seq not above the last one\n"
     "     (REJECTED_REPLAY), a field out of range (REJECTED_INVALID)\n"
     "  4  no robot is connected to the daemon (NO_ROBOT)\n"
-    "  5  the daemon could not do it (FAILED): relocalize in this version, or a\n"
-    "     save that failed\n"
+    "  5  the daemon could not do it (FAILED): a save that failed\n"
     "  6  no answer within the timeout\n";
 
 typedef struct command {

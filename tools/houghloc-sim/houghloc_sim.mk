@@ -8,7 +8,7 @@
 
 HLSIMR_SRCS := tools/houghloc-sim/motion.cpp tools/houghloc-sim/simrobot.cpp \
                tools/houghloc-sim/session.cpp tools/houghloc-sim/server.cpp \
-               tools/houghloc-sim/options.cpp
+               tools/houghloc-sim/options.cpp tools/houghloc-sim/teleport.cpp
 HLSIMR_OBJS      := $(call obj,$(HLSIMR_SRCS) tools/houghloc-sim/main.cpp)
 HLSIMR_ASAN_OBJS := $(patsubst %.cpp,$(BUILD)/asan/%.o,$(HLSIMR_SRCS))
 HLSIMR_CPPFLAGS  := -Itools/houghloc-sim -Itools/sim

@@ -49,23 +49,9 @@ bool start_pose(const World &w, const SimOptions &o, Pose *out, std::string *err
         *err = "--start: the world declares no tour start; give --start X,Y,DEG";
         return false;
     }
-    char where[96];
-    std::snprintf(where, sizeof where, "(%.3f, %.3f) m", out->x / 1000.0, out->y / 1000.0);
-    double c = w.clearance(out->pos());
     // A robot stopped against a wall stands at its radius; GROUND_TRUTH's whole
-    // millimetres may put it a hair inside: 2 mm of tolerance let it restart there.
-    if (c < Base::kRadiusMm - 2.0) {
-        *err = std::string("--start: ") + where + " is not in free space: " +
-               std::to_string(static_cast<long>(c)) + " mm from a surface, the robot's " +
-               "radius is 250 mm";
-        return false;
-    }
-    std::string why;
-    if (!w.enclosed(out->pos(), &why)) {
-        *err = std::string("--start: ") + where + " is not in free space: " + why;
-        return false;
-    }
-    return true;
+    // millimetres may put it a hair inside: check_free_pose lets it restart there.
+    return check_free_pose(w, *out, "--start", err);
 }
 
 struct Truth {
@@ -112,7 +98,8 @@ void summary(const Server &server, const Session &session, const SimRobot &robot
     std::fprintf(stderr,
                  "houghloc-sim: summary: sips_sent=%llu commands=%llu bad_commands=%llu "
                  "client_garbage_bytes=%llu faults=%llu (drop %llu, garbage %llu, corrupt "
-                 "%llu, stall %llu) clients=%llu refused=%llu robot_time_s=%.1f\n",
+                 "%llu, stall %llu, teleport %llu) clients=%llu refused=%llu "
+                 "robot_time_s=%.1f\n",
                  static_cast<unsigned long long>(c.sips),
                  static_cast<unsigned long long>(session.commands()),
                  static_cast<unsigned long long>(session.bad_commands()),
@@ -122,6 +109,7 @@ void summary(const Server &server, const Session &session, const SimRobot &robot
                  static_cast<unsigned long long>(c.garbage),
                  static_cast<unsigned long long>(c.corrupt),
                  static_cast<unsigned long long>(c.stalls),
+                 static_cast<unsigned long long>(c.teleports),
                  static_cast<unsigned long long>(c.clients),
                  static_cast<unsigned long long>(c.refused),
                  static_cast<double>(robot.utime()) / 1e6);
@@ -185,7 +173,8 @@ int main(int argc, char **argv)
         return 2;
     }
     Pose start;
-    if (!start_pose(world, o, &start, &err)) {
+    if (!start_pose(world, o, &start, &err) ||
+        (o.teleport.has_to && !check_free_pose(world, o.teleport.to, "--teleport-to", &err))) {
         std::fprintf(stderr, "houghloc-sim: %s\n", err.c_str());
         return 2;
     }
@@ -194,6 +183,7 @@ int main(int argc, char **argv)
     cfg.sonar.model = o.cone ? SonarParams::Model::Cone : SonarParams::Model::Physical;
     cfg.seed = o.seed;
     cfg.watchdog_us = std::llround(o.watchdog_s * 1e6);
+    cfg.teleport = o.teleport;
 
     Log log;
     SimRobot robot(world, cfg, start, log);

@@ -42,6 +42,9 @@ public:
     void place(const Pose &truth);
     /** SETO: odometry to 0, 0, 0; a running turn keeps the angle it has left. */
     void reset_odometry();
+    /** The kidnapped robot (fault injection): the true pose jumps to @p truth; the
+     *  odometry, the commands and the velocities stay as they were. */
+    void teleport(const Pose &truth) { truth_ = truth; }
 
     /* Commands, in the odometry frame. Translation (MOVE, VEL) and rotation (HEAD,
      * DHEAD, RVEL) are independent channels, as in ARCOS; a new command replaces the one

@@ -49,6 +49,14 @@ void print_usage(FILE *f)
         "  --garbage-every N   every Nth SIP is preceded by 1..64 random bytes\n"
         "  --corrupt-every N   every Nth SIP has a wrong checksum\n"
         "  --stall-after S     from S s of robot time on the wheels do not turn\n"
+        "  --teleport-after S  kidnapped robot: at S s of robot time, once, 0..1e7, the\n"
+        "                      true pose jumps; the wheels do not turn, so the odometry\n"
+        "                      does not (due while the base moves, it waits until the\n"
+        "                      base stands still)\n"
+        "  --teleport-every S  the same every S s of robot time, 0.1..1e7\n"
+        "  --teleport-to X,Y,DEG  where to, metres and degrees, checked as --start\n"
+        "                      (default: a random pose 0.6 m clear of the walls, 2 m or\n"
+        "                      more away, any heading, drawn from --seed)\n"
         "  --help              this text\n"
         "Log lines go to stderr; SIGINT or SIGTERM ends it with a summary line, exit 0.\n"
         "Exit status: 0 done, 1 runtime failure (port in use, LCM), 2 bad option.\n");
@@ -89,11 +97,10 @@ bool parse_count(const char *s, uint64_t max, uint64_t *out)
 
 namespace {
 
-// "X,Y,DEG" in metres and degrees.
-bool parse_start(const char *s, SimOptions *o)
+// "X,Y,DEG" in metres and degrees (--start, --teleport-to).
+bool parse_pose(const char *s, double v[3])
 {
     std::string text = s;
-    double v[3];
     std::size_t pos = 0;
     for (int k = 0; k < 3; k++) {
         std::size_t comma = k < 2 ? text.find(',', pos) : text.size();
@@ -104,13 +111,7 @@ bool parse_start(const char *s, SimOptions *o)
         pos = comma + 1;
     }
     const double lim_m = kWorldCoordMax / 1000.0;
-    if (std::fabs(v[0]) > lim_m || std::fabs(v[1]) > lim_m || std::fabs(v[2]) > 360.0)
-        return false;
-    o->has_start = true;
-    o->start_x_m = v[0];
-    o->start_y_m = v[1];
-    o->start_deg = v[2];
-    return true;
+    return std::fabs(v[0]) <= lim_m && std::fabs(v[1]) <= lim_m && std::fabs(v[2]) <= 360.0;
 }
 
 bool bad(std::string *err, const std::string &opt, const char *want, const char *got)
@@ -154,9 +155,19 @@ bool take(const std::string &a, const char *v, SimOptions *o, std::string *err)
         if (std::strcmp(v, "physical") != 0 && std::strcmp(v, "cone") != 0)
             return bad(err, a, "physical or cone", v);
         o->cone = std::strcmp(v, "cone") == 0;
-    } else if (a == "--start") {
-        if (!parse_start(v, o))
+    } else if (a == "--start" || a == "--teleport-to") {
+        double p[3];
+        if (!parse_pose(v, p))
             return bad(err, a, "X,Y,DEG (metres, metres, degrees within +-360)", v);
+        if (a == "--start") {
+            o->has_start = true;
+            o->start_x_m = p[0];
+            o->start_y_m = p[1];
+            o->start_deg = p[2];
+        } else {
+            o->teleport.has_to = true;
+            o->teleport.to = Pose{p[0] * 1000.0, p[1] * 1000.0, wrap_pi(deg2rad(p[2]))};
+        }
     } else if (a == "--lcm-url") {
         if (!*v)
             return bad(err, a, "an LCM URL", v);
@@ -170,14 +181,16 @@ bool take(const std::string &a, const char *v, SimOptions *o, std::string *err)
         if (!parse_number(v, &d) || d < 0.0 || d > 60.0)
             return bad(err, a, "seconds of robot time, 0..60", v);
         o->watchdog_s = d;
-    } else if (a == "--drop-after" || a == "--stall-after") {
+    } else if (a == "--drop-after" || a == "--stall-after" || a == "--teleport-after") {
         if (!parse_number(v, &d) || d < 0.0 || d > kMaxSeconds)
             return bad(err, a, "seconds of robot time, 0..1e7", v);
-        (a == "--drop-after" ? o->faults.drop_after_s : o->faults.stall_after_s) = d;
-    } else if (a == "--drop-every") {
+        (a == "--drop-after"    ? o->faults.drop_after_s
+         : a == "--stall-after" ? o->faults.stall_after_s
+                                : o->teleport.after_s) = d;
+    } else if (a == "--drop-every" || a == "--teleport-every") {
         if (!parse_number(v, &d) || d < 0.1 || d > kMaxSeconds)
             return bad(err, a, "seconds of robot time, 0.1..1e7", v);
-        o->faults.drop_every_s = d;
+        (a == "--drop-every" ? o->faults.drop_every_s : o->teleport.every_s) = d;
     } else if (a == "--garbage-every" || a == "--corrupt-every") {
         if (!parse_count(v, 1000000000, &n) || n < 1)
             return bad(err, a, "a SIP count 1..1000000000", v);
@@ -205,7 +218,7 @@ ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err
             "--port", "--bind", "--speed", "--seed", "--world", "--profile",
             "--sonar-model", "--start", "--lcm-url", "--prefix", "--drop-after",
             "--drop-every", "--stall-after", "--garbage-every", "--corrupt-every",
-            "--watchdog"};
+            "--watchdog", "--teleport-after", "--teleport-every", "--teleport-to"};
         bool known = false;
         for (const char *name : with_value)
             known = known || a == name;
@@ -219,6 +232,10 @@ ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err
         }
         if (!take(a, argv[++i], o, err))
             return ParseResult::Error;
+    }
+    if (o->teleport.has_to && !o->teleport.enabled()) {
+        *err = "--teleport-to needs --teleport-after or --teleport-every (--help)";
+        return ParseResult::Error;
     }
     return ParseResult::Run;
 }

@@ -26,6 +26,7 @@ struct SimOptions {
     bool truth = true;               // publish GROUND_TRUTH
     double watchdog_s = 2.0;         // robot time without a client packet; 0: none
     Faults faults;
+    TeleportPlan teleport;           // --teleport-after, --teleport-every, --teleport-to
 };
 
 enum class ParseResult { Run, Help, Error };

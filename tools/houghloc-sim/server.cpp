@@ -233,6 +233,7 @@ bool Server::step(uint64_t *seq)
         close_client("fault: dropping the client (--drop-every)");
     }
     hl_arcos_sip_t sip = robot_.step();
+    counts_.teleports = robot_.teleports();   // the robot schedules those: they wait for it
     if (client_ < 0 || !session_.streaming())
         return false;
     *seq = counts_.sips;

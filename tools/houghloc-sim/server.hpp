@@ -38,7 +38,8 @@ struct ServerCounts {
     uint64_t garbage = 0;    // injected: garbage runs
     uint64_t corrupt = 0;    // injected: bad checksums
     uint64_t stalls = 0;     // injected: wheel stalls
-    uint64_t faults() const { return drops + garbage + corrupt + stalls; }
+    uint64_t teleports = 0;  // injected: kidnappings (the robot's, SimRobot::teleports())
+    uint64_t faults() const { return drops + garbage + corrupt + stalls + teleports; }
 };
 
 class Server {

@@ -58,7 +58,7 @@ bool sim_profile(const std::string &name, SimProfile *out)
 
 SimRobot::SimRobot(const World &world, const SimConfig &config, const Pose &start, Log &log)
     : world_(world), config_(config), log_(log), rng_(config.seed),
-      base_(world, config.noise, rng_)
+      base_(world, config.noise, rng_), teleport_(config.teleport, config.seed)
 {
     base_.place(start);
     for (std::size_t t = 0; t < config_.profile.bearings_deg.size(); t++)
@@ -219,6 +219,9 @@ void SimRobot::fire()
 void SimRobot::advance_to(int64_t t)
 {
     for (;;) {
+        // A teleport due now (or waiting for the base to stop) goes first, so a sonar
+        // reading fired at the same moment sees the new pose.
+        teleport_.tick(now_us_, world_, base_, log_);
         if (sonar_on_ && next_fire_us_ <= now_us_) {
             fire();
             next_fire_us_ += cycle_us_;
@@ -229,6 +232,7 @@ void SimRobot::advance_to(int64_t t)
         int64_t next = std::min(t, now_us_ + kSubstepUs);
         if (sonar_on_)
             next = std::min(next, next_fire_us_);
+        next = std::min(next, teleport_.next_due_us(now_us_));
         base_.advance(static_cast<double>(next - now_us_) * 1e-6);
         now_us_ = next;
     }

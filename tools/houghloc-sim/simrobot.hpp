@@ -6,7 +6,8 @@
 // fires one transducer per sonar cycle from the true pose into the world (tools/sim's
 // sonar_ping), and every 100 ms of robot time it reports a standard SIP with the
 // odometry and the readings fired since the previous one. A watchdog stops the robot
-// after 2 s of robot time without a client packet (SimConfig::watchdog_us).
+// after 2 s of robot time without a client packet (SimConfig::watchdog_us). The
+// kidnapped-robot fault (SimConfig::teleport, teleport.hpp) moves the true pose alone.
 #ifndef HLSIMROBOT_SIMROBOT_HPP
 #define HLSIMROBOT_SIMROBOT_HPP
 
@@ -19,6 +20,7 @@
 #include "log.hpp"
 #include "motion.hpp"
 #include "sonar.hpp"
+#include "teleport.hpp"
 
 namespace hlsim {
 
@@ -38,6 +40,7 @@ struct SimConfig {
     RobotParams noise;   // odo_dist_frac, odo_heading_deg_per_m, odo_turn_frac
     uint64_t seed = 1;
     int64_t watchdog_us = 2000000;   // ARCOS's default watchdog, robot time; 0: none
+    TeleportPlan teleport;           // the kidnapped-robot fault (teleport.hpp); default none
 };
 
 class SimRobot {
@@ -75,6 +78,8 @@ public:
     bool sonar_on() const { return sonar_on_; }
     int64_t sonar_cycle_us() const { return cycle_us_; }
     const SimProfile &profile() const { return config_.profile; }
+    uint64_t teleports() const { return teleport_.count(); }
+    bool teleport_pending() const { return teleport_.pending(); }
 
 private:
     void set_sonar(int32_t arg);
@@ -103,6 +108,7 @@ private:
     int64_t next_fire_us_ = 0;
     std::vector<hl_arcos_sonar_t> fired_;
     bool stall_reported_ = false;      // this stall is logged
+    Teleporter teleport_;
     // Watchdog.
     bool watchdog_armed_ = false;
     int64_t last_heard_us_ = 0;

@@ -274,7 +274,7 @@ while [ $i -lt "$RUNS" ]; do
     lost=$((last - ${saved:-0}))
     filepose=$(echo "$info" | sed -n 's/.* pose (\(.*\), \(.*\)) m .*/\1 \2/p')
     # integrations (scans that changed the map) not in the file
-    behind=$(awk -v s="${saved:-0}" '$2 == "scan" && $3 > s && $6 != "REJECTED_WILD" { n++ }
+    behind=$(awk -v s="${saved:-0}" '$2 == "scan" && $3 > s && /, changed$/ { n++ }
                                      END { print n + 0 }' "$T/d.err")
     [ $lost -gt $max_lost ] && max_lost=$lost
     [ "$behind" -gt $max_behind ] && max_behind=$behind

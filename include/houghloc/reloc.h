@@ -1,0 +1,143 @@
+/*
+ * reloc.h - global relocalization: where is the robot in a known map, with no idea of
+ * its position or heading, from one scan (the kidnapped robot; not in the paper, which
+ * searched a thin slice of headings around odometry).
+ *
+ * A full Hough search over every heading would cost hundreds of slices over the whole
+ * map. Three stages keep it to a few dozen:
+ *  1. headings: the normal gate makes heading partly separable. The circle is tiled with
+ *     windows as wide as one coarse search; each is worth the highest value inside it of
+ *     the circular correlation of two 256-bin histograms, the sensed normals (bearing +
+ *     180 deg, robot frame) and the map's normals, smoothed: the headings that turn the
+ *     scan's walls onto the map's. The best `headings` windows are searched (all of them,
+ *     18 at the defaults, search every heading: a laser's normals are its beams'
+ *     directions and tell little; a sonar's are its walls' normals and tell a lot);
+ *  2. coarse positions: for each window, a Hough vote over the whole map's bounding box
+ *     with coarse cells (coarse_cell_mm) and the window's headings (+-coarse_half_steps x
+ *     coarse_theta_step); the best `peaks_per_heading` separate peaks of each become
+ *     hypotheses, ranked by what they explain (below) within a coarse cell;
+ *  3. fine poses: the best `hypotheses` of them are searched again with the tracking
+ *     localizer's parameters in a small window (fine_window_mm, its heading slice).
+ * Votes are a poor score across a whole map: a place crowded with map vectors collects
+ * many for any heading. So each pose is judged by what it explains: the valid readings
+ * that, placed at it, land within verify_mm of a map vector whose normal agrees within
+ * the normal gate (a reading counts once, however many vectors crowd there).
+ * The answer is the fine pose that explains most; the runner-up the best other one that
+ * is distinct (at least distinct_mm away in position, or distinct_theta in heading). The
+ * answer is "found" when it explains at least min_explained_pct of the readings and the
+ * runner-up at most max_ratio of what it does; otherwise "ambiguous" (a symmetric
+ * corridor, a scan that sees too little): say so rather than guess.
+ *
+ * All memory is allocated by hl_reloc_create; hl_reloc_run allocates nothing. The
+ * result depends only on the inputs (no randomness, no clock).
+ */
+#ifndef HOUGHLOC_RELOC_H
+#define HOUGHLOC_RELOC_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "houghloc/localize.h"
+#include "houghloc/map.h"
+#include "houghloc/scan.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define HL_RELOC_MAX_HEADINGS 64
+#define HL_RELOC_MAX_PEAKS 8
+#define HL_RELOC_MAX_HYPOTHESES 64
+
+typedef struct hl_reloc_params {
+    uint16_t headings;          /* heading windows searched (stage 1), 1..64; default 8
+                                   of the 18 (2 x 5 x 2 deg each) */
+    hl_bam_t heading_smooth;    /* half-width of the correlation's triangular smoothing;
+                                   default 4 deg (a sonar normal is good to a few
+                                   degrees) */
+    hl_mm_t coarse_cell_mm;     /* stage 2's cell, 10..1000; default 100 */
+    hl_bam_t coarse_theta_step; /* default 2 deg */
+    uint16_t coarse_half_steps; /* slices each side of a window's centre, 1..32; default
+                                   5: +-10 deg */
+    hl_mm_t coarse_blur_mm;     /* default 100 */
+    uint16_t peaks_per_heading; /* 1..8; default 8 (fewer miss a place whose coarse
+                                   peak is lower than a crowded corner's) */
+    uint32_t coarse_max_cells;  /* stage 2's raster budget (cells of one candidate's
+                                   search, 10 bytes each); default 2^18 (2.6 MB). A
+                                   map's bounding box of x * y metres needs
+                                   x * y * 100 * 11 at the defaults: the lab (12 x 9 m)
+                                   119k; a 50 x 50 m building wants coarse_cell_mm 200
+                                   and 690k */
+    uint16_t hypotheses;        /* refined in stage 3, 1..64; default 8 */
+    hl_mm_t fine_window_mm;     /* half-width of stage 3's window; default 300 */
+    hl_mm_t distinct_mm;        /* a runner-up is this far from the answer...; default
+                                   1000 */
+    hl_bam_t distinct_theta;    /* ... or this far in heading; default 20 deg */
+    hl_mm_t verify_mm;          /* a reading is explained by a map vector this close
+                                   whose normal agrees within the normal gate; default
+                                   60 (the tracking blur); 1..1000 */
+    hl_bam_t judge_gate;        /* ... and whose normal agrees within this; default 90 deg
+                                   (seen from the same side) */
+    double max_ratio;           /* found when runner-up score <= max_ratio x score;
+                                   default 0.6 */
+    double min_explained_pct;   /* found only when the answer explains at least this
+                                   share of the valid readings; default 35 */
+} hl_reloc_params_t;
+
+/** Fills @p p with the defaults above. */
+void hl_reloc_params_default(hl_reloc_params_t *p);
+/** A one-line description of what is wrong with @p p, or NULL if nothing. */
+const char *hl_reloc_params_error(const hl_reloc_params_t *p);
+
+typedef struct hl_reloc_result {
+    bool found;                 /* an answer distinct enough from the runner-up */
+    hl_pose_t pose;             /* the best fine pose (also when ambiguous) */
+    uint32_t score;             /* readings it explains (within verify_mm) */
+    double explained_pct;       /* score as a share of the valid readings */
+    bool have_runner_up;
+    hl_pose_t runner_up;        /* the best distinct other pose */
+    uint32_t runner_up_score;   /* readings it explains; 0 if none */
+    uint16_t headings_tried;    /* stage 1 candidates searched */
+    uint16_t hypotheses_tried;  /* stage 3 searches run */
+} hl_reloc_result_t;
+
+/** 1 - runner_up_score / score (0..1; 1 with no runner-up, 0 with no answer). */
+double hl_reloc_confidence(const hl_reloc_result_t *r);
+
+typedef struct hl_reloc hl_reloc_t;
+
+/**
+ * @param p     the search's own parameters.
+ * @param fine  the tracking localizer's parameters, used by stage 3 (its max_cells is
+ *              set for the fine window; max_map_vectors bounds the maps accepted).
+ * @return NULL when a parameter is invalid or memory is short.
+ */
+hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *fine);
+/** Accepts NULL. */
+void hl_reloc_destroy(hl_reloc_t *r);
+/** Bytes allocated. */
+size_t hl_reloc_mem_bytes(const hl_reloc_t *r);
+
+/**
+ * Searches the whole map for the pose of @p scan, heading unknown.
+ * @return HL_OK (result->found tells found from ambiguous); HL_ERR_EMPTY when the map
+ *         or the scan's valid readings are empty or nothing voted; HL_ERR_CAPACITY when
+ *         the map exceeds max_map_vectors or its bounding box the coarse raster budget;
+ *         HL_ERR_RANGE for a bad scan; HL_ERR_ARG for NULL.
+ */
+hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                         const hl_scan_t *scan, hl_reloc_result_t *result);
+
+/**
+ * The score hl_reloc_run gives a pose (readings explained less readings contradicted, see
+ * above) for @p scan placed at @p pose: to weigh another pose, such as tracking's,
+ * against the search's answer. @return the score; 0 for bad arguments or an empty map.
+ */
+uint32_t hl_reloc_judge(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                        const hl_scan_t *scan, hl_pose_t pose);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

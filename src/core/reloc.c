@@ -1,0 +1,437 @@
+/*
+ * reloc.c - global relocalization, heading unknown (reloc.h): candidate headings from the
+ * correlation of normal histograms, a coarse Hough vote over the whole map for each, and
+ * a fine local search of the best hypotheses. Allocation: create only.
+ */
+#include "houghloc/reloc.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "cellhash.h"
+#include "loc_params.h"
+
+#define BINS 256                /* heading histogram bins: 256 BAM each, 1.4 deg */
+#define BIN_SHIFT 8
+#define HL_RELOC_MAX_WINDOWS 1024   /* heading windows tiling the circle */
+
+typedef struct hypothesis {
+    hl_pose_t pose;
+    uint32_t score;
+    uint32_t explained; /* readings a map vector explains at this pose */
+} hypothesis_t;
+
+struct hl_reloc {
+    hl_reloc_params_t p;
+    hl_loc_params_t coarse_p, fine_p;
+    hl_localizer_t *coarse, *fine;
+    size_t mem_bytes;
+    /* stage 2: each xy cell's best score over the slice, and that slice */
+    uint32_t *best_xy;
+    uint8_t *best_it;
+    uint32_t xy_cells;
+    hl_cellhash_t near;         /* the map by cells of verify_mm, for explained() */
+    hypothesis_t hyp[HL_RELOC_MAX_HEADINGS * HL_RELOC_MAX_PEAKS];
+    hypothesis_t fine_hyp[HL_RELOC_MAX_HYPOTHESES];
+};
+
+void hl_reloc_params_default(hl_reloc_params_t *p)
+{
+    memset(p, 0, sizeof *p);
+    p->headings = 8;
+    p->heading_smooth = hl_bam_from_deg(4.0);
+    p->coarse_cell_mm = 100;
+    p->coarse_theta_step = hl_bam_from_deg(2.0);
+    p->coarse_half_steps = 5;
+    p->coarse_blur_mm = 100;
+    p->peaks_per_heading = 8;
+    p->coarse_max_cells = 1u << 18;
+    p->hypotheses = 8;
+    p->fine_window_mm = 300;
+    p->distinct_mm = 1000;
+    p->distinct_theta = hl_bam_from_deg(20.0);
+    p->verify_mm = 60;
+    p->judge_gate = hl_bam_from_deg(90.0);
+    p->max_ratio = 0.6;
+    p->min_explained_pct = 35.0;
+}
+
+const char *hl_reloc_params_error(const hl_reloc_params_t *p)
+{
+    if (!p)
+        return "no relocalization parameters";
+    if (p->headings < 1 || p->headings > HL_RELOC_MAX_HEADINGS)
+        return "reloc headings must be in 1..64";
+    if (p->heading_smooth > hl_bam_from_deg(45.0))
+        return "reloc heading_smooth must be at most 45 degrees";
+    if (p->coarse_cell_mm < 10 || p->coarse_cell_mm > HL_LOC_MAX_CELL_MM)
+        return "reloc coarse_cell_mm must be in 10..1000";
+    if (p->coarse_half_steps < 1 || p->coarse_half_steps > 32 ||
+        2u * p->coarse_half_steps * p->coarse_theta_step < 64u ||
+        (uint32_t)p->coarse_theta_step * (2u * p->coarse_half_steps + 1u) > 32768u)
+        return "reloc coarse slice: half_steps in 1..32, spanning 0.35 deg to half a turn";
+    if (p->coarse_blur_mm < 0 || p->coarse_blur_mm > 10 * p->coarse_cell_mm)
+        return "reloc coarse_blur_mm must be in 0..10 coarse cells";
+    if (p->peaks_per_heading < 1 || p->peaks_per_heading > HL_RELOC_MAX_PEAKS)
+        return "reloc peaks_per_heading must be in 1..8";
+    if (p->coarse_max_cells < 1 || p->coarse_max_cells > (1u << 26))
+        return "reloc coarse_max_cells must be in 1..2^26";
+    if (p->hypotheses < 1 || p->hypotheses > HL_RELOC_MAX_HYPOTHESES)
+        return "reloc hypotheses must be in 1..64";
+    if (p->fine_window_mm < 1 || p->fine_window_mm > 5000)
+        return "reloc fine_window_mm must be in 1..5000";
+    if (p->distinct_mm < 0 || p->distinct_mm > HL_RANGE_MAX_MM)
+        return "reloc distinct_mm must be in 0..32767";
+    if (p->verify_mm < 1 || p->verify_mm > 1000)
+        return "reloc verify_mm must be in 1..1000";
+    if (p->judge_gate > HL_BAM_HALF_TURN)
+        return "reloc judge_gate must be at most 180 degrees";
+    if (!(p->min_explained_pct >= 0.0 && p->min_explained_pct <= 100.0))
+        return "reloc min_explained_pct must be in 0..100";
+    if (!(p->max_ratio > 0.0 && p->max_ratio <= 1.0))
+        return "reloc max_ratio must be in (0, 1]";
+    return NULL;
+}
+
+double hl_reloc_confidence(const hl_reloc_result_t *r)
+{
+    if (!r || r->score == 0)
+        return 0.0;
+    double c = 1.0 - (double)r->runner_up_score / (double)r->score;
+    return c < 0 ? 0 : c;
+}
+
+void hl_reloc_destroy(hl_reloc_t *r)
+{
+    if (!r)
+        return;
+    hl_loc_destroy(r->coarse);
+    hl_loc_destroy(r->fine);
+    free(r->best_xy);
+    free(r->best_it);
+    hl_cellhash_free(&r->near);
+    free(r);
+}
+
+size_t hl_reloc_mem_bytes(const hl_reloc_t *r)
+{
+    return r->mem_bytes;
+}
+
+hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *fine)
+{
+    if (hl_reloc_params_error(p) || hl_loc_params_error(fine))
+        return NULL;
+    hl_reloc_t *r = calloc(1, sizeof *r);
+    if (!r)
+        return NULL;
+    r->p = *p;
+    r->fine_p = *fine;
+    r->fine_p.max_cells = hl_loc_cells_for_window(fine, p->fine_window_mm, true);
+    r->coarse_p = *fine;
+    r->coarse_p.cell_mm = p->coarse_cell_mm;
+    r->coarse_p.theta_step = p->coarse_theta_step;
+    r->coarse_p.theta_half_steps = p->coarse_half_steps;
+    r->coarse_p.blur_sigma_mm = p->coarse_blur_mm;
+    r->coarse_p.blur_sigma_theta = p->coarse_theta_step;
+    r->coarse_p.peak_separation_mm = p->distinct_mm;
+    r->coarse_p.max_cells = p->coarse_max_cells;
+    r->coarse_p.group_mm = 0;
+    r->coarse_p.reading_stride = 1;
+    r->xy_cells = p->coarse_max_cells;
+    r->coarse = hl_loc_create(&r->coarse_p);
+    r->fine = hl_loc_create(&r->fine_p);
+    r->best_xy = calloc(r->xy_cells, sizeof *r->best_xy);
+    r->best_it = calloc(r->xy_cells, sizeof *r->best_it);
+    bool hash_ok = hl_cellhash_init(&r->near, p->verify_mm, fine->max_map_vectors);
+    if (!r->coarse || !r->fine || !r->best_xy || !r->best_it || !hash_ok ||
+        hl_loc_params_error(&r->fine_p)) {
+        hl_reloc_destroy(r);
+        return NULL;
+    }
+    r->mem_bytes = sizeof *r + hl_loc_mem_bytes(r->coarse) + hl_loc_mem_bytes(r->fine) +
+                   (size_t)r->xy_cells * (sizeof *r->best_xy + sizeof *r->best_it) +
+                   hl_cellhash_mem_bytes(&r->near);
+    return r;
+}
+
+/* ---- stage 1: candidate headings ------------------------------------------------------ */
+
+/* Fills @p out with the centres of the `max` heading windows most worth a coarse search,
+ * best first; returns how many. The circle is tiled with windows as wide as one coarse
+ * search (2 x half_steps x step), so that searching them all covers every heading. A
+ * window's worth is the highest value inside it of the circular correlation of the
+ * sensed and the map's normal histograms, smoothed by a triangle of half-width
+ * heading_smooth: the headings that turn the scan's walls onto the map's. */
+static uint32_t candidate_headings(const hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                                   const hl_scan_t *scan, hl_bam_t *out, uint32_t max)
+{
+    uint32_t hs[BINS] = { 0 }, hm[BINS] = { 0 };
+    for (uint32_t i = 0; i < scan->count; i++)
+        if (scan->readings[i].valid)
+            hs[(uint16_t)(scan->readings[i].bearing + HL_BAM_HALF_TURN) >> BIN_SHIFT]++;
+    for (uint32_t j = 0; j < n; j++)
+        hm[map[j].normal >> BIN_SHIFT]++;
+    uint64_t corr[BINS], smooth[BINS];
+    for (uint32_t h = 0; h < BINS; h++) {
+        uint64_t s = 0;
+        for (uint32_t b = 0; b < BINS; b++)
+            s += (uint64_t)hs[b] * hm[(b + h) & (BINS - 1)];
+        corr[h] = s;
+    }
+    int32_t w = r->p.heading_smooth >> BIN_SHIFT;
+    for (int32_t h = 0; h < BINS; h++) {
+        uint64_t s = (uint64_t)(w + 1) * corr[h];
+        for (int32_t k = 1; k <= w; k++)
+            s += (uint64_t)(w + 1 - k) * (corr[(h + k) & (BINS - 1)] + corr[(h - k) & (BINS - 1)]);
+        smooth[h] = s;
+    }
+    uint32_t span = 2u * r->p.coarse_half_steps * r->p.coarse_theta_step;
+    uint32_t nwin = span ? (65536u + span - 1) / span : 1;
+    nwin = nwin > HL_RELOC_MAX_WINDOWS ? HL_RELOC_MAX_WINDOWS : nwin;
+    uint64_t worth[HL_RELOC_MAX_WINDOWS];
+    uint32_t order[HL_RELOC_MAX_WINDOWS];
+    for (uint32_t k = 0; k < nwin; k++) {
+        /* bins whose centre lies within the window [centre - half, centre + half) */
+        int64_t lo = (int64_t)k * 65536 / nwin - 32768 / nwin, hi = lo + 65536 / nwin;
+        uint64_t best = 0;
+        for (int64_t a = lo; a < hi; a += 1 << BIN_SHIFT)
+            if (smooth[((uint32_t)a >> BIN_SHIFT) & (BINS - 1)] > best)
+                best = smooth[((uint32_t)a >> BIN_SHIFT) & (BINS - 1)];
+        worth[k] = best;
+        order[k] = k;
+    }
+    for (uint32_t i = 1; i < nwin; i++)        /* insertion sort, descending, stable */
+        for (uint32_t j = i; j > 0 && worth[order[j]] > worth[order[j - 1]]; j--) {
+            uint32_t t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+    uint32_t m = max < nwin ? max : nwin;
+    for (uint32_t i = 0; i < m; i++)
+        out[i] = (hl_bam_t)((uint64_t)order[i] * 65536 / nwin);
+    return m;
+}
+
+/* ---- stage 2: coarse positions --------------------------------------------------------- */
+
+static bool distinct(const hl_reloc_params_t *p, hl_pose_t a, hl_pose_t b)
+{
+    int64_t dx = (int64_t)a.x_mm - b.x_mm, dy = (int64_t)a.y_mm - b.y_mm;
+    int32_t dt = hl_bam_diff(a.theta, b.theta);
+    return dx * dx + dy * dy >= (int64_t)p->distinct_mm * p->distinct_mm ||
+           (dt < 0 ? -dt : dt) >= p->distinct_theta;
+}
+
+/* The best peaks_per_heading cells of the last coarse run at least distinct_mm apart in
+ * xy, appended to r->hyp; returns the new count. */
+static uint32_t coarse_peaks(hl_reloc_t *r, uint32_t nhyp)
+{
+    hl_loc_surface_t s;
+    hl_loc_get_surface(r->coarse, &s);
+    uint32_t plane = (uint32_t)(s.nx * s.ny);
+    memset(r->best_xy, 0, plane * sizeof *r->best_xy);
+    for (int32_t it = 0; it < s.nt; it++) {
+        const uint32_t *c = s.cells + (size_t)it * plane;
+        for (uint32_t k = 0; k < plane; k++)
+            if (c[k] > r->best_xy[k]) {
+                r->best_xy[k] = c[k];
+                r->best_it[k] = (uint8_t)it;
+            }
+    }
+    int64_t sep = (r->p.distinct_mm + s.cell_mm - 1) / s.cell_mm;
+    uint32_t first = nhyp;
+    for (uint32_t m = 0; m < r->p.peaks_per_heading; m++) {
+        uint32_t best = 0, at = 0;
+        for (uint32_t k = 0; k < plane; k++) {
+            if (r->best_xy[k] <= best)
+                continue;
+            int64_t x = k % (uint32_t)s.nx, y = k / (uint32_t)s.nx;
+            bool near = false;
+            for (uint32_t j = first; j < nhyp && !near; j++) {
+                int64_t jx = (r->hyp[j].pose.x_mm - s.x0_mm) / s.cell_mm;
+                int64_t jy = (r->hyp[j].pose.y_mm - s.y0_mm) / s.cell_mm;
+                near = (x - jx) * (x - jx) + (y - jy) * (y - jy) < sep * sep;
+            }
+            if (!near) {
+                best = r->best_xy[k];
+                at = k;
+            }
+        }
+        if (best == 0)
+            break;
+        r->hyp[nhyp++] = (hypothesis_t){
+            .pose = { s.x0_mm + (hl_mm_t)(at % (uint32_t)s.nx) * s.cell_mm + s.cell_mm / 2,
+                      s.y0_mm + (hl_mm_t)(at / (uint32_t)s.nx) * s.cell_mm + s.cell_mm / 2,
+                      (hl_bam_t)(s.theta0 + r->best_it[at] * s.theta_step) },
+            .score = best };
+    }
+    return nhyp;
+}
+
+/* ---- stage 3 and the answer ------------------------------------------------------------- */
+
+/* Whether a map vector within @p tol2 (squared) of (wx, wy) faces along @p normal within
+ * the normal gate, looking in the 3 x 3 cells around it. */
+static bool facing_near(const hl_reloc_t *r, int64_t wx, int64_t wy, hl_bam_t normal,
+                        int64_t tol2)
+{
+    const hl_cellhash_t *g = &r->near;
+    int32_t gate = r->p.judge_gate;
+    int32_t cx = hl_cellhash_cell(g, (double)wx), cy = hl_cellhash_cell(g, (double)wy);
+    for (int ddy = -1; ddy <= 1; ddy++)
+        for (int ddx = -1; ddx <= 1; ddx++) {
+            uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
+            for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
+                int64_t ex = wx - g->x[e], ey = wy - g->y[e];
+                int32_t dn = hl_bam_diff(g->normal[e], normal);
+                if (ex * ex + ey * ey <= tol2 && (dn < 0 ? -dn : dn) <= gate)
+                    return true;
+            }
+        }
+    return false;
+}
+
+/* Whether a map surface facing the sensor lies across the beam, well short of where the
+ * reading ended: the beam would have echoed from it. Looked for every cell along the beam
+ * from 300 mm to 300 mm short of the echo. */
+static bool crosses_surface(const hl_reloc_t *r, hl_pose_t pose, int32_t range, hl_bam_t a,
+                            hl_bam_t normal)
+{
+    const int32_t margin = 300;
+    int32_t step = r->near.cell_mm;
+    int64_t tol2 = (int64_t)step * step / 4;
+    for (int32_t d = margin; d < range - margin; d += step) {
+        int32_t dx, dy;
+        hl_polar_to_xy(d, a, &dx, &dy);
+        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, normal, tol2))
+            return true;
+    }
+    return false;
+}
+
+/*
+ * How well @p scan, placed at @p pose, agrees with the map: the valid readings that land
+ * within @p tol_mm of a map vector whose normal agrees with theirs within the normal gate
+ * (explained), less those whose beam passes through such a surface well before their
+ * echo (contradicted). Votes are a poor score across the whole map: a place crowded with
+ * map vectors (a cluttered corner) collects many for any heading, as each reading votes
+ * once per vector it pairs with; a reading counts once here, and the beams that would
+ * have been stopped by a wall of the map count against.
+ */
+static uint32_t explained(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t pose,
+                          int32_t tol_mm, uint32_t *contradicted)
+{
+    int64_t tol2 = (int64_t)tol_mm * tol_mm;
+    uint32_t count = 0, against = 0;
+    for (uint32_t i = 0; i < scan->count; i++) {
+        const hl_reading_t *rd = &scan->readings[i];
+        if (!rd->valid)
+            continue;
+        hl_bam_t a = (hl_bam_t)(pose.theta + rd->bearing);
+        hl_bam_t normal = (hl_bam_t)(a + HL_BAM_HALF_TURN);
+        int32_t dx, dy;
+        hl_polar_to_xy(rd->range_mm, a, &dx, &dy);
+        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, normal, tol2))
+            count++;
+        else if (contradicted && crosses_surface(r, pose, rd->range_mm, a, normal))
+            against++;
+    }
+    if (contradicted)
+        *contradicted = against;
+    return count;
+}
+
+static void sort_by_explained(hypothesis_t *h, uint32_t n)
+{
+    for (uint32_t i = 1; i < n; i++)          /* insertion sort, descending, stable */
+        for (uint32_t j = i; j > 0 && (h[j].explained > h[j - 1].explained ||
+                                       (h[j].explained == h[j - 1].explained &&
+                                        h[j].score > h[j - 1].score)); j--) {
+            hypothesis_t t = h[j];
+            h[j] = h[j - 1];
+            h[j - 1] = t;
+        }
+}
+
+hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                         const hl_scan_t *scan, hl_reloc_result_t *result)
+{
+    if (!r || (!map && n > 0) || !scan || !result)
+        return HL_ERR_ARG;
+    memset(result, 0, sizeof *result);
+    if (hl_scan_check(scan) != HL_OK)
+        return HL_ERR_RANGE;
+    if (n > r->fine_p.max_map_vectors)
+        return HL_ERR_CAPACITY;
+    uint32_t nvalid = 0;
+    for (uint32_t i = 0; i < scan->count; i++)
+        nvalid += scan->readings[i].valid;
+    hl_bam_t headings[HL_RELOC_MAX_HEADINGS];
+    uint32_t nh = candidate_headings(r, map, n, scan, headings, r->p.headings);
+    if (n == 0 || nvalid == 0)
+        return HL_ERR_EMPTY;
+    result->headings_tried = (uint16_t)nh;
+    hl_cellhash_build(&r->near, map, n);
+
+    /* stage 2: coarse hypotheses, ranked by what they explain within a coarse cell */
+    uint32_t nhyp = 0;
+    for (uint32_t i = 0; i < nh; i++) {
+        hl_loc_query_t q = { .predicted = { 0, 0, headings[i] }, .window_mm = 0,
+                             .search_theta = true, .use_prior = false };
+        hl_loc_result_t lr;
+        hl_status_t st = hl_loc_run(r->coarse, map, n, scan, &q, &lr);
+        if (st == HL_ERR_EMPTY)
+            continue;
+        if (st != HL_OK)
+            return st;
+        nhyp = coarse_peaks(r, nhyp);
+    }
+    for (uint32_t i = 0; i < nhyp; i++)
+        r->hyp[i].explained = explained(r, scan, r->hyp[i].pose, r->p.coarse_cell_mm, NULL);
+    sort_by_explained(r->hyp, nhyp);
+
+    /* stage 3: the best of them searched finely, and judged by what they explain */
+    uint32_t nfine = 0;
+    for (uint32_t i = 0; i < nhyp && nfine < r->p.hypotheses; i++) {
+        hl_loc_query_t q = { .predicted = r->hyp[i].pose, .window_mm = r->p.fine_window_mm,
+                             .search_theta = true, .use_prior = false };
+        hl_loc_result_t lr;
+        hl_status_t st = hl_loc_run(r->fine, map, n, scan, &q, &lr);
+        if (st == HL_ERR_EMPTY)
+            continue;
+        if (st != HL_OK)
+            return st;
+        uint32_t against, good = explained(r, scan, lr.pose, r->p.verify_mm, &against);
+        r->fine_hyp[nfine++] = (hypothesis_t){ lr.pose, lr.peak,
+                                               good > against ? good - against : 0 };
+    }
+    result->hypotheses_tried = (uint16_t)nfine;
+    if (nfine == 0)
+        return HL_ERR_EMPTY;
+    sort_by_explained(r->fine_hyp, nfine);
+    result->pose = r->fine_hyp[0].pose;
+    result->score = r->fine_hyp[0].explained;
+    result->explained_pct = 100.0 * result->score / nvalid;
+    for (uint32_t i = 1; i < nfine; i++)
+        if (distinct(&r->p, r->fine_hyp[i].pose, result->pose)) {
+            result->have_runner_up = true;
+            result->runner_up = r->fine_hyp[i].pose;
+            result->runner_up_score = r->fine_hyp[i].explained;
+            break;
+        }
+    result->found = result->explained_pct >= r->p.min_explained_pct &&
+                    (double)result->runner_up_score <= r->p.max_ratio * result->score;
+    return HL_OK;
+}
+
+uint32_t hl_reloc_judge(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                        const hl_scan_t *scan, hl_pose_t pose)
+{
+    if (!r || !map || !scan || n == 0 || n > r->fine_p.max_map_vectors ||
+        hl_scan_check(scan) != HL_OK || !hl_pose_in_range(pose))
+        return 0;
+    hl_cellhash_build(&r->near, map, n);
+    uint32_t against, good = explained(r, scan, pose, r->p.verify_mm, &against);
+    return good > against ? good - against : 0;
+}

@@ -1,0 +1,174 @@
+/* test_cycle_lost.c - the LOST state (cycle_lost.c): a kidnapped robot is noticed after a
+ * run of rejected scans, found by the global search and confirmed by the next scan; a
+ * RELOCALIZE command does the same on demand; SET_POSE ends it. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+
+#include "support.h"
+
+typedef struct run {
+    capture_t cap;
+    hl_cycle_t *c;
+    hl_bus_scan_t scan;         /* decode scratch */
+    uint8_t buf[HL_BUS_SCAN_MAX_BYTES];
+} run_t;
+
+static run_t *start(int32_t lost_after)
+{
+    run_t *r = calloc(1, sizeof *r);
+    hl_cycle_params_t p = test_params();
+    p.lost_after = lost_after;
+    p.lost_peak_ratio = 0.5;
+    r->c = capture_cycle(&r->cap, &p);
+    assert_non_null(r->c);
+    return r;
+}
+
+static void finish(run_t *r)
+{
+    hl_cycle_destroy(r->c);
+    capture_clear(&r->cap);
+    free(r);
+}
+
+static hl_bus_pose_t nth_pose(const run_t *r, size_t k)
+{
+    const out_msg_t *m = capture_nth(&r->cap, HL_CH_POSE, k);
+    assert_non_null(m);
+    hl_bus_pose_t p;
+    assert_int_equal(hl_bus_decode_pose(m->data, m->len, &p, NULL), HL_OK);
+    return p;
+}
+
+/* The index in tour[] of the k-th SONAR message. */
+static size_t sonar_event(size_t k)
+{
+    for (size_t i = 0; i < n_tour; i++)
+        if (tour[i].ch == HL_CH_SONAR && k-- == 0)
+            return i;
+    fail_msg("the tour has fewer scans");
+    return 0;
+}
+
+static hl_bus_scan_t decode_scan(size_t k)
+{
+    hl_bus_scan_t s;
+    const event_t *e = &tour[sonar_event(k)];
+    assert_int_equal(hl_bus_decode_scan(e->data, e->len, &s, NULL), HL_OK);
+    return s;
+}
+
+/* Feeds the tour's scan @p k again as scan @p seq at @p utime, its odometry replaced by
+ * @p odometry: the sounding of one place while the wheels say another. */
+static void feed_as(run_t *r, size_t k, int32_t seq, int64_t utime, hl_pose_t odometry)
+{
+    r->scan = decode_scan(k);
+    r->scan.seq = seq;
+    r->scan.utime = utime;
+    r->scan.odometry = odometry;
+    int len = hl_bus_encode_scan(&r->scan, r->buf, sizeof r->buf);
+    assert_true(len > 0);
+    hl_cycle_on_message(r->c, HL_CH_SONAR, r->buf, (size_t)len, utime);
+}
+
+static int64_t dist_mm(hl_pose_t a, hl_pose_t b)
+{
+    double dx = a.x_mm - b.x_mm, dy = a.y_mm - b.y_mm;
+    return (int64_t)sqrt(dx * dx + dy * dy);
+}
+
+/* The robot, at the end of the tour, is carried back to where scan 100 was sounded; its
+ * odometry goes on from the tour's last reading. */
+static void test_kidnapped_robot_is_found_again(void **state)
+{
+    (void)state;
+    run_t *r = start(2);
+    load_tour();
+    feed_tour(r->c, 128);
+    size_t before = capture_count(&r->cap, HL_CH_POSE);
+    assert_int_equal(before, 128);
+    hl_bus_pose_t end = nth_pose(r, 127);
+    assert_false(hl_cycle_lost(r->c));
+
+    hl_bus_scan_t last = decode_scan(127), from = decode_scan(100);
+    int64_t t = last.utime;
+    int lost_at = -1, found_at = -1, tracking_at = -1;
+    for (int i = 0; i < 12 && tracking_at < 0; i++) {
+        hl_bus_scan_t here = decode_scan(100 + (size_t)i);
+        hl_pose_t odo = hl_pose_compose(last.odometry, hl_pose_between(from.odometry, here.odometry));
+        t += 5000000;
+        feed_as(r, 100 + (size_t)i, last.seq + 1 + i, t, odo);
+        hl_bus_pose_t out = nth_pose(r, before + (size_t)i);
+        hl_bus_pose_t tour_pose = nth_pose(r, 100 + (size_t)i);
+        if (hl_cycle_lost(r->c) && lost_at < 0)
+            lost_at = i;
+        if (out.status == HL_BUS_POSE_RELOCALIZED && found_at < 0) {
+            found_at = i;
+            /* found where the tour had been, and said so with the search's figures */
+            assert_true(dist_mm(out.pose, tour_pose.pose) < 300);
+            assert_true(out.search_score > 0.3f && out.search_score <= 1.0f);
+            assert_true(out.runner_up_score < out.search_score);
+            assert_true(out.confidence > 0.0f);
+        }
+        if (found_at >= 0 && out.status == HL_SLAM_ACCEPTED) {
+            tracking_at = i;
+            assert_true(dist_mm(out.pose, tour_pose.pose) < 300);
+        }
+    }
+    print_message("kidnap: lost at %d, found at %d, tracking at %d (from %lld mm away)\n",
+                  lost_at, found_at, tracking_at, (long long)dist_mm(end.pose, nth_pose(r, 100).pose));
+    assert_true(dist_mm(end.pose, nth_pose(r, 100).pose) > 2000);
+    assert_in_range(lost_at, 0, 3);
+    assert_in_range(found_at, lost_at, lost_at + 2);
+    assert_int_equal(tracking_at, found_at + 1);
+    assert_false(hl_cycle_lost(r->c));
+    finish(r);
+}
+
+/* RELOCALIZE while tracking well: lost; the next scan's global search puts the robot where
+ * tracking does, which ends it at once. */
+static void test_relocalize_command(void **state)
+{
+    (void)state;
+    run_t *r = start(2);
+    load_tour();
+    feed_tour(r->c, 120);
+    hl_bus_command_t cmd = { .utime = 1, .seq = 5, .kind = HL_BUS_COMMAND_RELOCALIZE };
+    uint8_t buf[HL_BUS_COMMAND_BYTES];
+    int len = hl_bus_encode_command(&cmd, buf, sizeof buf);
+    assert_true(len > 0);
+    hl_cycle_on_message(r->c, HL_CH_COMMAND, buf, (size_t)len, 0);
+    assert_true(hl_cycle_lost(r->c));
+    uint32_t epoch = hl_cycle_lost_epoch(r->c);
+    assert_true(epoch >= 1);
+    /* the next scans of the tour */
+    size_t n0 = capture_count(&r->cap, HL_CH_POSE);
+    load_tour();
+    size_t scans = 0;
+    for (size_t i = 0; i < n_tour && scans < 123; i++) {
+        if (tour[i].ch == HL_CH_SONAR && scans++ < 120)
+            continue;
+        if (scans <= 120)
+            continue;
+        hl_cycle_on_message(r->c, tour[i].ch, tour[i].data, tour[i].len, tour[i].utime);
+    }
+    assert_int_equal(nth_pose(r, n0).status, HL_SLAM_ACCEPTED);
+    assert_false(hl_cycle_lost(r->c));
+    assert_int_equal(nth_pose(r, n0 + 1).status, HL_SLAM_ACCEPTED);
+    assert_int_equal(hl_cycle_lost_epoch(r->c), epoch);
+    finish(r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_kidnapped_robot_is_found_again),
+        cmocka_unit_test(test_relocalize_command),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

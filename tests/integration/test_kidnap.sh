@@ -1,0 +1,75 @@
+#!/bin/sh
+# Integration test of `make kidnap` (tools/kidnap/) on a tiny configuration, without the
+# real data: the simulated lab with 10 trials (its tour, the daemon's map of it, the
+# row), then the table's header, its one row (names, numbers in range, shares adding up
+# to 100) and the summary line; the per-trial file; the leave-one-stretch-out path of
+# hl-kidnap on a log with ground truth (the lab tour stands in for a building); a
+# building without data stops with a line naming it; bad usage of hl-kidnap.
+set -u
+BUILD=${BUILD:-build}
+BIN=$BUILD/bin
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+. tests/integration/lib.sh
+# A make inside make test: not the outer make's jobserver.
+unset MAKEFLAGS MFLAGS MAKELEVEL
+
+out=$tmp/kidnap
+tsv=$tmp/kidnap.tsv
+header=$(printf 'world\tinput\ttrials\tsuccess_pct\tambiguous_pct\twrong_pct\tmedian_ms\tp90_ms')
+
+make --no-print-directory BUILD="$BUILD" kidnap BUILDINGS= KIDNAP_WORLDS=lab \
+    KIDNAP_TRIALS_SIM=10 KIDNAP_OUT="$out" KIDNAP_TSV="$tsv" >"$tmp/make.out" 2>"$tmp/make.err"
+rc=$?
+check "make kidnap on the lab, 10 trials, exits 0" [ $rc -eq 0 ]
+[ $rc -eq 0 ] || tail -n 5 "$tmp/make.err"
+check "kidnap.tsv's header" [ "$(head -n 1 "$tsv" 2>/dev/null)" = "$header" ]
+check "kidnap.tsv has the header and one row" [ "$(wc -l <"$tsv" 2>/dev/null)" -eq 2 ]
+check "the row: lab sonar 10, numbers in range, shares add up to 100, median <= p90" \
+    awk -F'\t' 'NR == 2 {
+        if (NF != 8 || $1 != "lab" || $2 != "sonar" || $3 != 10) exit 1
+        for (k = 4; k <= 8; k++) if ($k !~ /^[0-9]+(\.[0-9]+)?$/) exit 1
+        for (k = 4; k <= 6; k++) if ($k < 0 || $k > 100) exit 1
+        s = $4 + $5 + $6; if (s < 99.8 || s > 100.2) exit 1
+        # ten trials: every share a whole multiple of 10 %
+        for (k = 4; k <= 6; k++) if (($k * 10) % 100 != 0) exit 1
+        if ($7 <= 0 || $7 > $8 || $8 > 60000) exit 1
+        ok = 1 }
+        END { exit !ok }' "$tsv"
+check "stdout ends with the table and the summary line" \
+    sh -c "tail -n 1 '$tmp/make.out' | grep -q '^kidnap rows=1 trials=10 worst_success_pct=[0-9.]* (lab sonar) worst_wrong_pct=[0-9.]* (lab sonar) seconds=[0-9]*\$' &&
+           grep -q '^lab	sonar	10	' '$tmp/make.out'"
+check "progress on stderr: the tour's error and the trials" \
+    sh -c "grep -q '^kidnap: lab sonar: the tour.s stops=' '$tmp/make.err' &&
+           grep -q '^kidnap: lab sonar: 10/10 trials: success' '$tmp/make.err'"
+check "one line per trial in the detail file" \
+    [ "$(awk -F'\t' 'NR > 1 && ($2 == "success" || $2 == "ambiguous" || $2 == "wrong")' \
+        "$out/trials/lab_sonar.tsv" | wc -l)" -eq 10 ]
+
+# The real buildings' path (a map of every scan more than 2 m away, at its true pose) on
+# any log with ground truth: the lab tour's 128 soundings.
+"$BIN/hl-kidnap" --config /dev/null --world tour --input sonar --trials 4 \
+    --log "$out/sim/lab/tour.lcmlog" >"$tmp/real.row" 2>"$tmp/real.err"
+check "hl-kidnap --log: one row of 4 trials" \
+    awk -F'\t' 'NR == 1 && NF == 8 && $1 == "tour" && $3 == 4 { ok = 1 } END { exit !(ok && NR == 1) }' \
+    "$tmp/real.row"
+check "hl-kidnap --log reports its largest map" grep -q '^kidnap: tour sonar: largest map: ' "$tmp/real.err"
+
+# A building without data: its two rows fail with one line each, and no table.
+rm -f "$tsv"
+make --no-print-directory BUILD="$BUILD" kidnap BUILDINGS=nowhere KIDNAP_WORLDS= \
+    DATA="$tmp/nodata" KIDNAP_OUT="$out" KIDNAP_TSV="$tsv" >"$tmp/make.out" 2>"$tmp/make.err"
+rc=$?
+check "a building without data: make kidnap fails" [ $rc -ne 0 ]
+check "... with one line per row naming the building and the file" \
+    [ "$(grep -c "^kidnap: nowhere \(laser\|sonar\): data failed: no $tmp/nodata/raw/nowhere-raw.log.gz" "$tmp/make.err")" -eq 2 ]
+check "... and no table" [ ! -e "$tsv" ]
+
+exits "hl-kidnap --trials 0 is bad usage" 2 "--trials wants 1..100000" \
+    "$BIN/hl-kidnap" --config /dev/null --world w --input sonar --trials 0 --log x
+exits "hl-kidnap without a source is bad usage" 2 "one of --sim-world and --log" \
+    "$BIN/hl-kidnap" --config /dev/null --world w --input sonar --trials 3
+exits "hl-kidnap with a bad config key" 1 "nosuch" \
+    "$BIN/hl-kidnap" --config /dev/null --set reloc.nosuch=1 --world w --input sonar --trials 3 --log x
+check "hl-kidnap --header" [ "$("$BIN/hl-kidnap" --header)" = "$header" ]
+exit $fail

@@ -1,0 +1,119 @@
+#!/bin/sh
+# Integration test of the kidnapped robot (docs/kidnap.md): houghlocd maps the lab's
+# south-east leg driving houghloc-sim; the simulator is restarted where the robot stands
+# and, a second later, teleports it 3 m away (--teleport-after, --teleport-to: the wheels
+# do not turn, so the odometry says nothing). The next destination makes the daemon sound
+# where it believes the robot is not: it must become LOST, give the destination up, find
+# the robot with the global search and confirm it within three soundings of becoming
+# lost, and then reach a destination with the position right against GROUND_TRUTH.
+set -u
+BIN=${BUILD:-build}/bin
+tmp=$(mktemp -d)
+pids=""
+trap 'for p in $pids; do kill -9 $p 2>/dev/null; done; rm -rf "$tmp"' EXIT
+. tests/integration/lib.sh
+for p in houghlocd houghloc-sim houghloc-goto hl-eval; do
+    [ -x "$BIN/$p" ] || { echo "FAIL: no $BIN/$p (run make first)"; exit 1; }
+done
+command -v lcm-logger >/dev/null || { echo "FAIL: lcm-logger is missing (liblcm-bin)"; exit 1; }
+
+# A port and an LCM group of this run's own (test_robot.sh uses 21000.. and 8300..).
+n=$(($$ % 500))
+PORT=$((22000 + n))
+URL="udpm://239.255.76.67:$((9300 + n))?ttl=0&recv_buf_size=4194304"
+cat >"$tmp/robot.conf" <<EOF
+[lcm]
+url = $URL
+[start]
+x_m = 5.4
+y_m = 1.5
+heading_deg = 0
+[fence]
+rect = -1,-1,11,9
+[robot]
+link = tcp:127.0.0.1:$PORT
+profile = bonnie
+[calibration]
+gain_q16 = 70124
+offset_mm = -35
+EOF
+
+wait_for() {    # wait_for FILE TEXT COUNT TENTHS: until FILE has COUNT lines with TEXT
+    w=0
+    while c=$(grep -c -- "$2" "$1" 2>/dev/null); [ "${c:-0}" -lt "$3" ]; do
+        [ $w -ge "$4" ] && return 1
+        sleep 0.1; w=$((w + 1))
+    done
+}
+start_sim() {   # start_sim NAME [OPTIONS...]: houghloc-sim on PORT at 10x real time
+    name=$1; shift
+    "$BIN/houghloc-sim" --port $PORT --speed 10 --lcm-url "$URL" "$@" 2>"$tmp/$name.err" &
+    sim=$!; pids="$pids $sim"
+    wait_for "$tmp/$name.err" "listening on 127.0.0.1:$PORT" 1 50 ||
+        { echo "FAIL: houghloc-sim $name did not listen: $(cat "$tmp/$name.err")"; fail=1; }
+}
+goto() {        # goto X Y: houghloc-goto's exit status; its output in $tmp/goto.out
+    "$BIN/houghloc-goto" --lcm-url "$URL" --timeout 40 "$1" "$2" >"$tmp/goto.out" 2>&1
+}
+arrive() {      # arrive X Y: must be ARRIVED
+    goto "$1" "$2"
+    check "destination ($1, $2) reached ($(sed -n 's/.*ARRIVED: //p' "$tmp/goto.out"))" \
+        grep -q ARRIVED "$tmp/goto.out"
+}
+true_pose() {   # true_pose: "X,Y,DEG", the simulator's last GROUND_TRUTH (the robot stands)
+    for t in 0.5 1 2; do
+        lcm-logger -q -f -c GROUND_TRUTH --lcm-url="$URL" "$tmp/truth.lcmlog" >/dev/null 2>&1 &
+        probe=$!
+        sleep $t
+        kill -INT $probe; wait $probe
+        "$BIN/hl-eval" truth "$tmp/truth.lcmlog" >/dev/null 2>&1 && break
+    done
+    "$BIN/hl-eval" truth "$tmp/truth.lcmlog"
+}
+
+# ---- map the south-east leg ------------------------------------------------------------
+lcm-logger -q -f --lcm-url="$URL" "$tmp/live.lcmlog" >/dev/null 2>&1 &
+logger=$!; pids="$pids $logger"
+start_sim sim1 --start 5.4,1.5,0
+"$BIN/houghlocd" --config "$tmp/robot.conf" --fresh-map --map "$tmp/live.hlmap" 2>"$tmp/d.err" &
+daemon=$!; pids="$pids $daemon"
+check "the daemon connects to the robot" \
+    wait_for "$tmp/d.err" "robot 'houghloc-sim' (Pioneer bonnie) connected" 1 100
+for xy in "6.3 1.5" "7.0 1.0" "7.8 0.65" "8.7 0.65" "7.8 0.65" "7.0 1.0" "6.3 1.5" "5.4 1.5"; do
+    arrive $xy
+done
+check "mapping the leg did not make the daemon lost" test "$(grep -c 'lost:' "$tmp/d.err")" -eq 0
+
+# ---- carried away 3.3 m east, turned so that its next leg runs along the open leg -----------------------------------------
+pose=$(true_pose)
+check "the robot's true pose before the kidnap ($pose)" test -n "$pose"
+kill -TERM $sim; wait $sim
+start_sim sim2 --start "$pose" --teleport-after 1 --teleport-to 8.7,0.65,20
+check "the daemon reconnects" \
+    wait_for "$tmp/d.err" "robot 'houghloc-sim' (Pioneer bonnie) connected" 2 100
+check "the simulator teleports the robot" wait_for "$tmp/sim2.err" "teleported" 1 100
+goto 7.8 0.65
+check "the destination after the kidnap is given up: FAILED, lost" \
+    grep -q "FAILED: lost" "$tmp/goto.out"
+check "the daemon became LOST" wait_for "$tmp/d.err" "each scan now searches the whole map" 1 100
+check "... and found the robot again" wait_for "$tmp/d.err" "relocalized: scan seq" 1 300
+first=$(sed -n 's/.*lost: scan seq \([0-9]*\): .*/\1/p' "$tmp/d.err" | head -n 1)
+back=$(sed -n 's/.*relocalized: scan seq \([0-9]*\) .*/\1/p' "$tmp/d.err" | head -n 1)
+echo "  lost at scan seq ${first:-?}, tracking again at seq ${back:-?}"
+check "... within three soundings of becoming lost" \
+    test -n "$first" -a -n "$back" -a "$((${back:-99} - ${first:-0} + 1))" -le 3
+arrive 7.8 0.65
+pose=$(true_pose)
+check "after the recovery the robot truly stands within 0.2 m of (7.8, 0.65) ($pose)" \
+    awk -v p="$pose" 'BEGIN { split(p, a, ","); d = sqrt((a[1] - 7.8) ^ 2 + (a[2] - 0.65) ^ 2);
+                              exit !(d < 0.2) }'
+
+kill -TERM $daemon; wait $daemon
+check "SIGTERM stops the daemon with exit 0" test $? -eq 0
+kill -TERM $sim; wait $sim
+kill -INT $logger; wait $logger
+if [ $fail -ne 0 ]; then
+    echo "  the daemon's log ends:"; tail -n 12 "$tmp/d.err" | sed 's/^/    /'
+    tail -n 3 "$tmp/sim2.err" | sed 's/^/    sim2: /'
+fi
+exit $fail

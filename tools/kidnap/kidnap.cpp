@@ -1,0 +1,229 @@
+// hl-kidnap - one row of the kidnap experiment (make kidnap, tools/kidnap/kidnap.mk): how
+// often hl_slam_relocalize finds a robot set down anywhere in a known map, heading
+// unknown, from one scan, and how long it takes.
+//
+// The parameters are the daemon's: its configuration loader reads --config (and --set),
+// so the experiment measures exactly what houghlocd would do with that file.
+#include <getopt.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "config.h"
+}
+
+#include "kidnap.hpp"
+
+namespace {
+
+void usage(FILE *to)
+{
+    std::fprintf(to,
+        "usage: hl-kidnap --config FILE [--set K=V]... --world NAME --input INPUT --trials N\n"
+        "                 (--sim-world FILE --map MAP --test-log LOG [--seed S]\n"
+        "                  | --log IMPORT [--exclude-m M]) [--detail FILE]\n"
+        "       hl-kidnap --header\n"
+        "Relocalizes N scans, heading unknown, with hl_slam_relocalize and prints one row:\n"
+        "  %s\n"
+        "(a success is found, not ambiguous, within %.1f m and %.0f degrees of the truth;\n"
+        "times are the call alone). Progress on stderr.\n"
+        "  --config FILE     houghlocd's configuration (/dev/null: the defaults)\n"
+        "  --set K=V         a configuration key, after the file (repeatable)\n"
+        "  --world, --input  the row's first two cells\n"
+        "A simulated world: the map is the daemon's map file MAP of its tour of the world\n"
+        "FILE ('lab': the built-in lab); N soundings at random free poses, drawn with seed S\n"
+        "(default 1), are written to LOG first.\n"
+        "A real building: every scan of the imported log IMPORT (houghloc-import-carmen with\n"
+        "--truth) more than M metres (default 2) from the test scan's true position makes\n"
+        "its map, at its true pose; N test scans spread evenly over the log.\n"
+        "  --detail FILE     one line per trial (the answer, the runner-up, the errors)\n"
+        "Exit status: 0 done; 1 an error (one line on stderr); 2 bad usage.\n",
+        hlkid::kHeader, hlkid::kSuccessMm / 1000.0, hlkid::kSuccessDeg);
+}
+
+struct Options {
+    std::string config, world, input, sim_world, map, test_log, log, detail;
+    std::vector<std::string> sets;
+    long trials = 0;
+    unsigned long long seed = 1;
+    double exclude_m = 2.0;
+};
+
+bool number(const char *s, double lo, double hi, double *out)
+{
+    char *end = nullptr;
+    errno = 0;
+    double v = std::strtod(s, &end);
+    if (*s == '\0' || *end != '\0' || errno == ERANGE || !(v >= lo && v <= hi))
+        return false;
+    *out = v;
+    return true;
+}
+
+// A bad option value: one line, exit status 2.
+int bad(const char *option, const char *wants, const char *got)
+{
+    std::fprintf(stderr, "hl-kidnap: %s wants %s, got '%s'\n", option, wants, got);
+    return 2;
+}
+
+// Parses argv into @p o; returns -1 to go on, else the exit status.
+int parse(int argc, char **argv, Options *o)
+{
+    enum { WORLD = 256, INPUT, SIM_WORLD, MAP, TEST_LOG, LOG, SEED, EXCLUDE, DETAIL, HEADER };
+    static const struct option longs[] = {
+        { "config", required_argument, nullptr, 'c' },
+        { "set", required_argument, nullptr, 's' },
+        { "trials", required_argument, nullptr, 'n' },
+        { "world", required_argument, nullptr, WORLD },
+        { "input", required_argument, nullptr, INPUT },
+        { "sim-world", required_argument, nullptr, SIM_WORLD },
+        { "map", required_argument, nullptr, MAP },
+        { "test-log", required_argument, nullptr, TEST_LOG },
+        { "log", required_argument, nullptr, LOG },
+        { "seed", required_argument, nullptr, SEED },
+        { "exclude-m", required_argument, nullptr, EXCLUDE },
+        { "detail", required_argument, nullptr, DETAIL },
+        { "header", no_argument, nullptr, HEADER },
+        { "help", no_argument, nullptr, 'h' },
+        { nullptr, 0, nullptr, 0 },
+    };
+    double v;
+    for (int c; (c = getopt_long(argc, argv, "c:s:n:h", longs, nullptr)) != -1;) {
+        switch (c) {
+        case 'c': o->config = optarg; break;
+        case 's': o->sets.push_back(optarg); break;
+        case 'n':
+            if (!number(optarg, 1, 100000, &v) || v != static_cast<long>(v))
+                return bad("--trials", "1..100000", optarg);
+            o->trials = static_cast<long>(v);
+            break;
+        case WORLD: o->world = optarg; break;
+        case INPUT: o->input = optarg; break;
+        case SIM_WORLD: o->sim_world = optarg; break;
+        case MAP: o->map = optarg; break;
+        case TEST_LOG: o->test_log = optarg; break;
+        case LOG: o->log = optarg; break;
+        case SEED:
+            if (!number(optarg, 0, 1e15, &v) || v != static_cast<double>(static_cast<long long>(v)))
+                return bad("--seed", "a whole number", optarg);
+            o->seed = static_cast<unsigned long long>(v);
+            break;
+        case EXCLUDE:
+            if (!number(optarg, 0, 1000, &v))
+                return bad("--exclude-m", "metres in 0..1000", optarg);
+            o->exclude_m = v;
+            break;
+        case DETAIL: o->detail = optarg; break;
+        case HEADER: std::printf("%s\n", hlkid::kHeader); return 0;
+        case 'h': usage(stdout); return 0;
+        default: usage(stderr); return 2;
+        }
+    }
+    bool sim = !o->sim_world.empty(), real = !o->log.empty();
+    const char *missing = optind < argc ? "no operands" :
+                          o->config.empty() ? "--config" : o->world.empty() ? "--world" :
+                          o->input.empty() ? "--input" : o->trials == 0 ? "--trials" :
+                          sim == real ? "one of --sim-world and --log" :
+                          sim && o->map.empty() ? "--map" :
+                          sim && o->test_log.empty() ? "--test-log" : nullptr;
+    if (missing) {
+        std::fprintf(stderr, "hl-kidnap: wants %s (--help)\n", missing);
+        return 2;
+    }
+    return -1;
+}
+
+struct SlamDeleter {
+    void operator()(hl_slam_t *s) const { hl_slam_destroy(s); }
+};
+
+bool load_soundings(const std::string &path, hlexp::Soundings *out, std::string *err)
+{
+    if (!hlexp::read_soundings(path, out, err))
+        return false;
+    // Only SONAR: a log's other scan channels (SONAR_TEST) are not the robot's scans.
+    hlexp::Soundings keep;
+    for (auto &s : *out)
+        if (s->channel == "SONAR")
+            keep.push_back(std::move(s));
+    out->swap(keep);
+    return true;
+}
+
+int run(const Options &o)
+{
+    std::vector<const char *> sets;
+    for (const std::string &s : o.sets)
+        sets.push_back(s.c_str());
+    auto cfg = std::make_unique<hl_config_t>();
+    char why[HL_CONFIG_WHY_LEN];
+    if (!hl_config_load(cfg.get(), o.config.c_str(), false, sets.data(),
+                        static_cast<int>(sets.size()), why)) {
+        std::fprintf(stderr, "hl-kidnap: %s\n", why);
+        return 1;
+    }
+    const hl_slam_params_t &p = cfg->slam;
+    const std::string what = o.world + " " + o.input;
+    hlkid::Scorer scorer(o.world, o.input, p.reloc);
+    std::string err;
+    hlexp::Soundings tests;
+    if (!o.sim_world.empty()) {
+        std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create(&p));
+        if (!slam) {
+            std::fprintf(stderr, "hl-kidnap: %s: cannot create the slam\n", what.c_str());
+            return 1;
+        }
+        const std::string world = o.sim_world == "lab" ? "" : o.sim_world;
+        if (!hlkid::write_sim_tests(world, static_cast<int>(o.trials), o.seed, o.test_log,
+                                    &err) ||
+            !load_soundings(o.test_log, &tests, &err) ||
+            !hlkid::load_daemon_map(slam.get(), o.map, &err)) {
+            std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
+            return 1;
+        }
+        double w, h;
+        uint32_t n = hl_map_count(hl_slam_map(slam.get()));
+        unsigned long long cells = hlkid::coarse_cells_needed(
+            p.reloc, hl_map_vectors(hl_slam_map(slam.get())), n, &w, &h);
+        std::fprintf(stderr,
+                     "kidnap: %s: map %u vectors over %.1f x %.1f m (%llu coarse cells), "
+                     "%zu test soundings\n",
+                     what.c_str(), n, w, h, cells, tests.size());
+        for (const auto &t : tests) {
+            if (!scorer.run(slam.get(), *t, &err)) {
+                std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
+                return 1;
+            }
+            scorer.progress(static_cast<int>(o.trials), 20);
+        }
+    } else {
+        if (!load_soundings(o.log, &tests, &err) ||
+            !hlkid::run_real(p, tests, static_cast<int>(o.trials), 1000.0 * o.exclude_m,
+                             &scorer, &err)) {
+            std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
+            return 1;
+        }
+    }
+    if (!o.detail.empty() && !scorer.write_detail(o.detail, &err)) {
+        std::fprintf(stderr, "hl-kidnap: %s\n", err.c_str());
+        return 1;
+    }
+    scorer.write_row(stdout);
+    return std::fflush(stdout) == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    Options o;
+    int st = parse(argc, argv, &o);
+    return st >= 0 ? st : run(o);
+}

@@ -1,0 +1,98 @@
+// kidnap.hpp - the kidnap experiment (make kidnap, tools/kidnap/kidnap.mk): a robot set
+// down somewhere in a known map with no idea of its pose, one scan, and the global
+// search of hl_slam_relocalize. What the two kinds of world share: the trials, their
+// scoring, and the row of the table.
+#ifndef HLKID_KIDNAP_HPP
+#define HLKID_KIDNAP_HPP
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../experiments/dataset.hpp"
+#include "houghloc/map.h"
+#include "houghloc/slam.h"
+
+namespace hlkid {
+
+// A found answer counts as a success within both (inclusive); farther off it is wrong.
+constexpr double kSuccessMm = 500.0;
+constexpr double kSuccessDeg = 5.0;
+constexpr double kNearMm = 5000.0;
+
+// The table's columns, in order (kidnap.tsv's header).
+extern const char *const kHeader;
+
+enum class Outcome { Success, Ambiguous, Wrong };
+
+struct Trial {
+    int32_t seq = 0;            // the test scan's seq in its log
+    hl_pose_t truth{};
+    hl_status_t status = HL_OK;
+    hl_reloc_result_t result{};
+    uint32_t map_vectors = 0;
+    uint32_t near_vectors = 0;  // map vectors within kNearMm of the true position: how
+                                // much the map knows of the place (for the detail file)
+    double ms = 0.0;            // the hl_slam_relocalize call alone (CLOCK_MONOTONIC)
+    double error_mm = 0.0, error_deg = 0.0;     // of result.pose, when it has one
+    Outcome outcome = Outcome::Ambiguous;
+};
+
+// Runs the trials one by one and keeps what the row and the detail file need.
+class Scorer {
+public:
+    Scorer(std::string world, std::string input, const hl_reloc_params_t &reloc)
+        : world_(std::move(world)), input_(std::move(input)), reloc_(reloc) {}
+
+    // Relocalizes @p scan (as the sensor gave it) in @p slam's map and scores the answer
+    // against @p truth. HL_OK with `found` is a success or wrong; HL_OK without it and
+    // HL_ERR_EMPTY (no answer) are ambiguous. Any other status means the experiment is
+    // set up wrong (a map too big for the configured search): false, with one line.
+    bool run(hl_slam_t *slam, const hlexp::Sounding &test, std::string *err);
+
+    const std::vector<Trial> &trials() const { return trials_; }
+    std::string name() const { return world_ + " " + input_; }
+    // The row: world input trials success_pct ambiguous_pct wrong_pct median_ms p90_ms.
+    void write_row(FILE *out) const;
+    // One line per trial (seq, truth, answer, runner-up, errors, time), for tuning.
+    bool write_detail(const std::string &path, std::string *err) const;
+    // One progress line every @p every trials and at the end.
+    void progress(int total, int every) const;
+
+private:
+    std::string world_, input_;
+    hl_reloc_params_t reloc_;   // the search's parameters, for the reason of a failure
+    std::vector<Trial> trials_;
+};
+
+// The coarse raster one candidate heading of the global search needs over the bounding
+// box of @p map (as the localizer places it), for the progress lines and the error.
+uint64_t coarse_cells_needed(const hl_reloc_params_t &p, const hl_vector_t *map, uint32_t n,
+                             double *width_m, double *height_m);
+
+// Puts @p n vectors into @p slam's map (hl_slam_restore, the state of a started slam).
+bool restore_map(hl_slam_t *slam, const hl_vector_t *v, uint32_t n, std::string *err);
+
+// ---- simulated worlds (sim.cpp) -------------------------------------------------------
+
+// Writes @p trials test soundings in the simulated world @p world_path ("" = the built-in
+// lab) to the LCM log @p log_path: random poses drawn with @p seed, free and in the toured
+// space, uniformly random headings; each a full sounding of the tour's robot and sonar.
+bool write_sim_tests(const std::string &world_path, int trials, uint64_t seed,
+                     const std::string &log_path, std::string *err);
+
+// Loads the vectors of the daemon's map file @p path into @p slam.
+bool load_daemon_map(hl_slam_t *slam, const std::string &path, std::string *err);
+
+// ---- real buildings (real.cpp) --------------------------------------------------------
+
+// For @p trials test scans spread evenly over @p log: a map of every other scan more than
+// @p exclude_mm from the test scan's true position, at its true pose, in log order, made
+// as the slam of @p p makes its map; then the trial.
+bool run_real(const hl_slam_params_t &p, const hlexp::Soundings &log, int trials,
+              double exclude_mm, Scorer *scorer, std::string *err);
+
+}  // namespace hlkid
+#endif

@@ -1,0 +1,90 @@
+// real.cpp - the kidnap experiment on a real building's log: leave one stretch out
+// (kidnap.hpp). The paper's Table 1 left one position out of the known map; a robot
+// driving through a building passes each place over several scans, so here every scan
+// within the exclusion radius of the test scan's true position is left out of its map.
+#include <memory>
+#include <vector>
+
+#include "../experiments/experiment.hpp"
+#include "../experiments/stats.hpp"
+#include "kidnap.hpp"
+
+namespace hlkid {
+
+namespace {
+
+struct MapDeleter {
+    void operator()(hl_map_t *m) const { hl_map_destroy(m); }
+};
+struct SlamDeleter {
+    void operator()(hl_slam_t *s) const { hl_slam_destroy(s); }
+};
+
+}  // namespace
+
+bool run_real(const hl_slam_params_t &p, const hlexp::Soundings &log, int trials,
+              double exclude_mm, Scorer *scorer, std::string *err)
+{
+    const size_t n = log.size();
+    if (trials < 1 || static_cast<size_t>(trials) > n) {
+        *err = "wants " + std::to_string(trials) + " test scans of a log of " +
+               std::to_string(n);
+        return false;
+    }
+    // Every scan as the slam puts it into its map: at its echo bearings when the
+    // parameters estimate them (the experiments' helper; the slam's own is private).
+    hlexp::Mode mode{};
+    mode.slam = p;
+    std::vector<hl_scan_t> placed(p.echo_bearings ? n : 0);
+    for (size_t i = 0; i < placed.size(); i++)
+        placed[i] = hlexp::as_localized(mode, log[i]->msg.scan);
+    auto scan_of = [&](size_t i) -> const hl_scan_t & {
+        return p.echo_bearings ? placed[i] : log[i]->msg.scan;
+    };
+
+    // The map as hl_slam_create makes it: capacity, culling seed, density bound.
+    std::unique_ptr<hl_map_t, MapDeleter> map(hl_map_create(p.map_capacity, p.seed));
+    std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create(&p));
+    if (!map || !slam ||
+        hl_map_set_density(map.get(), p.map_square_mm, p.map_per_place) != HL_OK) {
+        *err = "cannot create the map or the slam (out of memory?)";
+        return false;
+    }
+    const hl_rng_t fresh = hl_map_rng(map.get());   // a new map's culling generator
+    uint64_t most_cells = 0;
+    double most_w = 0, most_h = 0;
+    for (int k = 0; k < trials; k++) {
+        // The middle scan of the k-th of `trials` equal stretches of the log.
+        size_t t = (2 * static_cast<size_t>(k) + 1) * n / (2 * static_cast<size_t>(trials));
+        const hlexp::Sounding &test = *log[t];
+        // Each map starts empty with a new map's generator, so it does not depend on the
+        // trials before it.
+        hl_map_restore(map.get(), nullptr, 0, 0, fresh);
+        for (size_t i = 0; i < n; i++)
+            if (hlexp::distance_mm(log[i]->truth, test.truth) > exclude_mm &&
+                hl_map_add_scan(map.get(), &scan_of(i), log[i]->truth, nullptr) != HL_OK) {
+                *err = "scan " + std::to_string(log[i]->msg.seq) + ": cannot map it";
+                return false;
+            }
+        uint32_t count = hl_map_count(map.get());
+        double w, h;
+        uint64_t cells = coarse_cells_needed(p.reloc, hl_map_vectors(map.get()), count, &w, &h);
+        if (cells > most_cells) {
+            most_cells = cells;
+            most_w = w;
+            most_h = h;
+        }
+        if (!restore_map(slam.get(), hl_map_vectors(map.get()), count, err) ||
+            !scorer->run(slam.get(), test, err))
+            return false;
+        scorer->progress(trials, 10);
+    }
+    std::fprintf(stderr,
+                 "kidnap: %s: largest map: %.1f x %.1f m, %llu coarse cells "
+                 "(reloc.coarse_max_cells %u)\n",
+                 scorer->name().c_str(), most_w, most_h,
+                 static_cast<unsigned long long>(most_cells), p.reloc.coarse_max_cells);
+    return true;
+}
+
+}  // namespace hlkid
