@@ -5,6 +5,8 @@
 #include "options.hpp"
 #include "session.hpp"
 
+#include "rooms.hpp"
+
 // cmocka last: its macros (fail, ...) clash with standard headers included after it.
 #include "test_support.hpp"
 
@@ -12,16 +14,8 @@ using namespace hlsim;
 
 namespace {
 
-World room()
-{
-    World w;
-    std::string err;
-    w.parse("polygon -3000 -3000 3000 -3000 3000 3000 -3000 3000\n", "room", &err);
-    return w;
-}
-
 struct Rig {
-    World world = room();
+    World world = six_metre_room();
     std::vector<std::string> lines;
     Log log{[this](const std::string &s) { lines.push_back(s); }};
     SimConfig cfg;

@@ -3,6 +3,8 @@
 #include "houghloc/calib.h"
 #include "simrobot.hpp"
 
+#include "rooms.hpp"
+
 // cmocka last: its macros (fail, ...) clash with standard headers included after it.
 #include "test_support.hpp"
 
@@ -10,17 +12,8 @@ using namespace hlsim;
 
 namespace {
 
-// A 6 m square room centred on the origin.
-World room()
-{
-    World w;
-    std::string err;
-    w.parse("polygon -3000 -3000 3000 -3000 3000 3000 -3000 3000\n", "room", &err);
-    return w;
-}
-
 struct Rig {
-    World world = room();
+    World world = six_metre_room();
     std::vector<std::string> lines;
     Log log{[this](const std::string &s) { lines.push_back(s); }};
     SimConfig cfg;
@@ -255,7 +248,7 @@ static void test_sonar_ring(void **state)
 static void test_sonar_values(void **state)
 {
     (void)state;
-    World w = room();
+    World w = six_metre_room();
     Log log{[](const std::string &) {}};
     SimConfig c;
     sim_profile("bonnie", &c.profile);

@@ -9,21 +9,14 @@
 #include "simrobot.hpp"
 #include "teleport.hpp"
 
+#include "rooms.hpp"
+
 // cmocka last: its macros (fail, ...) clash with standard headers included after it.
 #include "test_support.hpp"
 
 using namespace hlsim;
 
 namespace {
-
-// A 6 m square room centred on the origin.
-World room()
-{
-    World w;
-    std::string err;
-    w.parse("polygon -3000 -3000 3000 -3000 3000 3000 -3000 3000\n", "room", &err);
-    return w;
-}
 
 struct Rig {
     World world;
@@ -91,7 +84,7 @@ void assert_pose(const Pose &p, double x_mm, double y_mm, double deg)
 static void test_teleport_to(void **state)
 {
     (void)state;
-    Rig r(room(), to_plan(5.0, -1.0, 1000.0, 500.0, 90.0));
+    Rig r(six_metre_room(), to_plan(5.0, -1.0, 1000.0, 500.0, 90.0));
     r.cmd(HL_ARCOS_ENABLE, 1);
     r.cmd(HL_ARCOS_MOVE, 400);
     hl_arcos_sip_t s{};
@@ -200,7 +193,7 @@ static void test_teleport_random(void **state)
 static void test_teleport_waits_for_stop(void **state)
 {
     (void)state;
-    Rig r(room(), to_plan(1.0, -1.0, -1500.0, -1500.0, 180.0));
+    Rig r(six_metre_room(), to_plan(1.0, -1.0, -1500.0, -1500.0, 180.0));
     r.cmd(HL_ARCOS_ENABLE, 1);
     r.cmd(HL_ARCOS_MOVE, 1000);                    // about 3.8 s
     hl_arcos_sip_t s{};
@@ -281,7 +274,7 @@ static void test_teleport_options(void **state)
 static void test_free_pose_check(void **state)
 {
     (void)state;
-    World w = room();
+    World w = six_metre_room();
     std::string err;
     assert_true(check_free_pose(w, Pose{0, 0, 0}, "--teleport-to", &err));
     assert_true(check_free_pose(w, Pose{2750, 2750, 0}, "--teleport-to", &err));   // 250 mm

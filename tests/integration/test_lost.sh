@@ -21,37 +21,9 @@ command -v lcm-logger >/dev/null || { echo "FAIL: lcm-logger is missing (liblcm-
 n=$(($$ % 500))
 PORT=$((22000 + n))
 URL="udpm://239.255.76.67:$((9300 + n))?ttl=0&recv_buf_size=4194304"
-cat >"$tmp/robot.conf" <<EOF
-[lcm]
-url = $URL
-[start]
-x_m = 5.4
-y_m = 1.5
-heading_deg = 0
-[fence]
-rect = -1,-1,11,9
-[robot]
-link = tcp:127.0.0.1:$PORT
-profile = bonnie
-[calibration]
-gain_q16 = 70124
-offset_mm = -35
-EOF
+. tests/integration/robot_lib.sh
+write_robot_conf "$tmp/robot.conf"
 
-wait_for() {    # wait_for FILE TEXT COUNT TENTHS: until FILE has COUNT lines with TEXT
-    w=0
-    while c=$(grep -c -- "$2" "$1" 2>/dev/null); [ "${c:-0}" -lt "$3" ]; do
-        [ $w -ge "$4" ] && return 1
-        sleep 0.1; w=$((w + 1))
-    done
-}
-start_sim() {   # start_sim NAME [OPTIONS...]: houghloc-sim on PORT at 10x real time
-    name=$1; shift
-    "$BIN/houghloc-sim" --port $PORT --speed 10 --lcm-url "$URL" "$@" 2>"$tmp/$name.err" &
-    sim=$!; pids="$pids $sim"
-    wait_for "$tmp/$name.err" "listening on 127.0.0.1:$PORT" 1 50 ||
-        { echo "FAIL: houghloc-sim $name did not listen: $(cat "$tmp/$name.err")"; fail=1; }
-}
 goto() {        # goto X Y: houghloc-goto's exit status; its output in $tmp/goto.out
     "$BIN/houghloc-goto" --lcm-url "$URL" --timeout 40 "$1" "$2" >"$tmp/goto.out" 2>&1
 }
@@ -59,16 +31,6 @@ arrive() {      # arrive X Y: must be ARRIVED
     goto "$1" "$2"
     check "destination ($1, $2) reached ($(sed -n 's/.*ARRIVED: //p' "$tmp/goto.out"))" \
         grep -q ARRIVED "$tmp/goto.out"
-}
-true_pose() {   # true_pose: "X,Y,DEG", the simulator's last GROUND_TRUTH (the robot stands)
-    for t in 0.5 1 2; do
-        lcm-logger -q -f -c GROUND_TRUTH --lcm-url="$URL" "$tmp/truth.lcmlog" >/dev/null 2>&1 &
-        probe=$!
-        sleep $t
-        kill -INT $probe; wait $probe
-        "$BIN/hl-eval" truth "$tmp/truth.lcmlog" >/dev/null 2>&1 && break
-    done
-    "$BIN/hl-eval" truth "$tmp/truth.lcmlog"
 }
 
 # ---- map the south-east leg ------------------------------------------------------------

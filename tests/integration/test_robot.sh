@@ -27,40 +27,10 @@ command -v lcm-logger >/dev/null || { echo "FAIL: lcm-logger is missing (liblcm-
 n=$(($$ % 500))
 PORT=$((21000 + n))
 URL="udpm://239.255.76.67:$((8300 + n))?ttl=0&recv_buf_size=4194304"
-# Where tools/demo/lab.route starts (the south-east leg's open floor); the calibration is what
-# hl-calibrate measures for the simulated transducers (as tools/demo/demo.sh).
-cat >"$tmp/robot.conf" <<EOF
-[lcm]
-url = $URL
-[start]
-x_m = 5.4
-y_m = 1.5
-heading_deg = 0
-[fence]
-rect = -1,-1,11,9
-[robot]
-link = tcp:127.0.0.1:$PORT
-profile = bonnie
-[calibration]
-gain_q16 = 70124
-offset_mm = -35
-EOF
+. tests/integration/robot_lib.sh
+write_robot_conf "$tmp/robot.conf"
 D="$BIN/houghlocd --config $tmp/robot.conf"
 
-wait_for() {    # wait_for FILE TEXT COUNT TENTHS: until FILE has COUNT lines with TEXT
-    w=0
-    while c=$(grep -c -- "$2" "$1" 2>/dev/null); [ "${c:-0}" -lt "$3" ]; do
-        [ $w -ge "$4" ] && return 1
-        sleep 0.1; w=$((w + 1))
-    done
-}
-start_sim() {   # start_sim NAME [OPTIONS...]: houghloc-sim on PORT at 10x real time
-    name=$1; shift
-    "$BIN/houghloc-sim" --port $PORT --speed 10 --lcm-url "$URL" "$@" 2>"$tmp/$name.err" &
-    sim=$!; pids="$pids $sim"
-    wait_for "$tmp/$name.err" "listening on 127.0.0.1:$PORT" 1 50 ||
-        { echo "FAIL: houghloc-sim $name did not listen on $PORT: $(cat "$tmp/$name.err")"; fail=1; }
-}
 soundings=1     # the one when the robot first connects, then one per leg driven
 goto() {        # goto DESCRIPTION X Y: houghloc-goto must report ARRIVED (exit 0)
     "$BIN/houghloc-goto" --lcm-url "$URL" --timeout 30 "$2" "$3" >"$tmp/goto.out" 2>&1
@@ -72,18 +42,6 @@ goto() {        # goto DESCRIPTION X Y: houghloc-goto must report ARRIVED (exit 
     else
         echo "FAIL: $1 (houghloc-goto exit $rc): $(tail -n 2 "$tmp/goto.out")"; fail=1
     fi
-}
-true_pose() {   # true_pose: "X,Y,DEG", the simulator's last GROUND_TRUTH (the robot stands)
-    # A short recording of its own (the main log is still being written), longer if the
-    # logger was too slow to hear anything.
-    for t in 0.5 1 2; do
-        lcm-logger -q -f -c GROUND_TRUTH --lcm-url="$URL" "$tmp/truth.lcmlog" >/dev/null 2>&1 &
-        probe=$!
-        sleep $t
-        kill -INT $probe; wait $probe
-        "$BIN/hl-eval" truth "$tmp/truth.lcmlog" >/dev/null 2>&1 && break
-    done
-    "$BIN/hl-eval" truth "$tmp/truth.lcmlog"
 }
 status_of() {   # status_of LOG KEY: KEY's value in the last STATUS of LOG
     "$BIN/hl-eval" status "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"
