@@ -168,6 +168,11 @@ static bool check_profile(const char *v, char *why)
     return REASON("'%s' is not a robot profile (bonnie or pioneer3)", v), false;
 }
 
+/* The longest line libinih reads whole (its 200-byte buffer holds 198 characters, the
+ * newline and the terminating NUL): --print-config writes each key as one "key = value"
+ * line, which must fit. */
+#define PRINTED_LINE_MAX 198
+
 /* A value that --print-config writes as "key = value" must read back the same: inih
  * takes a ';' or '#' at the start of a value or after a space for a comment. Such a value
  * can still reach us (a continuation line, "key=;", an override), so it is refused. */
@@ -191,8 +196,12 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
     case HL_KEY_STR:
         if (strlen(v) >= k->size)
             return REASON("longer than %zu characters", k->size - 1), false;
+        if (strlen(strchr(k->name, '.') + 1) + 3 + strlen(v) > PRINTED_LINE_MAX)
+            return REASON("longer than %zu characters (the printed 'key = value' line must "
+                          "stay within %d)", PRINTED_LINE_MAX - 3 - strlen(strchr(k->name, '.') + 1),
+                          PRINTED_LINE_MAX), false;
         if (starts_comment(v))
-            return REASON("'%s': a ';' or '#' at its start or after a space would read back "
+            return REASON("'%.60s': a ';' or '#' at its start or after a space would read back "
                           "as a comment", v), false;
         if (k->type == HL_KEY_LINK && *v && !check_link(v, why))
             return false;
@@ -286,7 +295,7 @@ static char *read_line(char *str, int num, void *stream)
     p->at_line_start = r && strchr(r, '\n');
     if (r && !p->at_line_start && !feof(p->file) && !p->long_line) {
         p->long_line = p->line;     /* libinih would read the rest as another line */
-        p->max_line = num - 1;
+        p->max_line = num - 2;     /* the buffer also holds the newline and the NUL */
     }
     return r;
 }
