@@ -136,11 +136,17 @@ live_run() {    # live_run NAME: replays the tour live; the recording in $tmp/NA
     # (Debian's lcm-logger 1.3.1 takes only the long form of its URL option)
     lcm-logger -q -f -c 'POSE|MAP' --lcm-url="$url" "$tmp/$1.lcmlog" &
     logger=$!; pids="$pids $logger"
-    $D --fresh-map --map "$tmp/$1.map" --lcm-url "$url" 2>"$tmp/$1.err" &
+    $D --fresh-map --map "$tmp/$1.map" --lcm-url "$url" --set daemon.log_level=debug \
+        2>"$tmp/$1.err" &
     daemon=$!; pids="$pids $daemon"
     wait_ready "$tmp/$1.err"
     lcm-logplayer -s 50 -e '^(SONAR|ODOMETRY)$' -l "$url" $TOUR
-    sleep 1
+    # until every scan is answered (its debug line follows its POSE), however slow the
+    # build (the sanitizers) or the machine: 60 s at most
+    n=0
+    while [ "$(grep -c 'houghlocd: scan [0-9]* (seq' "$tmp/$1.err")" -lt 128 ] && [ $n -lt 600 ]; do
+        sleep 0.1; n=$((n + 1))
+    done
     kill -TERM $daemon; wait $daemon; rc=$?
     sleep 0.5
     kill -INT $logger; wait $logger
