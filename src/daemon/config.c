@@ -431,6 +431,10 @@ static void print_double(FILE *out, double v)
         if (strtod(buf, NULL) == v)
             break;
     }
+    /* a value too small for 17 decimals (1e-30 would print as 0): 17 significant digits
+     * always read back the same double */
+    if (strtod(buf, NULL) != v)
+        snprintf(buf, sizeof buf, "%.17g", v);
     fprintf(out, "%s", buf);
 }
 
