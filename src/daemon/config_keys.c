@@ -163,7 +163,7 @@ const hl_config_key_t hl_config_keys[] = {
       "sound once when the robot first connects (the map's first scan)" },
     { "robot.lost_soundings", HL_KEY_I32, F(robot_lost_soundings), 0, 1000,
       "when the daemon is LOST, sound this many times standing still (each searches the whole "
-      "map), then wait for SET_POSE or RELOCALIZE; destinations are refused while lost" },
+      "map), then give up and track on from the estimate; destinations are refused meanwhile" },
     { "robot.reconnect_max_ms", HL_KEY_I32, F(robot_reconnect_max_ms), 250, 600000,
       "a lost link is retried after 0.25 s, doubling up to this" },
     { "robot.sounding_steps", HL_KEY_I32, SND(steps), 1, 32,

@@ -139,5 +139,8 @@ bool hl_cycle_lost(const hl_cycle_t *c);
 uint32_t hl_cycle_lost_epoch(const hl_cycle_t *c);
 /** Forgets the pose (a RELOCALIZE command, a run of rejected scans): @p why is logged. */
 void hl_cycle_enter_lost(hl_cycle_t *c, const char *why, int64_t now_us);
+/** Stops relocalizing (the robot sounded as often as it may): tracking goes on from the
+ *  current estimate, which the ambiguous scans kept following; @p why is logged. */
+void hl_cycle_give_up_lost(hl_cycle_t *c, const char *why, int64_t now_us);
 
 #endif

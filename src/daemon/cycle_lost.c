@@ -74,6 +74,19 @@ bool hl_cycle_track(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t prediction
     return step->status == HL_SLAM_REJECTED_WILD || (step->status == HL_SLAM_ACCEPTED && low);
 }
 
+void hl_cycle_give_up_lost(hl_cycle_t *c, const char *why, int64_t now_us)
+{
+    if (!c->lost)
+        return;
+    c->lost = false;
+    c->have_candidate = false;
+    c->doubtful_run = 0;
+    c->accepted_run = 0;
+    hl_log(HL_LOG_WARNING, "no longer lost: %s; tracking goes on from the estimate", why);
+    hl_cycle_note_error(c, why);
+    hl_cycle_set_state(c, HL_BUS_STATE_IDLE, now_us);
+}
+
 static int64_t dist2(hl_pose_t a, hl_pose_t b)
 {
     int64_t dx = (int64_t)a.x_mm - b.x_mm, dy = (int64_t)a.y_mm - b.y_mm;

@@ -225,11 +225,17 @@ static bool lost_sound(hl_robot_t *r, int64_t now_ms)
         r->lost_epoch = hl_cycle_lost_epoch(r->cycle);
         r->lost_soundings = 0;
     }
-    if (r->lost_soundings >= r->p.lost_soundings)
+    if (r->lost_soundings >= r->p.lost_soundings) {
+        /* Soundings from the same spot tell no more: going on lost would refuse every
+         * destination until an operator came. Tracking kept following the ambiguous
+         * scans; go on from there. */
+        char why[HL_BUS_TEXT_MAX];
+        snprintf(why, sizeof why, "still lost after %d soundings standing still "
+                 "(robot.lost_soundings)", r->lost_soundings);
+        hl_cycle_give_up_lost(r->cycle, why, now_ms * 1000);
         return false;
-    if (++r->lost_soundings == r->p.lost_soundings)
-        hl_log(HL_LOG_INFO, "lost: sounding %d of %d (robot.lost_soundings), then waiting for "
-               "SET_POSE or RELOCALIZE", r->lost_soundings, r->p.lost_soundings);
+    }
+    r->lost_soundings++;
     robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
     start_sounding(r, now_ms);
     return true;

@@ -35,7 +35,7 @@ typedef struct hl_robot_params {
     int32_t reconnect_max_ms;       /* longest wait between connection attempts */
     bool sound_on_connect;          /* sound once when the link first comes up */
     int32_t lost_soundings;         /* soundings made standing still when the daemon is
-                                       lost, before it waits for an operator */
+                                       lost, before it gives up relocalizing */
 } hl_robot_params_t;
 
 typedef struct hl_robot hl_robot_t;

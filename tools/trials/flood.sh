@@ -131,8 +131,8 @@ while [ $i -le "$PAIRS" ]; do
     i=$((i + 1))
 done
 
-# hl-eval extract writes a 4-byte length before each POSE of HL_BUS_POSE_BYTES (47)
-poses=$(($(wc -c <"$work/batch.POSE") / 51))
+# hl-eval extract writes a 4-byte length before each POSE of HL_BUS_POSE_BYTES (65)
+poses=$(($(wc -c <"$work/batch.POSE") / 69))
 [ "$poses" -eq "$SCANS" ] || die "the batch replay gave $poses POSE for $SCANS scans"
 
 ok=1

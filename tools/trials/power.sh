@@ -316,7 +316,7 @@ pids=""
 # daemons' debug lines counted (a POSE is published just before its line).
 "$BIN/hl-eval" extract "$T/run.lcmlog" POSE "$T/pose.bin" >/dev/null 2>&1
 pose_bytes=$(wc -c <"$T/pose.bin" 2>/dev/null || echo 0)
-poses=$((pose_bytes / 51))     # 4-byte length + 47-byte pose_t per POSE
+poses=$((pose_bytes / 69))     # 4-byte length + 65-byte pose_t per POSE
 arrived=$(grep -c '^0$' "$T/goto.rc" 2>/dev/null || echo 0)
 answered=$(wc -l <"$T/goto.rc" 2>/dev/null || echo 0)
 say "$RUNS kills in $(($(date +%s) - t0)) s: $uniform at random, $after just after a save," \
