@@ -3,9 +3,9 @@
 # mode RUNS times (default 5) and prints one line:
 #   bench daemon_replay scans=<n> wall_ms=<median> scans_per_s=<n> compute_median_us=<n>
 #         compute_p99_us=<n> peak_rss_kib=<n>
-# for the tracking cycle alone (daemon.search_every=0: issue 9's budget), then the same
-# line named daemon_replay_watch for the defaults, where every scan also runs the global
-# search that notices a kidnapped robot (docs/kidnap.md).
+# for the tracking cycle alone (the defaults: issue 9's budget), then the same line named
+# daemon_replay_watch with daemon.search_every=1, where every scan also runs the global
+# search that notices a kidnapped robot (docs/kidnap.md; off by default).
 # wall_ms is the whole process (start, replay, map save, exit); the compute figures are
 # houghlocd's own STATUS (the cycle's latency per scan, SONAR handler entry to POSE out,
 # over all scans of the last run);
@@ -36,5 +36,5 @@ replay() {  # replay NAME [ARGS...]: RUNS replays, one line
     rss=$(sed -n 's/.*peak memory \([0-9]*\) KiB.*/\1/p' "$tmp/err")
     echo "bench $name scans=$scans wall_ms=$((wall_us / 1000)) scans_per_s=$((scans * 1000000 / wall_us)) compute_median_us=$(field compute_median_us) compute_p99_us=$(field compute_p99_us) peak_rss_kib=$rss"
 }
-replay daemon_replay --set daemon.search_every=0
-replay daemon_replay_watch
+replay daemon_replay
+replay daemon_replay_watch --set daemon.search_every=1
