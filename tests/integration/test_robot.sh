@@ -16,6 +16,9 @@ tmp=$(mktemp -d)
 pids=""
 nobody_dir=""
 trap 'for p in $pids; do kill -9 $p 2>/dev/null; done; rm -rf "$tmp" $nobody_dir' EXIT
+# a signal (Ctrl-C, a closed pipe) ends the script through the EXIT trap, which stops its
+# daemon, simulator and logger
+trap 'exit 130' INT TERM HUP PIPE
 . tests/integration/lib.sh
 for p in houghlocd houghloc-sim houghloc-goto hl-eval; do
     [ -x "$BIN/$p" ] || { echo "FAIL: no $BIN/$p (run make first)"; exit 1; }
