@@ -61,23 +61,13 @@ static int parse_args(int argc, char **argv, options_t *o)
 {
     static const char *const names[] = { "--lcm-url", "--key", "--rounds", "--seed",
                                           "--prefix", "--timeout", "--fence-m" };
+    const trial_cli_t cli = { PROG, usage, HL_VERSION, names, 7, false };
     for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0)
-            return fputs(usage, stdout), 0;
-        if (strcmp(a, "--version") == 0)
-            return printf("%s %s\n", PROG, HL_VERSION), 0;
-        const char *eq = strchr(a, '=');
-        size_t n = eq ? (size_t)(eq - a) : strlen(a);
-        int k = -1;
-        for (int j = 0; j < 7; j++)
-            if (strlen(names[j]) == n && strncmp(a, names[j], n) == 0)
-                k = j;
+        const char *v;
+        int status;
+        int k = trial_next_option(&cli, argc, argv, &i, &v, &status);
         if (k < 0)
-            return trial_usage_error(PROG, a[0] == '-' ? "unknown option" : "unexpected argument", a);
-        const char *v = eq ? eq + 1 : i + 1 < argc ? argv[++i] : NULL;
-        if (!v || !*v)
-            return trial_usage_error(PROG, "a value is missing after", a);
+            return status;
         double d;
         char channel[HL_BUS_CHANNEL_MAX];
         switch (k) {
