@@ -75,6 +75,8 @@ void hl_cycle_reply(hl_cycle_t *c, int64_t seq, int8_t result, const char *messa
 void hl_cycle_publish_status(hl_cycle_t *c);
 void hl_cycle_record_compute(hl_cycle_t *c, int64_t us);
 
+/** Not lost, no candidate, no runs counted (the lost state's bookkeeping, cleared). */
+void hl_cycle_clear_lost(hl_cycle_t *c);
 /**
  * The ordinary cycle on one scan (hl_slam_update; a failure answers @p prediction).
  * @return true when the scan is doubtful: rejected, or accepted with a peak far below

@@ -38,14 +38,20 @@ uint32_t hl_cycle_lost_epoch(const hl_cycle_t *c)
     return c->lost_epoch;
 }
 
-void hl_cycle_enter_lost(hl_cycle_t *c, const char *why, int64_t now_us)
+void hl_cycle_clear_lost(hl_cycle_t *c)
 {
-    c->lost_epoch++;
+    c->lost = false;
     c->have_candidate = false;
     c->doubtful_run = 0;
     c->accepted_run = 0;
+}
+
+void hl_cycle_enter_lost(hl_cycle_t *c, const char *why, int64_t now_us)
+{
+    c->lost_epoch++;
     if (!c->lost)
         hl_log(HL_LOG_NOTICE, "lost: %s; each scan now searches the whole map", why);
+    hl_cycle_clear_lost(c);
     c->lost = true;
     hl_cycle_note_error(c, why);
     hl_cycle_set_state(c, HL_BUS_STATE_LOST, now_us);
@@ -78,10 +84,7 @@ void hl_cycle_give_up_lost(hl_cycle_t *c, const char *why, int64_t now_us)
 {
     if (!c->lost)
         return;
-    c->lost = false;
-    c->have_candidate = false;
-    c->doubtful_run = 0;
-    c->accepted_run = 0;
+    hl_cycle_clear_lost(c);
     hl_log(HL_LOG_WARNING, "no longer lost: %s; tracking goes on from the estimate", why);
     hl_cycle_note_error(c, why);
     hl_cycle_set_state(c, HL_BUS_STATE_IDLE, now_us);
@@ -121,14 +124,31 @@ static bool confirms(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t *predicte
 static void leave_lost(hl_cycle_t *c, const hl_bus_scan_t *in, const hl_slam_step_t *step,
                        const char *why, int64_t now_us)
 {
-    c->lost = false;
-    c->have_candidate = false;
-    c->doubtful_run = 0;
-    c->accepted_run = 0;
+    hl_cycle_clear_lost(c);
     hl_log(HL_LOG_NOTICE, "relocalized: scan seq %d at (%.3f, %.3f) m, %.1f deg %s; tracking "
            "again", in->seq, step->pose.x_mm / 1000.0, step->pose.y_mm / 1000.0,
            hl_bam_to_sdeg(step->pose.theta), why);
     hl_cycle_set_state(c, HL_BUS_STATE_LOCALIZING, now_us);
+}
+
+/* The search's answer for this scan, to be confirmed by the next. */
+static void set_candidate(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t pose)
+{
+    c->have_candidate = true;
+    c->candidate = pose;
+    c->candidate_odometry = in->odometry;
+}
+
+/* Where tracking's local search would put this scan, without changing anything; false
+ * (and the prediction in @p out) when it finds nothing. */
+static bool tracked_pose(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t prediction,
+                         hl_pose_t *out)
+{
+    hl_loc_result_t loc;
+    if (hl_slam_localize(c->slam, &in->scan, prediction, &loc, out) == HL_OK)
+        return true;
+    *out = prediction;
+    return false;
 }
 
 /* The global search on this scan: true with a candidate. */
@@ -148,9 +168,7 @@ static bool search(hl_cycle_t *c, const hl_bus_scan_t *in, hl_reloc_result_t *fo
            hl_bam_to_sdeg(found->runner_up.theta), found->runner_up_score, found->score);
     if (!found->found)
         return false;
-    c->have_candidate = true;
-    c->candidate = found->pose;
-    c->candidate_odometry = in->odometry;
+    set_candidate(c, in, found->pose);
     return true;
 }
 
@@ -160,10 +178,8 @@ bool hl_cycle_kidnapped(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t predic
     *found = (hl_reloc_result_t){ 0 };
     if (hl_slam_relocalize(c->slam, &in->scan, found) != HL_OK || !found->found)
         return false;
-    hl_loc_result_t loc;
-    hl_pose_t local = prediction;
-    if (hl_slam_localize(c->slam, &in->scan, prediction, &loc, &local) != HL_OK)
-        local = prediction;
+    hl_pose_t local;
+    tracked_pose(c, in, prediction, &local);
     if (agree(c, local, found->pose))
         return false;
     uint32_t here = hl_slam_judge(c->slam, &in->scan, local);
@@ -176,9 +192,7 @@ bool hl_cycle_kidnapped(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t predic
              hl_bam_to_sdeg(found->pose.theta), found->score, local.x_mm / 1000.0,
              local.y_mm / 1000.0, here);
     hl_cycle_enter_lost(c, what, now_us);
-    c->have_candidate = true;
-    c->candidate = found->pose;
-    c->candidate_odometry = in->odometry;
+    set_candidate(c, in, found->pose);
     *step = (hl_slam_step_t){ .pose = found->pose, .status = HL_SLAM_ODOMETRY_ONLY };
     return true;
 }
@@ -205,11 +219,9 @@ int8_t hl_cycle_lost_scan(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t pred
     if (search(c, in, found)) {
         /* Where tracking would put this scan: when the search agrees, the robot was not
          * carried away (it entered a part of the map seen less, or turned a corner) */
-        hl_loc_result_t loc;
         hl_pose_t local = step->pose;
         bool have_local = tracked ? step->status != HL_SLAM_ODOMETRY_ONLY
-                                  : hl_slam_localize(c->slam, &in->scan, prediction, &loc,
-                                                     &local) == HL_OK;
+                                  : tracked_pose(c, in, prediction, &local);
         if (have_local && agree(c, local, found->pose)) {
             c->have_candidate = false;
             if (!tracked)

@@ -88,10 +88,7 @@ static void set_pose(hl_cycle_t *c, const hl_bus_command_t *cmd, int64_t now_us)
     }
     if (c->lost)
         hl_log(HL_LOG_NOTICE, "no longer lost: the pose was set by hand");
-    c->lost = false;
-    c->have_candidate = false;
-    c->doubtful_run = 0;
-    c->accepted_run = 0;
+    hl_cycle_clear_lost(c);
     snprintf(what, sizeof what, "pose set to (%.3f, %.3f) m, %.1f deg; map kept",
              cmd->pose.x_mm / 1000.0, cmd->pose.y_mm / 1000.0, hl_bam_to_sdeg(cmd->pose.theta));
     hl_cycle_reply(c, cmd->seq, HL_BUS_REPLY_ACCEPTED, what);
