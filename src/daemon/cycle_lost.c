@@ -28,6 +28,10 @@
 #include "cycle_internal.h"
 #include "log.h"
 
+/* Scans tracking must match well in a row to end the lost state when daemon.lost_after
+ * is 0 (the automatic entry off; lost by RELOCALIZE): its recommended value. */
+#define LOST_EXIT_RUN 2
+
 bool hl_cycle_lost(const hl_cycle_t *c)
 {
     return c->lost;
@@ -239,7 +243,7 @@ int8_t hl_cycle_lost_scan(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t pred
         return HL_BUS_POSE_LOST;
     bool doubtful = hl_cycle_track(c, in, prediction, step);
     c->accepted_run = step->status == HL_SLAM_ACCEPTED && !doubtful ? c->accepted_run + 1 : 0;
-    if (c->accepted_run >= c->p.lost_after) {
+    if (c->accepted_run >= (c->p.lost_after > 0 ? c->p.lost_after : LOST_EXIT_RUN)) {
         leave_lost(c, in, step, "ends a run of scans that tracking matched well", now_us);
         return HL_SLAM_ACCEPTED;
     }

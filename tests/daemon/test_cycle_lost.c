@@ -164,11 +164,43 @@ static void test_relocalize_command(void **state)
     finish(r);
 }
 
+/* With the automatic entry off (lost_after 0, the default), RELOCALIZE still makes the
+ * daemon lost, and a scan the search cannot place (no valid reading) neither ends the
+ * lost state nor is published ACCEPTED. */
+static void test_relocalize_with_automatic_entry_off(void **state)
+{
+    (void)state;
+    run_t *r = start(0);
+    load_tour();
+    feed_tour(r->c, 40);
+    hl_bus_command_t cmd = { .utime = 1, .seq = 7, .kind = HL_BUS_COMMAND_RELOCALIZE };
+    uint8_t buf[HL_BUS_COMMAND_BYTES];
+    int len = hl_bus_encode_command(&cmd, buf, sizeof buf);
+    assert_true(len > 0);
+    hl_cycle_on_message(r->c, HL_CH_COMMAND, buf, (size_t)len, 0);
+    assert_true(hl_cycle_lost(r->c));
+    size_t n0 = capture_count(&r->cap, HL_CH_POSE);
+    hl_bus_scan_t last = decode_scan(39);
+    r->scan = decode_scan(40);
+    for (uint32_t i = 0; i < r->scan.scan.count; i++)
+        r->scan.scan.readings[i].valid = false;
+    r->scan.seq = last.seq + 1;
+    r->scan.utime = last.utime + 1000000;
+    r->scan.odometry = last.odometry;
+    len = hl_bus_encode_scan(&r->scan, r->buf, sizeof r->buf);
+    assert_true(len > 0);
+    hl_cycle_on_message(r->c, HL_CH_SONAR, r->buf, (size_t)len, r->scan.utime);
+    assert_int_equal(nth_pose(r, n0).status, HL_BUS_POSE_LOST);
+    assert_true(hl_cycle_lost(r->c));
+    finish(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_kidnapped_robot_is_found_again),
         cmocka_unit_test(test_relocalize_command),
+        cmocka_unit_test(test_relocalize_with_automatic_entry_off),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
