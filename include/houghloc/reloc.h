@@ -94,7 +94,8 @@ typedef struct hl_reloc_result {
     bool found;                 /* an answer distinct enough from the runner-up */
     hl_pose_t pose;             /* the best fine pose (also when ambiguous) */
     uint32_t score;             /* readings it explains (within verify_mm) */
-    double explained_pct;       /* score as a share of the valid readings */
+    uint32_t readings;          /* the scan's valid readings */
+    double explained_pct;       /* score as a share of them */
     bool have_runner_up;
     hl_pose_t runner_up;        /* the best distinct other pose */
     uint32_t runner_up_score;   /* readings it explains; 0 if none */

@@ -367,6 +367,7 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
     uint32_t nvalid = 0;
     for (uint32_t i = 0; i < scan->count; i++)
         nvalid += scan->readings[i].valid;
+    result->readings = nvalid;
     hl_bam_t headings[HL_RELOC_MAX_HEADINGS];
     uint32_t nh = candidate_headings(r, map, n, scan, headings, r->p.headings);
     if (n == 0 || nvalid == 0)

@@ -170,12 +170,9 @@ static void publish_pose(hl_cycle_t *c, const hl_bus_scan_t *in, const hl_slam_s
         .votes = localized ? (int32_t)step->loc.votes : 0,
     };
     if (searched) {
-        uint32_t readings = 0;
-        for (uint32_t i = 0; i < in->scan.count; i++)
-            readings += in->scan.readings[i].valid;
-        m.search_score = share(found->score, readings);
+        m.search_score = share(found->score, found->readings);
         m.runner_up = found->runner_up;
-        m.runner_up_score = share(found->runner_up_score, readings);
+        m.runner_up_score = share(found->runner_up_score, found->readings);
     }
     int len = hl_bus_encode_pose(&m, c->buf, sizeof c->buf);
     if (len > 0)
