@@ -12,11 +12,8 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 url="file://$PWD/logs/tour.lcmlog?speed=0"
 run() {
-    # (no global search on every scan: these trials are about the map file, and the
-    # search would make each replay several times longer under the sanitizers)
     exec "$BIN/houghlocd" --config /dev/null --map "$tmp/map.hlmap" --fresh-map \
         --set daemon.save_every=$EVERY --set daemon.log_level=debug --lcm-url "$url" \
-        --set daemon.search_every=0 \
         --lcm-out "file://$tmp/out.lcmlog?mode=w" 2>"$tmp/err"
 }
 # how long a whole replay takes here, in milliseconds

@@ -12,16 +12,10 @@ trap 'for p in $pids; do kill -9 $p 2>/dev/null; done; rm -rf "$tmp"' EXIT
 TOUR=logs/tour.lcmlog
 D="$BIN/houghlocd --config /dev/null"
 
-# The replays below test files, logs and persistence, not the global search that every
-# scan also runs by default (docs/kidnap.md; it finds nothing to do on the tour): they
-# run without it ($QUICK, in $RO), which keeps this test short under the sanitizers; the
-# first two replays, the golden one, keep the defaults.
-QUICK="--set daemon.search_every=0"
-RO=$QUICK
 replay() {  # replay IN OUT MAP [ARGS...]: batch replay of IN into OUT with map MAP
     in=$1; out=$2; map=$3; shift 3
     case $in in /*) ;; *) in=$PWD/$in ;; esac
-    $D --map "$map" --lcm-url "file://$in?speed=0" --lcm-out "file://$out?mode=w" $RO "$@"
+    $D --map "$map" --lcm-url "file://$in?speed=0" --lcm-out "file://$out?mode=w" "$@"
 }
 
 # ---- options and configuration -----------------------------------------------------------
@@ -62,11 +56,9 @@ rejects "a stray argument" 2 "unexpected argument" $D extra
 rejects "a map folder that cannot be written" 1 "give --map FILE" $D --map /proc/nope/map.hlmap --lcm-url "file://$PWD/$TOUR?speed=0"
 
 # ---- batch replay: every scan answered, byte-identical twice ----------------------------
-RO=""
 replay $TOUR "$tmp/run1.lcmlog" "$tmp/run1.map" --fresh-map 2>"$tmp/run1.err"
 check "batch replay exits 0 at the end of the log" test $? -eq 0
 replay $TOUR "$tmp/run2.lcmlog" "$tmp/run2.map" --fresh-map 2>/dev/null
-RO=$QUICK
 for ch in POSE MAP; do
     "$BIN/hl-eval" extract "$tmp/run1.lcmlog" $ch "$tmp/run1.$ch"
     "$BIN/hl-eval" extract "$tmp/run2.lcmlog" $ch "$tmp/run2.$ch"
@@ -144,7 +136,7 @@ live_run() {    # live_run NAME: replays the tour live; the recording in $tmp/NA
     # (Debian's lcm-logger 1.3.1 takes only the long form of its URL option)
     lcm-logger -q -f -c 'POSE|MAP' --lcm-url="$url" "$tmp/$1.lcmlog" &
     logger=$!; pids="$pids $logger"
-    $D --fresh-map --map "$tmp/$1.map" --lcm-url "$url" --set daemon.log_level=debug $QUICK \
+    $D --fresh-map --map "$tmp/$1.map" --lcm-url "$url" --set daemon.log_level=debug \
         2>"$tmp/$1.err" &
     daemon=$!; pids="$pids $daemon"
     wait_ready "$tmp/$1.err"

@@ -123,8 +123,7 @@ with open(sys.argv[2], "wb") as out:
 ' "$tmp/log.fifo" "$tmp/blocked.err" &
 drainer=$!; pids="$pids $drainer"
 sleep 0.3
-# (no global search per scan: the replay must drain within the test's seconds)
-errfile=$tmp/log.fifo start blocked 200000 self --set daemon.log_level=debug --set daemon.search_every=0
+errfile=$tmp/log.fifo start blocked 200000 self --set daemon.log_level=debug
 sleep 0.5
 t=$(now)
 n=$(count blocked WATCHDOG=1 "$(add "$t" -0.5)" "$t")
