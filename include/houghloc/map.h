@@ -28,6 +28,7 @@ extern "C" {
 #define HL_MAP_MAX_PER_PLACE 1000u
 #define HL_MAP_MIN_SQUARE_MM 10
 #define HL_MAP_MAX_SQUARE_MM 1000
+#define HL_MAP_MAX_CHOICES 64
 
 typedef struct hl_vector {
     hl_mm_t x_mm;       /* surface point, |x| <= HL_COORD_MAX_MM */
@@ -65,7 +66,21 @@ void hl_map_clear(hl_map_t *map);
 hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place);
 
 /**
- * Adds one vector, culling at random when full.
+ * Culls by evidence (not in the paper): each scan added by hl_map_add_scan first confirms
+ * the map vectors it agrees with (a new vector within @p confirm_mm, normals within 30
+ * degrees), and a full map drops the least confirmed of @p choices vectors drawn at
+ * random for each new one, instead of one drawn uniformly. A sonar's spurious echoes
+ * (multipath, side lobes) are seldom seen twice, a wall's echoes often: the capacity
+ * goes to surfaces. The new vector is always kept. The counts are not saved
+ * (hl_map_restore starts them at 0). Call right after hl_map_create (it allocates).
+ * @param choices    1 (the paper's uniform cull, the default) .. HL_MAP_MAX_CHOICES
+ * @param confirm_mm 1 .. HL_MAP_MAX_SQUARE_MM when choices > 1
+ * @return HL_OK, HL_ERR_RANGE, HL_ERR_NOMEM (the map then culls at random).
+ */
+hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm);
+
+/**
+ * Adds one vector, culling at random when full (hl_map_set_evidence: by evidence).
  * @return HL_OK, HL_ERR_RANGE when the vector's fields are out of range (not added).
  */
 hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v);

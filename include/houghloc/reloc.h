@@ -77,6 +77,9 @@ typedef struct hl_reloc_params {
     hl_mm_t verify_mm;          /* a reading is explained by a map vector this close
                                    whose normal agrees within the normal gate; default
                                    60 (the tracking blur); 1..1000 */
+    hl_mm_t verify_along_mm;    /* ... measured across the vector's surface: the reading
+                                   may lie up to this far along it (a tangent vector
+                                   stands for a stretch of surface); default 60 */
     hl_bam_t judge_gate;        /* ... and whose normal agrees within this; default 90 deg
                                    (seen from the same side) */
     double max_ratio;           /* found when runner-up score <= max_ratio x score;

@@ -68,6 +68,11 @@ typedef struct hl_slam_params {
                                    at most this many vectors of one map_square_mm square
                                    seen from one side; 0 = none (paper); default 0 */
     hl_mm_t map_square_mm;      /* default 50 */
+    uint32_t cull_choices;      /* the map's evidence cull (map.h, hl_map_set_evidence):
+                                   a full map drops the least confirmed of this many
+                                   vectors drawn at random; 1 = uniform (paper); default 1 */
+    hl_mm_t confirm_mm;         /* ... a new vector confirms an old one this close;
+                                   default 100 */
     uint64_t seed;              /* map culling seed; default 1 */
     double heading_gain;        /* of an accepted localization's heading correction, the
                                    part taken (the rest stays with the odometry): a

@@ -1,11 +1,17 @@
-/* map.c - the fixed-capacity map of tangent vectors with random culling. */
+/* map.c - the fixed-capacity map of tangent vectors with random culling, optionally bounded
+ * in density and culled by evidence. */
 #include "houghloc/map.h"
 
 #include <stdlib.h>
 #include <string.h>
 
+#include "cellhash.h"
 #include "houghloc/rng.h"
 #include "mapsq.h"
+
+/* A new vector confirms an old one within confirm_mm whose normal agrees within this:
+ * the tracking localizer's own normal gate. */
+#define CONFIRM_GATE_DEG 30.0
 
 struct hl_map {
     uint32_t capacity;
@@ -15,6 +21,11 @@ struct hl_map {
     hl_vector_t *vectors;   /* [capacity] */
     uint32_t per_place;     /* the density bound; 0: none (and `places` unallocated) */
     hl_mapsq_t places;
+    uint32_t choices;       /* the evidence cull's draws; 1: the paper's random cull (and
+                               what follows unallocated) */
+    int32_t confirm_mm;
+    uint16_t *support;      /* [capacity] how many later readings confirmed each vector */
+    hl_cellhash_t near;     /* the map by cells of confirm_mm, rebuilt for each scan */
 };
 
 hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed)
@@ -30,6 +41,7 @@ hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed)
         return NULL;
     }
     map->capacity = capacity;
+    map->choices = 1;
     hl_rng_seed(&map->rng, seed);
     return map;
 }
@@ -39,6 +51,8 @@ void hl_map_destroy(hl_map_t *map)
     if (!map)
         return;
     hl_mapsq_free(&map->places);
+    hl_cellhash_free(&map->near);
+    free(map->support);
     free(map->vectors);
     free(map);
 }
@@ -49,6 +63,68 @@ void hl_map_clear(hl_map_t *map)
     map->version++;
     if (map->per_place)
         hl_mapsq_rebuild(&map->places, map->vectors, 0);
+}
+
+hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm)
+{
+    if (!map)
+        return HL_ERR_ARG;
+    if (choices < 1 || choices > HL_MAP_MAX_CHOICES ||
+        (choices > 1 && (confirm_mm < 1 || confirm_mm > HL_MAP_MAX_SQUARE_MM)))
+        return HL_ERR_RANGE;
+    hl_cellhash_free(&map->near);
+    free(map->support);
+    map->support = NULL;
+    map->choices = 1;
+    if (choices == 1)
+        return HL_OK;
+    map->support = calloc(map->capacity, sizeof *map->support);
+    if (!map->support || !hl_cellhash_init(&map->near, confirm_mm, map->capacity)) {
+        hl_cellhash_free(&map->near);
+        free(map->support);
+        map->support = NULL;
+        return HL_ERR_NOMEM;
+    }
+    map->choices = choices;
+    map->confirm_mm = confirm_mm;
+    return HL_OK;
+}
+
+/* Counts, for every map vector, the vectors of @p v[0 .. n - 1] (one scan) that confirm
+ * it: within confirm_mm, normals within CONFIRM_GATE_DEG. */
+static void confirm(hl_map_t *map, const hl_vector_t *v, uint32_t n)
+{
+    const hl_cellhash_t *g = &map->near;
+    const int64_t r2 = (int64_t)map->confirm_mm * map->confirm_mm;
+    const int32_t gate = hl_bam_from_deg(CONFIRM_GATE_DEG);
+    hl_cellhash_build(&map->near, map->vectors, map->count);
+    for (uint32_t i = 0; i < n; i++) {
+        int32_t cx = hl_cellhash_cell(g, v[i].x_mm), cy = hl_cellhash_cell(g, v[i].y_mm);
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                uint32_t b = hl_cellhash_bucket(g, cx + dx, cy + dy);
+                for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
+                    int64_t ex = v[i].x_mm - g->x[e], ey = v[i].y_mm - g->y[e];
+                    int32_t dn = hl_bam_diff(v[i].normal, g->normal[e]);
+                    uint16_t *s = &map->support[g->index[e]];
+                    if (ex * ex + ey * ey <= r2 && (dn < 0 ? -dn : dn) <= gate && *s < UINT16_MAX)
+                        (*s)++;
+                }
+            }
+    }
+}
+
+/* The evidence cull's victim: the least confirmed of `choices` vectors drawn at random
+ * (the first drawn among equals). */
+static uint32_t least_confirmed(hl_map_t *map)
+{
+    uint32_t victim = hl_rng_below(&map->rng, map->count);
+    for (uint32_t k = 1; k < map->choices; k++) {
+        uint32_t c = hl_rng_below(&map->rng, map->count);
+        if (map->support[c] < map->support[victim])
+            victim = c;
+    }
+    return victim;
 }
 
 hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place)
@@ -77,6 +153,8 @@ static void replace(hl_map_t *map, uint32_t slot, const hl_vector_t *v)
     if (map->per_place)
         hl_mapsq_unlink(&map->places, map->vectors, slot);
     map->vectors[slot] = *v;
+    if (map->support)
+        map->support[slot] = 0;
     if (map->per_place)
         hl_mapsq_link(&map->places, map->vectors, slot);
 }
@@ -108,9 +186,15 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
     }
     if (map->count < map->capacity) {
         map->vectors[map->count] = *v;
+        if (map->support)
+            map->support[map->count] = 0;
         if (map->per_place)
             hl_mapsq_link(&map->places, map->vectors, map->count);
         map->count++;
+        return HL_OK;
+    }
+    if (map->choices > 1) {
+        replace(map, least_confirmed(map), v);
         return HL_OK;
     }
     /* Full: drop one of the capacity + 1 candidates uniformly at random (the paper's
@@ -157,11 +241,22 @@ hl_status_t hl_map_add_scan(hl_map_t *map, const hl_scan_t *scan, hl_pose_t pose
     if (!hl_pose_in_range(pose) || scan->count > HL_SCAN_MAX_READINGS)
         return HL_ERR_RANGE;
     uint32_t n = 0;
-    for (uint32_t i = 0; i < scan->count; i++) {
-        hl_vector_t v;
-        if (hl_vector_from_reading(pose, &scan->readings[i], &v) &&
-            hl_map_add(map, &v) == HL_OK)
-            n++;
+    if (map->choices > 1) {
+        /* The scan's vectors first confirm what the map holds, then join it. */
+        hl_vector_t v[HL_SCAN_MAX_READINGS];
+        uint32_t nv = 0;
+        for (uint32_t i = 0; i < scan->count; i++)
+            nv += hl_vector_from_reading(pose, &scan->readings[i], &v[nv]);
+        confirm(map, v, nv);
+        for (uint32_t i = 0; i < nv; i++)
+            n += hl_map_add(map, &v[i]) == HL_OK;
+    } else {
+        for (uint32_t i = 0; i < scan->count; i++) {
+            hl_vector_t v;
+            if (hl_vector_from_reading(pose, &scan->readings[i], &v) &&
+                hl_map_add(map, &v) == HL_OK)
+                n++;
+        }
     }
     if (added)
         *added = n;
@@ -210,6 +305,8 @@ hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n
     map->count = n;
     map->version = version;
     map->rng = rng;
+    if (map->support)       /* not saved: a restored map learns it again */
+        memset(map->support, 0, (size_t)map->capacity * sizeof *map->support);
     if (map->per_place)
         hl_mapsq_rebuild(&map->places, map->vectors, n);
     return HL_OK;
@@ -218,5 +315,7 @@ hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n
 size_t hl_map_mem_bytes(const hl_map_t *map)
 {
     return sizeof *map + (size_t)map->capacity * sizeof *map->vectors +
-           hl_mapsq_mem_bytes(&map->places, map->capacity);
+           hl_mapsq_mem_bytes(&map->places, map->capacity) +
+           (map->support ? (size_t)map->capacity * sizeof *map->support +
+                               hl_cellhash_mem_bytes(&map->near) : 0);
 }

@@ -51,6 +51,7 @@ void hl_reloc_params_default(hl_reloc_params_t *p)
     p->distinct_mm = 1000;
     p->distinct_theta = hl_bam_from_deg(20.0);
     p->verify_mm = 60;
+    p->verify_along_mm = 60;
     p->judge_gate = hl_bam_from_deg(90.0);
     p->max_ratio = 0.6;
     p->min_explained_pct = 35.0;
@@ -84,6 +85,8 @@ const char *hl_reloc_params_error(const hl_reloc_params_t *p)
         return "reloc distinct_mm must be in 0..32767";
     if (p->verify_mm < 1 || p->verify_mm > 1000)
         return "reloc verify_mm must be in 1..1000";
+    if (p->verify_along_mm < 1 || p->verify_along_mm > 1000)
+        return "reloc verify_along_mm must be in 1..1000";
     if (p->judge_gate > HL_BAM_HALF_TURN)
         return "reloc judge_gate must be at most 180 degrees";
     if (!(p->min_explained_pct >= 0.0 && p->min_explained_pct <= 100.0))
@@ -143,7 +146,8 @@ hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *f
     r->fine = hl_loc_create(&r->fine_p);
     r->best_xy = calloc(r->xy_cells, sizeof *r->best_xy);
     r->best_it = calloc(r->xy_cells, sizeof *r->best_it);
-    bool hash_ok = hl_cellhash_init(&r->near, p->verify_mm, fine->max_map_vectors);
+    bool hash_ok = hl_cellhash_init(&r->near, p->verify_mm > p->verify_along_mm ? p->verify_mm : p->verify_along_mm,
+                                     fine->max_map_vectors);
     if (!r->coarse || !r->fine || !r->best_xy || !r->best_it || !hash_ok ||
         hl_loc_params_error(&r->fine_p)) {
         hl_reloc_destroy(r);
@@ -271,10 +275,11 @@ static uint32_t coarse_peaks(hl_reloc_t *r, uint32_t nhyp)
 
 /* ---- stage 3 and the answer ------------------------------------------------------------- */
 
-/* Whether a map vector within @p tol2 (squared) of (wx, wy) faces along @p normal within
- * the normal gate, looking in the 3 x 3 cells around it. */
+/* Whether a map vector's surface passes within @p across mm of (wx, wy), at most @p along
+ * mm along it from the vector, facing along @p normal within the normal gate; looked for
+ * in the 3 x 3 cells around it (cells are at least as large as both). */
 static bool facing_near(const hl_reloc_t *r, int64_t wx, int64_t wy, hl_bam_t normal,
-                        int64_t tol2)
+                        int32_t across, int32_t along)
 {
     const hl_cellhash_t *g = &r->near;
     int32_t gate = r->p.judge_gate;
@@ -283,9 +288,16 @@ static bool facing_near(const hl_reloc_t *r, int64_t wx, int64_t wy, hl_bam_t no
         for (int ddx = -1; ddx <= 1; ddx++) {
             uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
             for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
-                int64_t ex = wx - g->x[e], ey = wy - g->y[e];
                 int32_t dn = hl_bam_diff(g->normal[e], normal);
-                if (ex * ex + ey * ey <= tol2 && (dn < 0 ? -dn : dn) <= gate)
+                if ((dn < 0 ? -dn : dn) > gate)
+                    continue;
+                int64_t ex = wx - g->x[e], ey = wy - g->y[e];
+                int32_t nx, ny;         /* the vector's unit normal, Q14 */
+                hl_polar_to_xy(1 << 14, g->normal[e], &nx, &ny);
+                int64_t d_across = (ex * nx + ey * ny) >> 14;
+                int64_t d_along = (ey * nx - ex * ny) >> 14;
+                if (d_across <= across && d_across >= -across && d_along <= along &&
+                    d_along >= -along)
                     return true;
             }
         }
@@ -299,12 +311,12 @@ static bool crosses_surface(const hl_reloc_t *r, hl_pose_t pose, int32_t range, 
                             hl_bam_t normal)
 {
     const int32_t margin = 300;
-    int32_t step = r->near.cell_mm;
-    int64_t tol2 = (int64_t)step * step / 4;
+    int32_t step = r->p.verify_mm;
     for (int32_t d = margin; d < range - margin; d += step) {
         int32_t dx, dy;
         hl_polar_to_xy(d, a, &dx, &dy);
-        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, normal, tol2))
+        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, normal,
+                        step / 2, r->p.verify_along_mm))
             return true;
     }
     return false;
@@ -322,7 +334,6 @@ static bool crosses_surface(const hl_reloc_t *r, hl_pose_t pose, int32_t range, 
 static uint32_t explained(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t pose,
                           int32_t tol_mm, uint32_t *contradicted)
 {
-    int64_t tol2 = (int64_t)tol_mm * tol_mm;
     uint32_t count = 0, against = 0;
     for (uint32_t i = 0; i < scan->count; i++) {
         const hl_reading_t *rd = &scan->readings[i];
@@ -332,7 +343,8 @@ static uint32_t explained(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t 
         hl_bam_t normal = (hl_bam_t)(a + HL_BAM_HALF_TURN);
         int32_t dx, dy;
         hl_polar_to_xy(rd->range_mm, a, &dx, &dy);
-        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, normal, tol2))
+        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, normal, tol_mm,
+                        r->p.verify_along_mm))
             count++;
         else if (contradicted && crosses_surface(r, pose, rd->range_mm, a, normal))
             against++;

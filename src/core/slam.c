@@ -25,6 +25,8 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->map_capacity = HL_MAP_DEFAULT_CAPACITY;
     p->map_per_place = 0;
     p->map_square_mm = 50;
+    p->cull_choices = 1;
+    p->confirm_mm = 100;
     p->seed = 1;
     p->heading_gain = 1.0;
     p->guarded = true;
@@ -56,6 +58,10 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "heading_gain must be in 0..1";
     if (p->map_square_mm < HL_MAP_MIN_SQUARE_MM || p->map_square_mm > HL_MAP_MAX_SQUARE_MM)
         return "map_square_mm must be in 10..1000";
+    if (p->cull_choices < 1 || p->cull_choices > HL_MAP_MAX_CHOICES)
+        return "cull_choices must be in 1..64";
+    if (p->confirm_mm < 1 || p->confirm_mm > HL_MAP_MAX_SQUARE_MM)
+        return "confirm_mm must be in 1..1000";
     hl_loc_params_t lp = p->loc;    /* as hl_slam_create makes the localizer */
     lp.max_map_vectors = p->map_capacity;
     const char *e = hl_loc_params_error(&lp);
@@ -97,6 +103,7 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
     s->reloc = hl_reloc_create(&p->reloc, &lp);
     if (!s->map || hl_map_set_density(s->map, p->map_square_mm, p->map_per_place) != HL_OK ||
+        hl_map_set_evidence(s->map, p->cull_choices, p->confirm_mm) != HL_OK ||
         !s->loc || (p->echo_bearings && !s->echoed) || (p->refine && !s->refiner) ||
         !s->reloc) {
         hl_slam_destroy(s);

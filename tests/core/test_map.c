@@ -357,6 +357,65 @@ static void test_restore_refuses_and_changes_nothing(void **state)
     hl_map_destroy(m);
 }
 
+/* Share of the map's vectors on a wall that every scan sees again, after 60 scans of 20
+ * wall readings and 20 spurious echoes (each seen once) through a 200-vector map. */
+static double wall_share(uint32_t choices)
+{
+    hl_map_t *m = hl_map_create(200, 7);
+    assert_non_null(m);
+    assert_int_equal(hl_map_set_evidence(m, choices, 100), HL_OK);
+    hl_scan_t *s = calloc(1, sizeof *s);
+    uint32_t lcg = 12345;
+    for (int k = 0; k < 60; k++) {
+        hl_scan_clear(s);
+        for (int i = 0; i < 20; i++) {      /* the wall: 2 m ahead, +-19 degrees */
+            hl_bam_t b = hl_bam_from_deg(-19.0 + 2.0 * i);
+            assert_int_equal(hl_scan_add(s, b, 2000, 0, true), HL_OK);
+            lcg = lcg * 1103515245u + 12345u;
+            assert_int_equal(hl_scan_add(s, (hl_bam_t)(lcg >> 16), 500 + (int32_t)(lcg % 3000),
+                                         1, true), HL_OK);
+        }
+        assert_int_equal(hl_map_add_scan(m, s, (hl_pose_t){ 0, 0, 0 }, NULL), HL_OK);
+    }
+    assert_int_equal(hl_map_count(m), 200);
+    const hl_vector_t *v = hl_map_vectors(m);
+    int wall = 0;
+    for (uint32_t i = 0; i < 200; i++) {
+        int64_t r2 = (int64_t)v[i].x_mm * v[i].x_mm + (int64_t)v[i].y_mm * v[i].y_mm;
+        wall += r2 > 1990LL * 1990 && r2 < 2010LL * 2010 && v[i].x_mm > 1800;
+    }
+    free(s);
+    hl_map_destroy(m);
+    return wall / 200.0;
+}
+
+static void test_evidence_cull_keeps_surfaces(void **state)
+{
+    (void)state;
+    double uniform = wall_share(1), evidence = wall_share(16);
+    /* uniform culling keeps the two kinds as they came (half and half, give or take);
+     * the evidence cull drops the echoes seen once */
+    assert_true(uniform > 0.35 && uniform < 0.65);
+    assert_true(evidence > 0.9);
+}
+
+static void test_evidence_cull_arguments(void **state)
+{
+    (void)state;
+    hl_map_t *m = hl_map_create(10, 1);
+    assert_int_equal(hl_map_set_evidence(NULL, 2, 100), HL_ERR_ARG);
+    assert_int_equal(hl_map_set_evidence(m, 0, 100), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_evidence(m, HL_MAP_MAX_CHOICES + 1, 100), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_evidence(m, 2, 0), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_evidence(m, 2, HL_MAP_MAX_SQUARE_MM + 1), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_evidence(m, 1, 0), HL_OK);     /* off: no radius needed */
+    assert_int_equal(hl_map_set_evidence(m, 4, 100), HL_OK);
+    size_t with = hl_map_mem_bytes(m);
+    assert_int_equal(hl_map_set_evidence(m, 1, 0), HL_OK);
+    assert_true(hl_map_mem_bytes(m) < with);
+    hl_map_destroy(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -372,6 +431,8 @@ int main(void)
         cmocka_unit_test(test_restore_refuses_and_changes_nothing),
         cmocka_unit_test(test_density_bound),
         cmocka_unit_test(test_density_bound_restores_exactly),
+        cmocka_unit_test(test_evidence_cull_keeps_surfaces),
+        cmocka_unit_test(test_evidence_cull_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -26,7 +26,8 @@ void usage(FILE *to)
 {
     std::fprintf(to,
         "usage: hl-kidnap --config FILE [--set K=V]... --world NAME --input INPUT --trials N\n"
-        "                 (--sim-world FILE --map MAP --test-log LOG [--seed S]\n"
+        "                 (--sim-world FILE (--map MAP | --truth-map TOUR) --test-log LOG\n"
+        "                  [--seed S]\n"
         "                  | --log IMPORT [--exclude-m M]) [--detail FILE]\n"
         "       hl-kidnap --header\n"
         "Relocalizes N scans, heading unknown, with hl_slam_relocalize and prints one row:\n"
@@ -38,7 +39,8 @@ void usage(FILE *to)
         "  --world, --input  the row's first two cells\n"
         "A simulated world: the map is the daemon's map file MAP of its tour of the world\n"
         "FILE ('lab': the built-in lab); N soundings at random free poses, drawn with seed S\n"
-        "(default 1), are written to LOG first.\n"
+        "(default 1), are written to LOG first. --truth-map TOUR: the map is made instead of\n"
+        "the tour log TOUR's scans at their true poses (a drift-free tour), as the slam does.\n"
         "A real building: every scan of the imported log IMPORT (houghloc-import-carmen with\n"
         "--truth) more than M metres (default 2) from the test scan's true position makes\n"
         "its map, at its true pose; N test scans spread evenly over the log.\n"
@@ -48,7 +50,7 @@ void usage(FILE *to)
 }
 
 struct Options {
-    std::string config, world, input, sim_world, map, test_log, log, detail;
+    std::string config, world, input, sim_world, map, truth_map, test_log, log, detail;
     std::vector<std::string> sets;
     long trials = 0;
     unsigned long long seed = 1;
@@ -76,7 +78,7 @@ int bad(const char *option, const char *wants, const char *got)
 // Parses argv into @p o; returns -1 to go on, else the exit status.
 int parse(int argc, char **argv, Options *o)
 {
-    enum { WORLD = 256, INPUT, SIM_WORLD, MAP, TEST_LOG, LOG, SEED, EXCLUDE, DETAIL, HEADER };
+    enum { WORLD = 256, INPUT, SIM_WORLD, MAP, TRUTH_MAP, TEST_LOG, LOG, SEED, EXCLUDE, DETAIL, HEADER };
     static const struct option longs[] = {
         { "config", required_argument, nullptr, 'c' },
         { "set", required_argument, nullptr, 's' },
@@ -85,6 +87,7 @@ int parse(int argc, char **argv, Options *o)
         { "input", required_argument, nullptr, INPUT },
         { "sim-world", required_argument, nullptr, SIM_WORLD },
         { "map", required_argument, nullptr, MAP },
+        { "truth-map", required_argument, nullptr, TRUTH_MAP },
         { "test-log", required_argument, nullptr, TEST_LOG },
         { "log", required_argument, nullptr, LOG },
         { "seed", required_argument, nullptr, SEED },
@@ -108,6 +111,7 @@ int parse(int argc, char **argv, Options *o)
         case INPUT: o->input = optarg; break;
         case SIM_WORLD: o->sim_world = optarg; break;
         case MAP: o->map = optarg; break;
+        case TRUTH_MAP: o->truth_map = optarg; break;
         case TEST_LOG: o->test_log = optarg; break;
         case LOG: o->log = optarg; break;
         case SEED:
@@ -131,7 +135,8 @@ int parse(int argc, char **argv, Options *o)
                           o->config.empty() ? "--config" : o->world.empty() ? "--world" :
                           o->input.empty() ? "--input" : o->trials == 0 ? "--trials" :
                           sim == real ? "one of --sim-world and --log" :
-                          sim && o->map.empty() ? "--map" :
+                          sim && o->map.empty() == o->truth_map.empty() ?
+                              "one of --map and --truth-map" :
                           sim && o->test_log.empty() ? "--test-log" : nullptr;
     if (missing) {
         std::fprintf(stderr, "hl-kidnap: wants %s (--help)\n", missing);
@@ -139,10 +144,6 @@ int parse(int argc, char **argv, Options *o)
     }
     return -1;
 }
-
-struct SlamDeleter {
-    void operator()(hl_slam_t *s) const { hl_slam_destroy(s); }
-};
 
 bool load_soundings(const std::string &path, hlexp::Soundings *out, std::string *err)
 {
@@ -155,6 +156,20 @@ bool load_soundings(const std::string &path, hlexp::Soundings *out, std::string 
             keep.push_back(std::move(s));
     out->swap(keep);
     return true;
+}
+
+// The map of the tour log @p path's scans at their true poses, into @p slam.
+bool truth_map(const hl_slam_params_t &p, const std::string &path, hl_slam_t *slam,
+               std::string *err)
+{
+    hlexp::Soundings tour;
+    if (!load_soundings(path, &tour, err))
+        return false;
+    hlkid::TruthMapper mapper(p, tour);
+    if (!mapper.make(hl_pose_t{}, -1.0, err))
+        return false;
+    return hlkid::restore_map(slam, hl_map_vectors(mapper.map()), hl_map_count(mapper.map()),
+                              err);
 }
 
 int run(const Options &o)
@@ -175,7 +190,7 @@ int run(const Options &o)
     std::string err;
     hlexp::Soundings tests;
     if (!o.sim_world.empty()) {
-        std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create(&p));
+        std::unique_ptr<hl_slam_t, hlkid::SlamDeleter> slam(hl_slam_create(&p));
         if (!slam) {
             std::fprintf(stderr, "hl-kidnap: %s: cannot create the slam\n", what.c_str());
             return 1;
@@ -184,7 +199,8 @@ int run(const Options &o)
         if (!hlkid::write_sim_tests(world, static_cast<int>(o.trials), o.seed, o.test_log,
                                     &err) ||
             !load_soundings(o.test_log, &tests, &err) ||
-            !hlkid::load_daemon_map(slam.get(), o.map, &err)) {
+            !(o.map.empty() ? truth_map(p, o.truth_map, slam.get(), &err)
+                            : hlkid::load_daemon_map(slam.get(), o.map, &err))) {
             std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
             return 1;
         }

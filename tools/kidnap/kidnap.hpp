@@ -21,6 +21,8 @@ namespace hlkid {
 constexpr double kSuccessMm = 500.0;
 constexpr double kSuccessDeg = 5.0;
 constexpr double kNearMm = 5000.0;
+// The grid of Trial::truth_score around the true pose.
+constexpr int kTruthNearMm = 300, kTruthStepMm = 100, kTruthNearDeg = 6, kTruthStepDeg = 3;
 
 // The table's columns, in order (kidnap.tsv's header).
 extern const char *const kHeader;
@@ -36,6 +38,8 @@ struct Trial {
     uint32_t near_vectors = 0;  // map vectors within kNearMm of the true position: how
                                 // much the map knows of the place (for the detail file)
     double ms = 0.0;            // the hl_slam_relocalize call alone (CLOCK_MONOTONIC)
+    uint32_t truth_score = 0;   // hl_slam_judge's best within kTruthNearMm, kTruthNearDeg
+                                // of the truth: what the map lets the search find there
     double error_mm = 0.0, error_deg = 0.0;     // of result.pose, when it has one
     Outcome outcome = Outcome::Ambiguous;
 };
@@ -72,6 +76,10 @@ private:
 uint64_t coarse_cells_needed(const hl_reloc_params_t &p, const hl_vector_t *map, uint32_t n,
                              double *width_m, double *height_m);
 
+struct SlamDeleter {
+    void operator()(hl_slam_t *s) const { hl_slam_destroy(s); }
+};
+
 // Puts @p n vectors into @p slam's map (hl_slam_restore, the state of a started slam).
 bool restore_map(hl_slam_t *slam, const hl_vector_t *v, uint32_t n, std::string *err);
 
@@ -87,6 +95,30 @@ bool write_sim_tests(const std::string &world_path, int trials, uint64_t seed,
 bool load_daemon_map(hl_slam_t *slam, const std::string &path, std::string *err);
 
 // ---- real buildings (real.cpp) --------------------------------------------------------
+
+// Maps made from a log's scans at their true poses (no localization: what a drift-free
+// robot would map), as the slam of @p p makes its map: capacity, culling seed, density
+// bound, echo bearings. Each make() starts from an empty map and a new map's culling
+// generator, so a map does not depend on those made before it.
+class TruthMapper {
+public:
+    TruthMapper(const hl_slam_params_t &p, const hlexp::Soundings &log);
+    ~TruthMapper();
+    TruthMapper(const TruthMapper &) = delete;
+    TruthMapper &operator=(const TruthMapper &) = delete;
+    // Every scan of the log, in log order, but those within @p exclude_mm of @p centre
+    // (a negative @p exclude_mm leaves none out).
+    bool make(hl_pose_t centre, double exclude_mm, std::string *err);
+    const hl_map_t *map() const { return map_; }
+
+private:
+    const hl_slam_params_t &p_;
+    const hlexp::Soundings &log_;
+    hl_map_t *map_;
+    bool ok_ = false;
+    hl_rng_t fresh_{};              // a new map's culling generator
+    std::vector<hl_scan_t> placed_; // the scans at their echo bearings, when estimated
+};
 
 // For @p trials test scans spread evenly over @p log: a map of every other scan more than
 // @p exclude_mm from the test scan's true position, at its true pose, in log order, made

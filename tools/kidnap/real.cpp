@@ -13,14 +13,50 @@ namespace hlkid {
 
 namespace {
 
-struct MapDeleter {
-    void operator()(hl_map_t *m) const { hl_map_destroy(m); }
-};
-struct SlamDeleter {
-    void operator()(hl_slam_t *s) const { hl_slam_destroy(s); }
-};
 
 }  // namespace
+
+TruthMapper::TruthMapper(const hl_slam_params_t &p, const hlexp::Soundings &log)
+    : p_(p), log_(log), map_(hl_map_create(p.map_capacity, p.seed))
+{
+    // Every scan as the slam puts it into its map: at its echo bearings when the
+    // parameters estimate them (the experiments' helper; the slam's own is private).
+    hlexp::Mode mode{};
+    mode.slam = p;
+    placed_.resize(p.echo_bearings ? log.size() : 0);
+    for (size_t i = 0; i < placed_.size(); i++)
+        placed_[i] = hlexp::as_localized(mode, log[i]->msg.scan);
+    // The map as hl_slam_create makes it: capacity, culling seed, density bound, cull.
+    ok_ = map_ && hl_map_set_density(map_, p.map_square_mm, p.map_per_place) == HL_OK &&
+          hl_map_set_evidence(map_, p.cull_choices, p.confirm_mm) == HL_OK;
+    if (ok_)
+        fresh_ = hl_map_rng(map_);
+}
+
+TruthMapper::~TruthMapper()
+{
+    hl_map_destroy(map_);
+}
+
+bool TruthMapper::make(hl_pose_t centre, double exclude_mm, std::string *err)
+{
+    if (!ok_) {
+        *err = "cannot create the map (out of memory?)";
+        return false;
+    }
+    // Each map starts empty with a new map's generator, so it does not depend on the
+    // maps before it.
+    hl_map_restore(map_, nullptr, 0, 0, fresh_);
+    for (size_t i = 0; i < log_.size(); i++) {
+        const hl_scan_t &scan = p_.echo_bearings ? placed_[i] : log_[i]->msg.scan;
+        if (hlexp::distance_mm(log_[i]->truth, centre) > exclude_mm &&
+            hl_map_add_scan(map_, &scan, log_[i]->truth, nullptr) != HL_OK) {
+            *err = "scan " + std::to_string(log_[i]->msg.seq) + ": cannot map it";
+            return false;
+        }
+    }
+    return true;
+}
 
 bool run_real(const hl_slam_params_t &p, const hlexp::Soundings &log, int trials,
               double exclude_mm, Scorer *scorer, std::string *err)
@@ -31,50 +67,30 @@ bool run_real(const hl_slam_params_t &p, const hlexp::Soundings &log, int trials
                std::to_string(n);
         return false;
     }
-    // Every scan as the slam puts it into its map: at its echo bearings when the
-    // parameters estimate them (the experiments' helper; the slam's own is private).
-    hlexp::Mode mode{};
-    mode.slam = p;
-    std::vector<hl_scan_t> placed(p.echo_bearings ? n : 0);
-    for (size_t i = 0; i < placed.size(); i++)
-        placed[i] = hlexp::as_localized(mode, log[i]->msg.scan);
-    auto scan_of = [&](size_t i) -> const hl_scan_t & {
-        return p.echo_bearings ? placed[i] : log[i]->msg.scan;
-    };
-
-    // The map as hl_slam_create makes it: capacity, culling seed, density bound.
-    std::unique_ptr<hl_map_t, MapDeleter> map(hl_map_create(p.map_capacity, p.seed));
+    TruthMapper mapper(p, log);
     std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create(&p));
-    if (!map || !slam ||
-        hl_map_set_density(map.get(), p.map_square_mm, p.map_per_place) != HL_OK) {
-        *err = "cannot create the map or the slam (out of memory?)";
+    if (!slam) {
+        *err = "cannot create the slam (out of memory?)";
         return false;
     }
-    const hl_rng_t fresh = hl_map_rng(map.get());   // a new map's culling generator
     uint64_t most_cells = 0;
     double most_w = 0, most_h = 0;
     for (int k = 0; k < trials; k++) {
         // The middle scan of the k-th of `trials` equal stretches of the log.
         size_t t = (2 * static_cast<size_t>(k) + 1) * n / (2 * static_cast<size_t>(trials));
         const hlexp::Sounding &test = *log[t];
-        // Each map starts empty with a new map's generator, so it does not depend on the
-        // trials before it.
-        hl_map_restore(map.get(), nullptr, 0, 0, fresh);
-        for (size_t i = 0; i < n; i++)
-            if (hlexp::distance_mm(log[i]->truth, test.truth) > exclude_mm &&
-                hl_map_add_scan(map.get(), &scan_of(i), log[i]->truth, nullptr) != HL_OK) {
-                *err = "scan " + std::to_string(log[i]->msg.seq) + ": cannot map it";
-                return false;
-            }
-        uint32_t count = hl_map_count(map.get());
+        if (!mapper.make(test.truth, exclude_mm, err))
+            return false;
+        const hl_map_t *map = mapper.map();
+        uint32_t count = hl_map_count(map);
         double w, h;
-        uint64_t cells = coarse_cells_needed(p.reloc, hl_map_vectors(map.get()), count, &w, &h);
+        uint64_t cells = coarse_cells_needed(p.reloc, hl_map_vectors(map), count, &w, &h);
         if (cells > most_cells) {
             most_cells = cells;
             most_w = w;
             most_h = h;
         }
-        if (!restore_map(slam.get(), hl_map_vectors(map.get()), count, err) ||
+        if (!restore_map(slam.get(), hl_map_vectors(map), count, err) ||
             !scorer->run(slam.get(), test, err))
             return false;
         scorer->progress(trials, 10);
