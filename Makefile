@@ -195,7 +195,8 @@ bench: deps
 WORLD ?= lab
 demo: deps
 	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/houghlocd $(BUILD)/bin/houghloc-sim \
-	    $(BUILD)/bin/houghloc-goto $(BUILD)/bin/hl-eval $(BUILD)/bin/houghloc-map
+	    $(BUILD)/bin/houghloc-goto $(BUILD)/bin/hl-eval $(BUILD)/bin/houghloc-map \
+	    $(BUILD)/bin/houghloc-console
 	$(Q)BUILD=$(BUILD) WORLD=$(WORLD) sh tools/demo/demo.sh
 
 clean:

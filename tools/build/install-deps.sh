@@ -6,7 +6,8 @@
 set -eu
 
 PKGS="make gcc g++ pkg-config liblcm-dev liblcm-bin libglib2.0-dev libserialport-dev \
-libcmocka-dev libeigen3-dev libcairo2-dev libinih-dev libsodium-dev libsystemd-dev zlib1g-dev"
+libcmocka-dev libeigen3-dev libcairo2-dev libinih-dev libsodium-dev libsystemd-dev zlib1g-dev \
+libmicrohttpd-dev"
 [ $# -gt 0 ] && PKGS="$*"
 
 missing=""

@@ -6,10 +6,12 @@
 #   DEMO_SPEED=K         the simulated robot runs K times faster than real time (default 10)
 #   DEMO_SEED=N          the simulator's noise seed (default 1)
 #   DEMO_SET="k=v ..."   extra houghlocd settings (--set), for experiments
+#   DEMO_CONSOLE_PORT=P  the port of the operator console (default 8047)
 #
 # Starts houghloc-sim (the robot, over TCP on loopback), lcm-logger and houghlocd on a
 # private LCM group; sends every destination with houghloc-goto and waits for each to be
-# reached; stops everything (also on Ctrl-C); then scores the log: the error of every
+# reached, with houghloc-console serving the live map on 127.0.0.1 (its address is
+# printed); stops everything (also on Ctrl-C); then scores the log: the error of every
 # sounding's POSE against the simulator's GROUND_TRUTH, and draws the map with the true
 # and estimated paths in build/demo/demo.png. The log stays in build/demo/demo.lcmlog and
 # replays with lcm-logplayer. The last line is machine-readable:
@@ -62,7 +64,7 @@ gain_q16 = 70124
 offset_mm = -35
 EOF
 
-pids="" client=""
+pids="" client="" console=""
 cleanup() {
     for p in $client $pids; do kill -TERM "$p" 2>/dev/null; done
     for p in $client $pids; do wait "$p" 2>/dev/null; done
@@ -84,6 +86,21 @@ for kv in ${DEMO_SET:-}; do sets="$sets --set $kv"; done
 "$BIN/houghlocd" --config "$OUT/houghlocd.conf" --fresh-map $sets 2>"$OUT/houghlocd.err" &
 daemon=$!
 pids="$daemon $sim $logger"
+# The operator console on the run's LCM group, to watch the robot map the lab.
+CPORT=${DEMO_CONSOLE_PORT:-8047}
+if [ -x "$BIN/houghloc-console" ]; then
+    "$BIN/houghloc-console" --lcm-url "$URL" --listen "127.0.0.1:$CPORT" --ground-truth \
+        2>"$OUT/houghloc-console.err" &
+    console=$!
+    pids="$pids $console"
+    w=0
+    while ! grep -q "serving" "$OUT/houghloc-console.err" 2>/dev/null && [ $w -lt 30 ]; do sleep 0.1; w=$((w + 1)); done
+    if grep -q "serving" "$OUT/houghloc-console.err"; then
+        echo "houghloc demo: console at http://127.0.0.1:$CPORT/"
+    else
+        echo "houghloc demo: no console: $(tail -n 1 "$OUT/houghloc-console.err")" >&2
+    fi
+fi
 
 # The first destination waits until the robot is connected and the first sounding is made.
 waited=0
@@ -128,6 +145,7 @@ wait "$sim"
 sleep 0.3
 kill -INT "$logger"
 wait "$logger"
+[ -n "$console" ] && { kill -TERM "$console"; wait "$console"; }
 pids=""
 [ $daemon_rc -eq 0 ] || { echo "houghloc demo: houghlocd exited $daemon_rc:" >&2; tail -n 5 "$OUT/houghlocd.err" >&2; exit 1; }
 [ $failed -eq 0 ] || echo "houghloc demo: $failed of $i destinations failed" >&2

@@ -1,0 +1,68 @@
+/*
+ * http.h - the console's web server (private to tools/console): libmicrohttpd in
+ * external-select mode, so that one thread polls LCM and HTTP together, with
+ * suspend/resume for the event streams (a stream with nothing to send is suspended, and
+ * resumed by the hub's wake when a message arrives: no busy loop).
+ *
+ * Routes: GET / the page (HEAD too), GET /events the Server-Sent Events stream,
+ * POST /destination {x_m, y_m, heading_deg?}. Every request passes access_decide first
+ * (403 bad Host, 401 no token); then 404 for another path, 405 for another method
+ * (OPTIONS included: no CORS preflight is ever granted), 400 for a body that is not
+ * Content-Type application/json or does not parse (destreq.h) or is longer than
+ * DESTREQ_MAX_BYTES. A refused request changes nothing.
+ */
+#ifndef HOUGHLOC_TOOLS_CONSOLE_HTTP_H
+#define HOUGHLOC_TOOLS_CONSOLE_HTTP_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <sys/select.h>
+#include <sys/socket.h>
+
+#include "access.h"
+#include "destreq.h"
+#include "hub.h"
+#include "jbuf.h"
+
+#define HTTP_MAX_CONNECTIONS 64
+#define HTTP_IDLE_TIMEOUT_S 60
+
+/**
+ * Carries out a parsed destination request. Writes the JSON answer into @p answer.
+ * @return 202 when published, or another HTTP status (the answer then has "error").
+ */
+typedef unsigned (*http_destination_fn)(void *user, const destreq_t *r, jbuf_t *answer);
+
+typedef struct http {
+    struct MHD_Daemon *daemon;
+    hub_t *hub;
+    const access_policy_t *policy;
+    char *page;                 /* the page with the token in it */
+    size_t page_len;
+    http_destination_fn on_destination;
+    void *user;
+    bool stopping;
+    unsigned long requests, refused;    /* refused: any 4xx */
+} http_t;
+
+/**
+ * Builds the page (the embedded one with the policy's token put in) and starts serving
+ * on @p addr. @p hub's wake must be http_wake with @p h as its user.
+ * @return false with one line in @p why (ACCESS_WHY_LEN bytes) when it cannot.
+ */
+bool http_start(http_t *h, const struct sockaddr *addr, hub_t *hub,
+                const access_policy_t *policy, http_destination_fn fn, void *user, char *why);
+
+/** The hub's wake callback: resumes the suspended stream @p s. @p user is the http_t. */
+void http_wake(void *user, hub_stream_t *s);
+
+/** Adds the server's sockets to the sets; raises *max_fd. @return false on error. */
+bool http_fdset(http_t *h, fd_set *rs, fd_set *ws, fd_set *es, int *max_fd);
+/** Milliseconds until the server needs to run again, or -1 for no deadline. */
+long http_timeout_ms(http_t *h);
+/** Runs the server on what select() found. */
+void http_run(http_t *h, fd_set *rs, fd_set *ws, fd_set *es);
+/** Ends every stream, stops the server and frees the page. Accepts a stopped one. */
+void http_stop(http_t *h);
+
+#endif
