@@ -140,6 +140,11 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
  */
 uint32_t hl_reloc_judge(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
                         const hl_scan_t *scan, hl_pose_t pose);
+/** hl_reloc_judge at each of @p poses[0 .. count - 1] into @p scores (0 for a pose out of
+ *  range, all 0 for bad arguments), hashing the map once. */
+void hl_reloc_judge_poses(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                          const hl_scan_t *scan, const hl_pose_t *poses, uint32_t count,
+                          uint32_t *scores);
 
 #ifdef __cplusplus
 }

@@ -154,6 +154,10 @@ hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_res
 /** hl_reloc_judge of @p scan (at its echo bearings when the params ask) at @p pose against
  *  the current map. */
 uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose);
+/** hl_slam_judge at each of @p poses[0 .. count - 1] into @p scores, the scan prepared
+ *  and the map hashed once (hl_reloc_judge_poses). */
+void hl_slam_judge_poses(hl_slam_t *s, const hl_scan_t *scan, const hl_pose_t *poses,
+                         uint32_t count, uint32_t *scores);
 
 /**
  * Moves the estimate to @p pose and takes @p odometry as the base's odometry there

@@ -438,13 +438,29 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
     return HL_OK;
 }
 
+void hl_reloc_judge_poses(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                          const hl_scan_t *scan, const hl_pose_t *poses, uint32_t count,
+                          uint32_t *scores)
+{
+    if (!scores)
+        return;
+    memset(scores, 0, (size_t)count * sizeof *scores);
+    if (!r || !map || !scan || !poses || n == 0 || n > r->fine_p.max_map_vectors ||
+        hl_scan_check(scan) != HL_OK)
+        return;
+    hl_cellhash_build(&r->near, map, n);
+    for (uint32_t i = 0; i < count; i++) {
+        if (!hl_pose_in_range(poses[i]))
+            continue;
+        uint32_t against, good = explained(r, scan, poses[i], r->p.verify_mm, &against);
+        scores[i] = good > against ? good - against : 0;
+    }
+}
+
 uint32_t hl_reloc_judge(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
                         const hl_scan_t *scan, hl_pose_t pose)
 {
-    if (!r || !map || !scan || n == 0 || n > r->fine_p.max_map_vectors ||
-        hl_scan_check(scan) != HL_OK || !hl_pose_in_range(pose))
-        return 0;
-    hl_cellhash_build(&r->near, map, n);
-    uint32_t against, good = explained(r, scan, pose, r->p.verify_mm, &against);
-    return good > against ? good - against : 0;
+    uint32_t score;
+    hl_reloc_judge_poses(r, map, n, scan, &pose, 1, &score);
+    return score;
 }

@@ -237,12 +237,23 @@ hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_res
     return st;
 }
 
+void hl_slam_judge_poses(hl_slam_t *s, const hl_scan_t *scan, const hl_pose_t *poses,
+                         uint32_t count, uint32_t *scores)
+{
+    if (!s || !scan || hl_scan_check(scan) != HL_OK) {
+        if (scores)
+            memset(scores, 0, (size_t)count * sizeof *scores);
+        return;
+    }
+    hl_reloc_judge_poses(s->reloc, hl_map_vectors(s->map), hl_map_count(s->map),
+                         prepared(s, scan), poses, count, scores);
+}
+
 uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose)
 {
-    if (!s || !scan || hl_scan_check(scan) != HL_OK)
-        return 0;
-    return hl_reloc_judge(s->reloc, hl_map_vectors(s->map), hl_map_count(s->map),
-                          prepared(s, scan), pose);
+    uint32_t score;
+    hl_slam_judge_poses(s, scan, &pose, 1, &score);
+    return score;
 }
 
 /* Computes the whole cycle into locals first and commits at the end, so that every error

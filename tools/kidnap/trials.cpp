@@ -92,17 +92,16 @@ bool restore_map(hl_slam_t *slam, const hl_vector_t *v, uint32_t n, std::string 
 // little, so the truth itself may score less than the place does a few cm away.
 static uint32_t truth_score(hl_slam_t *slam, const hl_scan_t &scan, hl_pose_t truth)
 {
-    uint32_t best = 0;
+    std::vector<hl_pose_t> grid;
     for (int dx = -kTruthNearMm; dx <= kTruthNearMm; dx += kTruthStepMm)
         for (int dy = -kTruthNearMm; dy <= kTruthNearMm; dy += kTruthStepMm)
-            for (int dd = -kTruthNearDeg; dd <= kTruthNearDeg; dd += kTruthStepDeg) {
-                hl_pose_t p = truth;
-                p.x_mm += dx;
-                p.y_mm += dy;
-                p.theta = static_cast<hl_bam_t>(p.theta + hl_bam_from_deg(dd));
-                best = std::max(best, hl_slam_judge(slam, &scan, p));
-            }
-    return best;
+            for (int dd = -kTruthNearDeg; dd <= kTruthNearDeg; dd += kTruthStepDeg)
+                grid.push_back({ truth.x_mm + dx, truth.y_mm + dy,
+                                 static_cast<hl_bam_t>(truth.theta + hl_bam_from_deg(dd)) });
+    std::vector<uint32_t> scores(grid.size());
+    hl_slam_judge_poses(slam, &scan, grid.data(), static_cast<uint32_t>(grid.size()),
+                        scores.data());
+    return *std::max_element(scores.begin(), scores.end());
 }
 
 bool Scorer::run(hl_slam_t *slam, const hlexp::Sounding &test, std::string *err)
