@@ -1,27 +1,20 @@
 # robot_lib.sh - what the live-robot tests share (sourced after lib.sh, POSIX sh): the
 # daemon's configuration for houghloc-sim's lab, and helpers. The caller sets BIN, tmp,
-# PORT (houghloc-sim's TCP port) and URL (the LCM network) first.
+# PORT (houghloc-sim's TCP port) and URL (the LCM network) before calling them.
+
+# need_robot_programs: fails the test unless the programs it runs are there.
+need_robot_programs() {
+    for p in houghlocd houghloc-sim houghloc-goto hl-eval; do
+        [ -x "$BIN/$p" ] || { echo "FAIL: no $BIN/$p (run make first)"; exit 1; }
+    done
+    command -v lcm-logger >/dev/null || { echo "FAIL: lcm-logger is missing (liblcm-bin)"; exit 1; }
+}
 
 # write_robot_conf FILE: houghlocd on the robot at PORT, starting where tools/demo/lab.route
-# starts (the south-east leg's open floor); the calibration is what hl-calibrate measures
-# for the simulated transducers (as tools/demo/demo.sh).
+# starts (the south-east leg's open floor).
+. tools/houghloc-sim/daemon_conf.sh
 write_robot_conf() {
-    cat >"$1" <<CONF
-[lcm]
-url = $URL
-[start]
-x_m = 5.4
-y_m = 1.5
-heading_deg = 0
-[fence]
-rect = -1,-1,11,9
-[robot]
-link = tcp:127.0.0.1:$PORT
-profile = bonnie
-[calibration]
-gain_q16 = 70124
-offset_mm = -35
-CONF
+    write_lab_robot_conf "$1" 5.4 1.5 0
 }
 
 wait_for() {    # wait_for FILE TEXT COUNT TENTHS: until FILE has COUNT lines with TEXT

@@ -15,16 +15,13 @@ trap 'for p in $pids; do kill -9 $p 2>/dev/null; done; rm -rf "$tmp"' EXIT
 # daemon, simulator and logger
 trap 'exit 130' INT TERM HUP PIPE
 . tests/integration/lib.sh
-for p in houghlocd houghloc-sim houghloc-goto hl-eval; do
-    [ -x "$BIN/$p" ] || { echo "FAIL: no $BIN/$p (run make first)"; exit 1; }
-done
-command -v lcm-logger >/dev/null || { echo "FAIL: lcm-logger is missing (liblcm-bin)"; exit 1; }
+. tests/integration/robot_lib.sh
+need_robot_programs
 
 # A port and an LCM group of this run's own (test_robot.sh uses 21000.. and 8300..).
 n=$(($$ % 500))
 PORT=$((22000 + n))
 URL="udpm://239.255.76.67:$((9300 + n))?ttl=0&recv_buf_size=4194304"
-. tests/integration/robot_lib.sh
 write_robot_conf "$tmp/robot.conf"
 # the lost state is off by default (docs/kidnap.md): this robot watches for a kidnap
 printf '[daemon]\nsearch_every = 1\nlost_after = 2\n' >>"$tmp/robot.conf"

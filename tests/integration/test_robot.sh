@@ -20,17 +20,14 @@ trap 'for p in $pids; do kill -9 $p 2>/dev/null; done; rm -rf "$tmp" $nobody_dir
 # daemon, simulator and logger
 trap 'exit 130' INT TERM HUP PIPE
 . tests/integration/lib.sh
-for p in houghlocd houghloc-sim houghloc-goto hl-eval; do
-    [ -x "$BIN/$p" ] || { echo "FAIL: no $BIN/$p (run make first)"; exit 1; }
-done
-command -v lcm-logger >/dev/null || { echo "FAIL: lcm-logger is missing (liblcm-bin)"; exit 1; }
+. tests/integration/robot_lib.sh
+need_robot_programs
 
 # A TCP port and an LCM group of this run's own, away from those of test_daemon.sh
 # (7700..7899) and make demo (20000..20499, 7700..8199), so that parallel runs do not meet.
 n=$(($$ % 500))
 PORT=$((21000 + n))
 URL="udpm://239.255.76.67:$((8300 + n))?ttl=0&recv_buf_size=4194304"
-. tests/integration/robot_lib.sh
 write_robot_conf "$tmp/robot.conf"
 D="$BIN/houghlocd --config $tmp/robot.conf"
 
