@@ -34,6 +34,9 @@ SEED=${TRIALS_SEED:-1}
 ROUTE=tools/demo/lab.route
 
 say() { echo "link: $*" >&2; }
+case $RECONNECTS in
+*[!0-9]* | '' | ? | 10) say "RECONNECTS must be a whole number from 11 up (the fds and VmRSS after the 10th reconnection are compared with the last), not '$RECONNECTS'"; exit 2 ;;
+esac
 for p in houghlocd houghloc-sim houghloc-goto hl-eval; do
     [ -x "$BIN/$p" ] || { say "no $BIN/$p (run make BUILD=${BUILD:-build} first)"; exit 1; }
 done
@@ -59,25 +62,9 @@ set -- $(sed -n 's/#.*//; s/^start //p' "$ROUTE")
 pose="$1,$2,$3"
 grep -v '^#\|^start\|^ *$' "$ROUTE" >"$T/route"
 nroute=$(wc -l <"$T/route")
-cat >"$T/conf" <<EOF
-; written by tools/trials/link.sh
-[lcm]
-url = $URL
-[daemon]
-map_file = $T/map.hlmap
-[start]
-x_m = $1
-y_m = $2
-heading_deg = $3
-[fence]
-rect = -1,-1,11,9
-[robot]
-link = tcp:127.0.0.1:$PORT
-profile = bonnie
-[calibration]
-gain_q16 = 70124
-offset_mm = -35
-EOF
+. tools/houghloc-sim/daemon_conf.sh
+write_lab_robot_conf "$T/conf" "$1" "$2" "$3"
+printf '[daemon]\nmap_file = %s\n' "$T/map.hlmap" >>"$T/conf"
 
 count() {       # count TEXT FILE: the lines of FILE holding TEXT (0 if no FILE yet)
     c=$(grep -c -- "$1" "$2" 2>/dev/null)
