@@ -47,6 +47,7 @@ typedef uint16_t hl_bam_t;
 #define HL_RANGE_MAX_MM 32767
 #define HL_BAM_PER_TURN 65536
 #define HL_BAM_HALF_TURN 32768u
+#define HL_BAM_QUARTER_TURN 16384
 #define HL_TRIG_SHIFT 14
 #define HL_TRIG_ONE (1 << HL_TRIG_SHIFT)
 #define HL_VOTE_MAX UINT16_MAX

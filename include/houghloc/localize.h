@@ -59,6 +59,13 @@ typedef struct hl_loc_params {
                                    default: a sparse map gains nothing); else 8..1000;
                                    48 (two cells, votes move < 34 mm, inside the blur)
                                    for a laser's dense map */
+    bool vote_once;             /* each reading votes at most once into any cell, however
+                                   many map vectors put it there: a cell's votes count the
+                                   readings that meet a surface under its pose, not the
+                                   pairs, so a cluttered, much-mapped or many-walled place
+                                   does not outvote the right one (the global search's
+                                   coarse stage, reloc.h); costs 2 bytes a cell; default
+                                   false (the paper's pair votes) */
     uint16_t reading_stride;    /* only readings 0, k, 2k, ... of a scan vote (1 = all,
                                    the default; 1..64): a laser's hundreds of readings
                                    pin the peak with a fraction of them, and the

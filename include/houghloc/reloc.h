@@ -61,6 +61,10 @@ typedef struct hl_reloc_params {
     uint16_t coarse_half_steps; /* slices each side of a window's centre, 1..32; default
                                    5: +-10 deg */
     hl_mm_t coarse_blur_mm;     /* default 100 */
+    hl_mm_t coarse_group_mm;    /* 0, or 8..1000: stage 2 votes with the map merged into
+                                   squares this wide (localize.h, group_mm); default 0 */
+    bool coarse_vote_once;      /* stage 2 counts readings, not pairs (localize.h,
+                                   vote_once); default false */
     uint16_t peaks_per_heading; /* 1..8; default 8 (fewer miss a place whose coarse
                                    peak is lower than a crowded corner's) */
     uint32_t coarse_max_cells;  /* stage 2's raster budget (cells of one candidate's

@@ -32,6 +32,9 @@ typedef struct hl_reading {
     hl_bam_t bearing;   /* robot frame */
     int8_t transducer;  /* 0..127, -1 when not from a ring transducer */
     bool valid;
+    int16_t tilt;       /* the surface normal's turn from the beam's reverse, in BAM,
+                           within +-a quarter turn: 0 (a surface square to the beam, as
+                           a sonar hears it) unless hl_normals_fit estimated it */
 } hl_reading_t;
 
 typedef struct hl_scan {
@@ -54,10 +57,17 @@ void hl_scan_clear(hl_scan_t *scan);
 hl_status_t hl_scan_add(hl_scan_t *scan, hl_bam_t bearing, int32_t range_mm,
                         int8_t transducer, bool valid);
 
+/** The world direction of @p r's surface normal (towards the sensor) seen from a robot
+ *  heading @p heading: the beam's reverse turned by the reading's tilt. */
+static inline hl_bam_t hl_reading_normal(const hl_reading_t *r, hl_bam_t heading)
+{
+    return (hl_bam_t)(heading + r->bearing + HL_BAM_HALF_TURN + r->tilt);
+}
+
 /** Number of valid readings. */
 uint32_t hl_scan_valid_count(const hl_scan_t *scan);
 
-/** Checks count and every valid reading's range. @return HL_OK or HL_ERR_RANGE. */
+/** Checks count and every valid reading's range and tilt. @return HL_OK or HL_ERR_RANGE. */
 hl_status_t hl_scan_check(const hl_scan_t *scan);
 
 /** Composes poses: the pose @p rel, given in the frame of @p base, in the world frame. */

@@ -43,6 +43,7 @@
 #include <stdbool.h>
 
 #include "houghloc/echo.h"
+#include "houghloc/normals.h"
 #include "houghloc/localize.h"
 #include "houghloc/map.h"
 #include "houghloc/refine.h"
@@ -95,6 +96,10 @@ typedef struct hl_slam_params {
     bool echo_bearings;         /* move each reading to its estimated echo bearing
                                    (echo.h) before localizing and mapping; default true */
     hl_echo_params_t echo;
+    bool fit_normals;           /* give each reading its surface's normal from its
+                                   neighbours (normals.h; a laser) before localizing and
+                                   mapping, after the echo bearings; default false */
+    hl_normals_params_t normals;
     bool refine;                /* polish the Hough pose (refine.h); default true */
     bool refine_heading;        /* ... in heading too; default true (over 24 simulated
                                    tours: RMSE 328 mm against 405 with the Hough's

@@ -124,8 +124,10 @@ hl_status_t hl_bus_decode_scan(const void *data, size_t len, hl_bus_scan_t *out,
                             len, n, want);
     out->scan.count = (uint32_t)n;
     hl_reading_t *rd = out->scan.readings;
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
         rd[i].transducer = hl_wire_get_i8(&r);
+        rd[i].tilt = 0;     /* not on the wire: the core estimates it (normals.h) */
+    }
     for (int i = 0; i < n; i++)
         rd[i].bearing = (hl_bam_t)hl_wire_get_i16(&r);
     for (int i = 0; i < n; i++)

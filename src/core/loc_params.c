@@ -21,6 +21,7 @@ void hl_loc_params_default(hl_loc_params_t *p)
     p->prior_sigma_theta = hl_bam_from_deg(15.0);
     p->max_cells = 1u << 20;
     p->group_mm = 0;   /* a sparse map gains nothing, and 48 mm cost 20 % on the tours */
+    p->vote_once = false;
     p->reading_stride = 1;
     p->max_map_vectors = 16384;
 }

@@ -35,6 +35,8 @@ struct hl_localizer {
     /* the valid readings of the scan */
     int32_t *range;
     hl_bam_t *bearing;
+    int16_t *tilt;      /* the readings' normals' turns from their beams (scan.h) */
+    uint16_t *stamps;   /* vote_once: per cell, the last reading that voted there */
 
     hl_loc_surface_t surface;   /* geometry of the last run */
 };
@@ -53,6 +55,8 @@ void hl_loc_destroy(hl_localizer_t *loc)
     free(loc->cand);
     free(loc->range);
     free(loc->bearing);
+    free(loc->tilt);
+    free(loc->stamps);
     free(loc);
 }
 
@@ -88,8 +92,12 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
     loc->cand = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cand);
     loc->range = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->range);
     loc->bearing = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->bearing);
+    loc->tilt = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->tilt);
+    if (p->vote_once)
+        loc->stamps = alloc_counted(loc, p->max_cells, sizeof *loc->stamps);
     if (!loc->votes || !loc->buf_a || !loc->buf_b || !loc->wx || !loc->wy || !loc->wt ||
-        !groups_ok || !loc->cand || !loc->range || !loc->bearing) {
+        !groups_ok || !loc->cand || !loc->range || !loc->bearing || !loc->tilt ||
+        (p->vote_once && !loc->stamps)) {
         hl_loc_destroy(loc);
         return NULL;
     }
@@ -131,6 +139,7 @@ static uint32_t gather_readings(hl_localizer_t *loc, const hl_scan_t *scan,
             continue;
         loc->range[n] = r->range_mm;
         loc->bearing[n] = r->bearing;
+        loc->tilt[n] = r->tilt;
         if (r->range_mm > *max_range)
             *max_range = r->range_mm;
         n++;
@@ -191,6 +200,7 @@ typedef struct vote_ctx {
     /* the reading's offset under each heading, 1/256 mm (hl_polar_to_xy_q8) */
     int32_t tx[2 * HL_LOC_MAX_HALF_STEPS + 1], ty[2 * HL_LOC_MAX_HALF_STEPS + 1];
     uint32_t votes, pairs;
+    uint16_t tag;           /* vote_once: the reading's stamp, index + 1 */
 } vote_ctx_t;
 
 /*
@@ -297,6 +307,8 @@ static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
     const uint32_t width = c->width_q8, height = c->height_q8, nx = (uint32_t)c->nx;
     const uint64_t recip = c->recip;
     const int32_t *tx = c->tx, *ty = c->ty, nt = c->nt;
+    uint16_t *stamps = loc->stamps;
+    const uint16_t tag = c->tag;
     int32_t *diff = loc->slice_diff;
     uint32_t nvotes = 0, npairs = 0;
     for (uint32_t i = 0; i < ncand; i++) {
@@ -339,10 +351,15 @@ static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
             /* floor(v / (256 cell)) == floor(floor(v / 256) / cell) */
             uint32_t ix = (uint32_t)(((uint64_t)(vx >> 8) * recip) >> 32);
             uint32_t iy = (uint32_t)(((uint64_t)(vy >> 8) * recip) >> 32);
-            uint16_t *cell = slice + iy * nx + ix;
-            uint32_t sum = *cell + (uint32_t)w;
-            *cell = (uint16_t)(sum < HL_VOTE_MAX ? sum : HL_VOTE_MAX);
-            nvotes += (uint32_t)w;
+            size_t at = (size_t)(slice - votes) + iy * nx + ix;
+            int32_t weight = w;
+            if (stamps) {               /* vote_once: has this reading voted here? */
+                weight = stamps[at] != tag;
+                stamps[at] = tag;
+            }
+            uint32_t sum = votes[at] + (uint32_t)weight;
+            votes[at] = (uint16_t)(sum < HL_VOTE_MAX ? sum : HL_VOTE_MAX);
+            nvotes += (uint32_t)weight;
         }
         if (m1 - m0 > 1)
             diff[hi + 1] = 0;
@@ -367,7 +384,8 @@ static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface
             c->ty[it] = ty;
         }
         /* The test vector's normal points back at the robot, like the map's. */
-        hl_bam_t tn0 = (hl_bam_t)(a0 + HL_BAM_HALF_TURN);
+        hl_bam_t tn0 = (hl_bam_t)(a0 + HL_BAM_HALF_TURN + loc->tilt[i]);
+        c->tag = (uint16_t)(i + 1);
         uint32_t ncand = gather_candidates(loc, c, s, tn0, gate);
         vote_candidates(loc, c, ncand, tn0, &g, loc->votes);
     }
@@ -429,6 +447,8 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
         return st;
     size_t cells = (size_t)s.nx * s.ny * s.nt;
     memset(loc->votes, 0, cells * sizeof *loc->votes);
+    if (loc->stamps)
+        memset(loc->stamps, 0, cells * sizeof *loc->stamps);
     group_map(loc, map, n, &s, max_range);
 
     vote_ctx_t c = { .nx = s.nx, .ny = s.ny, .nt = s.nt,

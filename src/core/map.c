@@ -218,7 +218,7 @@ bool hl_vector_from_reading(hl_pose_t pose, const hl_reading_t *r, hl_vector_t *
         return false;
     out->x_mm = (hl_mm_t)x;
     out->y_mm = (hl_mm_t)y;
-    out->normal = (hl_bam_t)(world_bearing + HL_BAM_HALF_TURN);
+    out->normal = hl_reading_normal(r, pose.theta);
     out->range_mm = (uint16_t)r->range_mm;
     return true;
 }

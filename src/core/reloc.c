@@ -73,6 +73,8 @@ const char *hl_reloc_params_error(const hl_reloc_params_t *p)
         return "reloc coarse slice: half_steps in 1..32, spanning 0.35 deg to half a turn";
     if (p->coarse_blur_mm < 0 || p->coarse_blur_mm > 10 * p->coarse_cell_mm)
         return "reloc coarse_blur_mm must be in 0..10 coarse cells";
+    if (p->coarse_group_mm != 0 && (p->coarse_group_mm < 8 || p->coarse_group_mm > 1000))
+        return "reloc coarse_group_mm must be 0 or in 8..1000";
     if (p->peaks_per_heading < 1 || p->peaks_per_heading > HL_RELOC_MAX_PEAKS)
         return "reloc peaks_per_heading must be in 1..8";
     if (p->coarse_max_cells < 1 || p->coarse_max_cells > (1u << 26))
@@ -139,7 +141,8 @@ hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *f
     r->coarse_p.blur_sigma_theta = p->coarse_theta_step;
     r->coarse_p.peak_separation_mm = p->distinct_mm;
     r->coarse_p.max_cells = p->coarse_max_cells;
-    r->coarse_p.group_mm = 0;
+    r->coarse_p.group_mm = p->coarse_group_mm;
+    r->coarse_p.vote_once = p->coarse_vote_once;
     r->coarse_p.reading_stride = 1;
     r->xy_cells = p->coarse_max_cells;
     r->coarse = hl_loc_create(&r->coarse_p);
@@ -173,7 +176,7 @@ static uint32_t candidate_headings(const hl_reloc_t *r, const hl_vector_t *map, 
     uint32_t hs[BINS] = { 0 }, hm[BINS] = { 0 };
     for (uint32_t i = 0; i < scan->count; i++)
         if (scan->readings[i].valid)
-            hs[(uint16_t)(scan->readings[i].bearing + HL_BAM_HALF_TURN) >> BIN_SHIFT]++;
+            hs[hl_reading_normal(&scan->readings[i], 0) >> BIN_SHIFT]++;
     for (uint32_t j = 0; j < n; j++)
         hm[map[j].normal >> BIN_SHIFT]++;
     uint64_t corr[BINS], smooth[BINS];
@@ -276,13 +279,12 @@ static uint32_t coarse_peaks(hl_reloc_t *r, uint32_t nhyp)
 /* ---- stage 3 and the answer ------------------------------------------------------------- */
 
 /* Whether a map vector's surface passes within @p across mm of (wx, wy), at most @p along
- * mm along it from the vector, facing along @p normal within the normal gate; looked for
- * in the 3 x 3 cells around it (cells are at least as large as both). */
+ * mm along it from the vector, facing along @p normal within @p gate; looked for in the
+ * 3 x 3 cells around it (cells are at least as large as both). */
 static bool facing_near(const hl_reloc_t *r, int64_t wx, int64_t wy, hl_bam_t normal,
-                        int32_t across, int32_t along)
+                        int32_t gate, int32_t across, int32_t along)
 {
     const hl_cellhash_t *g = &r->near;
-    int32_t gate = r->p.judge_gate;
     int32_t cx = hl_cellhash_cell(g, (double)wx), cy = hl_cellhash_cell(g, (double)wy);
     for (int ddy = -1; ddy <= 1; ddy++)
         for (int ddx = -1; ddx <= 1; ddx++) {
@@ -306,7 +308,8 @@ static bool facing_near(const hl_reloc_t *r, int64_t wx, int64_t wy, hl_bam_t no
 
 /* Whether a map surface facing the sensor lies across the beam, well short of where the
  * reading ended: the beam would have echoed from it. Looked for every cell along the beam
- * from 300 mm to 300 mm short of the echo. */
+ * from 300 mm to 300 mm short of the echo. Any surface facing the sensor side stops a
+ * beam, whatever the judge's gate. */
 static bool crosses_surface(const hl_reloc_t *r, hl_pose_t pose, int32_t range, hl_bam_t a,
                             hl_bam_t normal)
 {
@@ -316,7 +319,7 @@ static bool crosses_surface(const hl_reloc_t *r, hl_pose_t pose, int32_t range, 
         int32_t dx, dy;
         hl_polar_to_xy(d, a, &dx, &dy);
         if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, normal,
-                        step / 2, r->p.verify_along_mm))
+                        HL_BAM_QUARTER_TURN, step / 2, r->p.verify_along_mm))
             return true;
     }
     return false;
@@ -340,13 +343,15 @@ static uint32_t explained(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t 
         if (!rd->valid)
             continue;
         hl_bam_t a = (hl_bam_t)(pose.theta + rd->bearing);
-        hl_bam_t normal = (hl_bam_t)(a + HL_BAM_HALF_TURN);
         int32_t dx, dy;
         hl_polar_to_xy(rd->range_mm, a, &dx, &dy);
-        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, normal, tol_mm,
+        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy,
+                        hl_reading_normal(rd, pose.theta), r->p.judge_gate, tol_mm,
                         r->p.verify_along_mm))
             count++;
-        else if (contradicted && crosses_surface(r, pose, rd->range_mm, a, normal))
+        /* a surface across the beam stops it whichever way it is tilted */
+        else if (contradicted && crosses_surface(r, pose, rd->range_mm, a,
+                                                 (hl_bam_t)(a + HL_BAM_HALF_TURN)))
             against++;
     }
     if (contradicted)

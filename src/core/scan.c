@@ -21,6 +21,7 @@ hl_status_t hl_scan_add(hl_scan_t *scan, hl_bam_t bearing, int32_t range_mm,
     r->range_mm = in_range ? range_mm : 0;
     r->transducer = transducer;
     r->valid = valid && in_range;
+    r->tilt = 0;
     return valid && !in_range ? HL_ERR_RANGE : HL_OK;
 }
 
@@ -40,7 +41,8 @@ hl_status_t hl_scan_check(const hl_scan_t *scan)
         return HL_ERR_RANGE;
     for (uint32_t i = 0; i < scan->count; i++) {
         const hl_reading_t *r = &scan->readings[i];
-        if (r->valid && (r->range_mm < 0 || r->range_mm > HL_RANGE_MAX_MM))
+        if (r->valid && (r->range_mm < 0 || r->range_mm > HL_RANGE_MAX_MM ||
+                         r->tilt <= -HL_BAM_QUARTER_TURN || r->tilt >= HL_BAM_QUARTER_TURN))
             return HL_ERR_RANGE;
     }
     return HL_OK;

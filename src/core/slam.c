@@ -15,6 +15,7 @@ struct hl_slam {
     uint32_t peak_avg;  /* average of recent peaks (votes x 256, before the prior), 0 = none
                            yet: tracked_peak */
     hl_scan_t *echoed;  /* the scan at its echo bearings, when the params ask for it */
+    hl_scan_t *fitted;  /* ... with its surface normals, when the params ask for them */
     hl_refiner_t *refiner;  /* when the params ask for refinement */
     hl_reloc_t *reloc;      /* the global search (hl_slam_relocalize) */
 };
@@ -40,6 +41,8 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->min_peak_ratio = 0.25;
     p->echo_bearings = true;
     hl_echo_params_default(&p->echo);
+    p->fit_normals = false;
+    hl_normals_params_default(&p->normals);
     p->refine = true;
     p->refine_heading = true;
     hl_refine_params_default(&p->refine_params);
@@ -80,6 +83,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "min_peak_ratio must be in 0..1";
     if (p->echo_bearings && hl_echo_params_error(&p->echo))
         return hl_echo_params_error(&p->echo);
+    if (p->fit_normals && hl_normals_params_error(&p->normals))
+        return hl_normals_params_error(&p->normals);
     if (p->refine && hl_refine_params_error(&p->refine_params))
         return hl_refine_params_error(&p->refine_params);
     return hl_reloc_params_error(&p->reloc);
@@ -100,11 +105,13 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->p.loc.max_map_vectors = p->map_capacity;
     s->loc = hl_loc_create(&lp);
     s->echoed = p->echo_bearings ? malloc(sizeof *s->echoed) : NULL;
+    s->fitted = p->fit_normals ? malloc(sizeof *s->fitted) : NULL;
     s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
     s->reloc = hl_reloc_create(&p->reloc, &lp);
     if (!s->map || hl_map_set_density(s->map, p->map_square_mm, p->map_per_place) != HL_OK ||
         hl_map_set_evidence(s->map, p->cull_choices, p->confirm_mm) != HL_OK ||
-        !s->loc || (p->echo_bearings && !s->echoed) || (p->refine && !s->refiner) ||
+        !s->loc || (p->echo_bearings && !s->echoed) ||
+        (p->fit_normals && !s->fitted) || (p->refine && !s->refiner) ||
         !s->reloc) {
         hl_slam_destroy(s);
         return NULL;
@@ -119,6 +126,7 @@ void hl_slam_destroy(hl_slam_t *s)
     hl_map_destroy(s->map);
     hl_loc_destroy(s->loc);
     free(s->echoed);
+    free(s->fitted);
     hl_refine_destroy(s->refiner);
     hl_reloc_destroy(s->reloc);
     free(s);
@@ -187,12 +195,15 @@ static hl_bam_t blend_heading(hl_bam_t predicted, hl_bam_t found, double gain)
     return (hl_bam_t)(predicted + (int32_t)lround(gain * d));
 }
 
-/* The scan as the localizer and the map see it. */
+/* The scan as the localizer and the map see it. Only a scan hl_scan_check refuses fails
+ * either step, and callers check. */
 static const hl_scan_t *prepared(hl_slam_t *s, const hl_scan_t *scan)
 {
-    if (!s->p.echo_bearings || hl_echo_correct(&s->p.echo, scan, s->echoed) != HL_OK)
-        return scan;    /* only a scan hl_scan_check refuses fails, and callers check */
-    return s->echoed;
+    if (s->p.echo_bearings && hl_echo_correct(&s->p.echo, scan, s->echoed) == HL_OK)
+        scan = s->echoed;
+    if (s->p.fit_normals && hl_normals_fit(&s->p.normals, scan, s->fitted) == HL_OK)
+        scan = s->fitted;
+    return scan;
 }
 
 /* Hough, then the optional refinement. */

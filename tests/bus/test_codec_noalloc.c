@@ -46,7 +46,7 @@ static void encode_all(fixture_t *f)
     f->scan.utime = 1;
     f->scan.scan.count = 128;
     for (int i = 0; i < 128; i++)
-        f->scan.scan.readings[i] = (hl_reading_t){ 1000 + i, (hl_bam_t)(i * 512), 3, true };
+        f->scan.scan.readings[i] = (hl_reading_t){ 1000 + i, (hl_bam_t)(i * 512), 3, true, 0 };
     hl_bus_odometry_t odo = { 2, { 10, 20, 30 }, 5, true };
     hl_bus_pose_t pose = { 3, 4, { 1, 2, 3 }, 1, 0.5f, 100, 50, 1000, 0.5f, { 4, 5, 6 }, 0.25f };
     for (int i = 0; i < 64; i++)

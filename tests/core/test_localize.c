@@ -266,6 +266,42 @@ static void test_groups_of_a_dense_map(void **state)
     free_fixture(f);
 }
 
+/* vote_once: a reading votes at most once into a cell, so a map holding every vector five
+ * times votes exactly as the map itself (the paper's pair votes would count each pair
+ * five times), and the peak is still the truth. */
+static void test_vote_once_counts_readings_not_pairs(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(0, 0, 45);
+    hl_vector_t *five = malloc(5 * f->n * sizeof *five);
+    for (uint32_t k = 0; k < 5; k++)
+        memcpy(five + k * f->n, f->map, f->n * sizeof *five);
+    hl_loc_params_t p = f->p;
+    p.vote_once = true;
+    p.max_map_vectors = 5 * f->n;
+    hl_localizer_t *once = hl_loc_create(&p), *pairs = hl_loc_create(&f->p);
+    assert_non_null(once);
+    assert_true(hl_loc_mem_bytes(once) > hl_loc_mem_bytes(f->loc));    /* the stamps */
+    hl_loc_query_t q = local_query(f->truth);
+    hl_loc_result_t one, many, plain;
+    assert_int_equal(hl_loc_run(once, f->map, f->n, &f->scan, &q, &one), HL_OK);
+    assert_int_equal(hl_loc_run(once, five, 5 * f->n, &f->scan, &q, &many), HL_OK);
+    assert_int_equal(hl_loc_run(pairs, f->map, f->n, &f->scan, &q, &plain), HL_OK);
+    assert_int_equal(many.votes, one.votes);
+    assert_int_equal(many.peak, one.peak);
+    assert_int_equal(many.pose.x_mm, one.pose.x_mm);
+    assert_int_equal(many.pose.theta, one.pose.theta);
+    assert_true(one.votes <= plain.votes);
+    assert_true(one.pairs == plain.pairs);
+    assert_within(one.pose.x_mm, f->truth.x_mm, 30);
+    assert_within(one.pose.y_mm, f->truth.y_mm, 30);
+    assert_within(hl_bam_diff(one.pose.theta, f->truth.theta), 0, hl_bam_from_deg(1.1));
+    hl_loc_destroy(once);
+    hl_loc_destroy(pairs);
+    free(five);
+    free_fixture(f);
+}
+
 /* reading_stride k: readings 0, k, 2k, ... vote, exactly as a scan holding only those. */
 static void test_reading_stride(void **state)
 {
@@ -441,6 +477,7 @@ int main(void)
         cmocka_unit_test(test_groups_of_one_point_are_exact),
         cmocka_unit_test(test_groups_of_a_dense_map),
         cmocka_unit_test(test_reading_stride),
+        cmocka_unit_test(test_vote_once_counts_readings_not_pairs),
         cmocka_unit_test(test_params_validated),
         cmocka_unit_test(test_prior_breaks_ambiguity),
         cmocka_unit_test(test_peak_is_before_the_prior),

@@ -229,9 +229,9 @@ static void encode_bus(void)
     s = (hl_bus_scan_t){ .utime = 8, .seq = 0, .odometry = { 5, 6, 7 } };
     put_msg("bus_scan", "no-readings", buf, hl_bus_encode_scan(&s, buf, sizeof buf));
     s.scan.count = 3;
-    s.scan.readings[0] = (hl_reading_t){ 1200, 0, 0, true };
-    s.scan.readings[1] = (hl_reading_t){ 0, 16384, -1, false };
-    s.scan.readings[2] = (hl_reading_t){ HL_RANGE_MAX_MM, 49152, 127, true };
+    s.scan.readings[0] = (hl_reading_t){ 1200, 0, 0, true, 0 };
+    s.scan.readings[1] = (hl_reading_t){ 0, 16384, -1, false, 0 };
+    s.scan.readings[2] = (hl_reading_t){ HL_RANGE_MAX_MM, 49152, 127, true, 0 };
     put_msg("bus_scan", "three", buf, hl_bus_encode_scan(&s, buf, sizeof buf));
 }
 

@@ -96,6 +96,7 @@ endef
 # without it the row says so in one line.
 define kidnap_real
 $(KIDNAP_OUT)/rows/$(1)_$(2).tsv: kidnap-always $(BUILD)/bin/hl-kidnap tools/realeval/$(2).conf \
+        $(wildcard tools/kidnap/$(2)-search.conf) \
         $(if $(wildcard $(DATA)/raw/$(1)-raw.log.gz),$(if $(wildcard $(DATA)/raw/$(1)-groundtruth.tum),\
              $(EVAL_OUT)/input/$(1)_$(2)_every.lcmlog))
 	$$(Q)$$(KIDNAP_ENV) sh tools/kidnap/run_row.sh real $(1) $(2)

@@ -13,17 +13,22 @@ namespace hlkid {
 
 namespace {
 
+bool prepares(const hl_slam_params_t &p)
+{
+    return p.echo_bearings || p.fit_normals;
+}
 
 }  // namespace
 
 TruthMapper::TruthMapper(const hl_slam_params_t &p, const hlexp::Soundings &log)
     : p_(p), log_(log), map_(hl_map_create(p.map_capacity, p.seed))
 {
-    // Every scan as the slam puts it into its map: at its echo bearings when the
-    // parameters estimate them (the experiments' helper; the slam's own is private).
+    // Every scan as the slam puts it into its map: at its echo bearings and with its
+    // surface normals when the parameters estimate them (the experiments' helper; the
+    // slam's own is private).
     hlexp::Mode mode{};
     mode.slam = p;
-    placed_.resize(p.echo_bearings ? log.size() : 0);
+    placed_.resize(prepares(p) ? log.size() : 0);
     for (size_t i = 0; i < placed_.size(); i++)
         placed_[i] = hlexp::as_localized(mode, log[i]->msg.scan);
     // The map as hl_slam_create makes it: capacity, culling seed, density bound, cull.
@@ -48,7 +53,7 @@ bool TruthMapper::make(hl_pose_t centre, double exclude_mm, std::string *err)
     // maps before it.
     hl_map_restore(map_, nullptr, 0, 0, fresh_);
     for (size_t i = 0; i < log_.size(); i++) {
-        const hl_scan_t &scan = p_.echo_bearings ? placed_[i] : log_[i]->msg.scan;
+        const hl_scan_t &scan = prepares(p_) ? placed_[i] : log_[i]->msg.scan;
         if (hlexp::distance_mm(log_[i]->truth, centre) > exclude_mm &&
             hl_map_add_scan(map_, &scan, log_[i]->truth, nullptr) != HL_OK) {
             *err = "scan " + std::to_string(log_[i]->msg.seq) + ": cannot map it";

@@ -13,7 +13,8 @@
 #                                EVAL_OUT/input/BUILDING_INPUT_every.lcmlog (made by
 #                                tools/realeval/realeval.mk's rule), KIDNAP_TRIALS_REAL
 #                                test scans, each relocalized in a map of the others that
-#                                leaves out those within 2 m (tools/realeval/INPUT.conf)
+#                                leaves out those within 2 m (tools/realeval/INPUT.conf,
+#                                then tools/kidnap/INPUT-search.conf when there is one)
 #
 # A row is one line in KIDNAP_OUT/rows/WORLD_INPUT.tsv (hl-kidnap's columns), with each
 # trial in KIDNAP_OUT/trials/WORLD_INPUT.tsv. Environment: BUILD, DATA, EVAL_OUT,
@@ -49,6 +50,14 @@ lasterr() { # lasterr FILE: its last line that is not a syslog info/debug line
     l=$(grep -v '^<[67]>' "$1" 2>/dev/null | tail -n 1)
     [ -n "$l" ] || l=$(tail -n 1 "$1" 2>/dev/null)
     echo "$l" | sed 's/^<[0-7]>//'
+}
+
+conf_sets() {   # conf_sets FILE: its keys as --set options ([section] key = value)
+    awk '/^[[:space:]]*([;#]|$)/ { next }
+         /^[[:space:]]*\[/ { gsub(/[][[:space:]]/, ""); sect = $0; next }
+         { k = $0; sub(/=.*/, "", k); gsub(/[[:space:]]/, "", k)
+           v = $0; sub(/^[^=]*=[[:space:]]*/, "", v); sub(/[[:space:]]+$/, "", v)
+           printf "--set %s.%s=%s\n", sect, k, v }' "$1"
 }
 
 [ $# -ge 2 ] || usage
@@ -121,6 +130,10 @@ sim | real)
         [ -s "$in_log" ] || die data "no import $in_log"
         src="--log $in_log"
         conf=$HERE/../realeval/$input.conf
+        # the search's own settings for this input, on top of the tracking's
+        if [ -r "$HERE/$input-search.conf" ]; then
+            src="$src $(conf_sets "$HERE/$input-search.conf" | tr '\n' ' ')"
+        fi
     fi
     row=$OUT/rows/${w}_$input.tsv
     rm -f "$row"
