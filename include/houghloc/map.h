@@ -80,6 +80,20 @@ hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_pl
 hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm);
 
 /**
+ * Culls by crowding (not in the paper): a full map drops, for each new vector, the most
+ * crowded of @p choices vectors drawn at random: the one with the most vectors in its
+ * density-bound place and the 8 squares around it, seen from the same side. The capacity
+ * then spreads over every surface seen rather than over how often each was seen, so a
+ * corridor driven once keeps its walls in a map of a whole building (a laser's: the
+ * global search needs every place, docs/kidnap.md). Needs the density bound
+ * (hl_map_set_density first; turning the bound off turns this off). Replaces the
+ * evidence cull. Deterministic like it.
+ * @param choices 2 .. HL_MAP_MAX_CHOICES
+ * @return HL_OK; HL_ERR_RANGE (bad choices, or no density bound); HL_ERR_ARG on NULL.
+ */
+hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices);
+
+/**
  * Adds one vector, culling at random when full (hl_map_set_evidence: by evidence).
  * @return HL_OK, HL_ERR_RANGE when the vector's fields are out of range (not added).
  */

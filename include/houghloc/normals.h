@@ -15,7 +15,9 @@
  * is the line's normal facing the sensor. The result is kept as the reading's tilt (scan.h,
  * the normal's turn from the beam's reverse), so the rest of the pipeline is unchanged.
  * Readings that do not lie on a line (corners, clutter, a lone return) or whose surface is
- * seen at grazing incidence are marked invalid: they have no tangent to offer.
+ * seen at grazing incidence are marked invalid: they have no tangent to offer. Tracking
+ * wants them kept, square to their beams (keep_unfitted: the global search is better
+ * without them, tracking worse; docs/kidnap.md).
  *
  * Readings are taken to be in bearing order, as a scanner gives them. No allocation;
  * O(n * w) for n readings and a window of w.
@@ -44,6 +46,9 @@ typedef struct hl_normals_params {
                                    the reading has no surface (a corner); default 20 */
     hl_bam_t max_tilt;          /* a surface turned farther than this from square to the
                                    beam is seen too obliquely to trust; default 75 deg */
+    bool keep_unfitted;         /* a reading with no line stays, square to its beam (tilt
+                                   0, the paper's tangent), instead of being dropped;
+                                   default false */
 } hl_normals_params_t;
 
 /** Fills @p p with the defaults above. */
@@ -53,8 +58,9 @@ const char *hl_normals_params_error(const hl_normals_params_t *p);
 
 /**
  * Copies @p in to @p out with every valid reading's tilt set from the line through it and
- * its neighbours; a reading with no such line becomes invalid. Bearings, ranges and order
- * are unchanged. @p in and @p out may not overlap.
+ * its neighbours; a reading with no such line becomes invalid (or keeps tilt 0 with
+ * keep_unfitted). Bearings, ranges and order are unchanged. @p in and @p out may not
+ * overlap.
  * @return HL_OK; HL_ERR_ARG for NULL, overlap or invalid parameters; HL_ERR_RANGE when
  *         @p in fails hl_scan_check.
  */

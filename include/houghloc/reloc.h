@@ -63,6 +63,9 @@ typedef struct hl_reloc_params {
     hl_mm_t coarse_blur_mm;     /* default 100 */
     hl_mm_t coarse_group_mm;    /* 0, or 8..1000: stage 2 votes with the map merged into
                                    squares this wide (localize.h, group_mm); default 0 */
+    uint16_t coarse_stride;     /* stage 2 votes with readings 0, k, 2k, ... only (a laser's
+                                   hundreds pin a coarse peak with a fraction; stage 3 and
+                                   the judge use them all); 0 or 1 (the default): all */
     bool coarse_vote_once;      /* stage 2 counts readings, not pairs (localize.h,
                                    vote_once); default false */
     uint16_t peaks_per_heading; /* 1..8; default 8 (fewer miss a place whose coarse
@@ -86,10 +89,23 @@ typedef struct hl_reloc_params {
                                    stands for a stretch of surface); default 60 */
     hl_bam_t judge_gate;        /* ... and whose normal agrees within this; default 90 deg
                                    (seen from the same side) */
+    hl_mm_t short_mm;           /* a reading not explained whose beam stopped short of a
+                                   mapped surface facing it, 300 mm to this far beyond its
+                                   echo, counts against like one whose beam passed through
+                                   a surface: something unmapped stood in front of a wall
+                                   the map holds, which at a wrong pose is the rule and at
+                                   the right one the exception (a laser: docs/kidnap.md);
+                                   0 (the default) or 301..10000 */
     double max_ratio;           /* found when runner-up score <= max_ratio x score;
                                    default 0.6 */
     double min_explained_pct;   /* found only when the answer explains at least this
                                    share of the valid readings; default 35 */
+    double max_edge_ratio;      /* also found when the readings that favour the
+                                   runner-up number at most this many times those that
+                                   favour the answer (result's runner_edge, edge), and
+                                   those are a tenth of the readings or more: the readings
+                                   both explain tell nothing apart; 0..1, default 0 (off:
+                                   the ratio of scores alone) */
 } hl_reloc_params_t;
 
 /** Fills @p p with the defaults above. */
@@ -106,6 +122,11 @@ typedef struct hl_reloc_result {
     bool have_runner_up;
     hl_pose_t runner_up;        /* the best distinct other pose */
     uint32_t runner_up_score;   /* readings it explains; 0 if none */
+    uint32_t edge;              /* readings that favour the answer over the runner-up: +1
+                                   for each explained at the answer and not at the
+                                   runner-up or contradicting the runner-up and not the
+                                   answer, +2 for both; = score with no runner-up */
+    uint32_t runner_edge;       /* ... the runner-up over the answer */
     uint16_t headings_tried;    /* stage 1 candidates searched */
     uint16_t hypotheses_tried;  /* stage 3 searches run */
 } hl_reloc_result_t;

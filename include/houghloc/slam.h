@@ -74,6 +74,9 @@ typedef struct hl_slam_params {
                                    vectors drawn at random; 1 = uniform (paper); default 1 */
     hl_mm_t confirm_mm;         /* ... a new vector confirms an old one this close;
                                    default 100 */
+    bool cull_crowded;          /* with cull_choices > 1: drop the most crowded of them
+                                   instead (map.h, hl_map_set_crowding; needs
+                                   map_per_place); default false */
     uint64_t seed;              /* map culling seed; default 1 */
     double heading_gain;        /* of an accepted localization's heading correction, the
                                    part taken (the rest stays with the odometry): a
@@ -110,6 +113,11 @@ typedef struct hl_slam_params {
 } hl_slam_params_t;
 
 void hl_slam_params_default(hl_slam_params_t *p);
+
+/** Sets @p map's density bound and cull as hl_slam_create sets its own map's (for tools
+ *  that build maps beside a slam). @return HL_OK or what the map's setter returned. */
+hl_status_t hl_slam_setup_map(hl_map_t *map, const hl_slam_params_t *p);
+
 /** A one-line description of what is wrong, or NULL. */
 const char *hl_slam_params_error(const hl_slam_params_t *p);
 

@@ -299,8 +299,9 @@ static inline bool gated_slices(const gate_t *g, int32_t d0, int32_t *lo, int32_
  * sparse map) takes the short way. What the loop reads besides the candidate is copied
  * to locals first: the compiler cannot tell that the stores into the raster leave the
  * context alone, and would reload it for every vote. */
-static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
-                            hl_bam_t tn0, const gate_t *gate, uint16_t *votes)
+static inline void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
+                                      hl_bam_t tn0, const gate_t *gate, uint16_t *votes,
+                                      const bool once)
 {
     const hl_vgroups_t *g = &loc->groups;
     const size_t plane = (size_t)c->nx * c->ny;
@@ -351,14 +352,15 @@ static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
             /* floor(v / (256 cell)) == floor(floor(v / 256) / cell) */
             uint32_t ix = (uint32_t)(((uint64_t)(vx >> 8) * recip) >> 32);
             uint32_t iy = (uint32_t)(((uint64_t)(vy >> 8) * recip) >> 32);
-            size_t at = (size_t)(slice - votes) + iy * nx + ix;
+            uint16_t *cell = slice + iy * nx + ix;
             int32_t weight = w;
-            if (stamps) {               /* vote_once: has this reading voted here? */
-                weight = stamps[at] != tag;
-                stamps[at] = tag;
+            if (once) {                 /* vote_once: has this reading voted here? */
+                uint16_t *seen = stamps + (cell - votes);
+                weight = *seen != tag;
+                *seen = tag;
             }
-            uint32_t sum = votes[at] + (uint32_t)weight;
-            votes[at] = (uint16_t)(sum < HL_VOTE_MAX ? sum : HL_VOTE_MAX);
+            uint32_t sum = *cell + (uint32_t)weight;
+            *cell = (uint16_t)(sum < HL_VOTE_MAX ? sum : HL_VOTE_MAX);
             nvotes += (uint32_t)weight;
         }
         if (m1 - m0 > 1)
@@ -366,6 +368,17 @@ static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
     }
     c->votes += nvotes;
     c->pairs += npairs;
+}
+
+/* The loop twice, with and without vote_once, so that the common case carries no test of
+ * it per vote (the compiler folds the constant). */
+static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
+                            hl_bam_t tn0, const gate_t *gate, uint16_t *votes)
+{
+    if (loc->stamps)
+        vote_candidates_as(loc, c, ncand, tn0, gate, votes, true);
+    else
+        vote_candidates_as(loc, c, ncand, tn0, gate, votes, false);
 }
 
 static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface_t *s,

@@ -25,6 +25,8 @@ struct hl_map {
                                what follows unallocated) */
     int32_t confirm_mm;
     uint16_t *support;      /* [capacity] how many later readings confirmed each vector */
+    bool crowd;             /* cull the most crowded of `choices` instead (needs the
+                               density bound's index; support and near unallocated) */
     hl_cellhash_t near;     /* the map by cells of confirm_mm, rebuilt for each scan */
 };
 
@@ -76,6 +78,7 @@ hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm
     free(map->support);
     map->support = NULL;
     map->choices = 1;
+    map->crowd = false;
     if (choices == 1)
         return HL_OK;
     map->support = calloc(map->capacity, sizeof *map->support);
@@ -127,6 +130,57 @@ static uint32_t least_confirmed(hl_map_t *map)
     return victim;
 }
 
+hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices)
+{
+    if (!map)
+        return HL_ERR_ARG;
+    if (choices < 2 || choices > HL_MAP_MAX_CHOICES || !map->per_place)
+        return HL_ERR_RANGE;
+    hl_status_t st = hl_map_set_evidence(map, 1, 0);    /* one cull at a time */
+    if (st != HL_OK)
+        return st;
+    map->choices = choices;
+    map->crowd = true;
+    return HL_OK;
+}
+
+/* How many map vectors share the place of slot @p c or one of the 8 squares around it,
+ * seen from the same side (the density bound's places, mapsq.h). */
+static uint32_t crowding(const hl_map_t *map, uint32_t c)
+{
+    int32_t side = map->places.square_mm;
+    uint32_t n = 0;
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            hl_vector_t probe = map->vectors[c];
+            int64_t x = (int64_t)probe.x_mm + dx * side, y = (int64_t)probe.y_mm + dy * side;
+            if (x < -HL_COORD_MAX_MM || x > HL_COORD_MAX_MM || y < -HL_COORD_MAX_MM ||
+                y > HL_COORD_MAX_MM)
+                continue;
+            probe.x_mm = (hl_mm_t)x;
+            probe.y_mm = (hl_mm_t)y;
+            n += hl_mapsq_count(&map->places, map->vectors, &probe);
+        }
+    return n;
+}
+
+/* The crowding cull's victim: the most crowded of `choices` vectors drawn at random (the
+ * first drawn among equals). */
+static uint32_t most_crowded(hl_map_t *map)
+{
+    uint32_t victim = hl_rng_below(&map->rng, map->count);
+    uint32_t most = crowding(map, victim);
+    for (uint32_t k = 1; k < map->choices; k++) {
+        uint32_t c = hl_rng_below(&map->rng, map->count);
+        uint32_t n = crowding(map, c);
+        if (n > most) {
+            victim = c;
+            most = n;
+        }
+    }
+    return victim;
+}
+
 hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place)
 {
     if (!map)
@@ -136,6 +190,10 @@ hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_pl
         return HL_ERR_RANGE;
     hl_mapsq_free(&map->places);
     map->per_place = 0;
+    if (map->crowd) {       /* the crowding cull reads the places: back to uniform */
+        map->crowd = false;
+        map->choices = 1;
+    }
     if (per_place == 0)
         return HL_OK;
     if (!hl_mapsq_init(&map->places, map->capacity, square_mm)) {
@@ -194,7 +252,7 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
         return HL_OK;
     }
     if (map->choices > 1) {
-        replace(map, least_confirmed(map), v);
+        replace(map, map->crowd ? most_crowded(map) : least_confirmed(map), v);
         return HL_OK;
     }
     /* Full: drop one of the capacity + 1 candidates uniformly at random (the paper's
@@ -241,7 +299,7 @@ hl_status_t hl_map_add_scan(hl_map_t *map, const hl_scan_t *scan, hl_pose_t pose
     if (!hl_pose_in_range(pose) || scan->count > HL_SCAN_MAX_READINGS)
         return HL_ERR_RANGE;
     uint32_t n = 0;
-    if (map->choices > 1) {
+    if (map->choices > 1 && !map->crowd) {
         /* The scan's vectors first confirm what the map holds, then join it. */
         hl_vector_t v[HL_SCAN_MAX_READINGS];
         uint32_t nv = 0;

@@ -15,6 +15,7 @@ void hl_normals_params_default(hl_normals_params_t *p)
     p->min_points = 4;
     p->max_residual_mm = 20;
     p->max_tilt = hl_bam_from_deg(75.0);
+    p->keep_unfitted = false;
 }
 
 const char *hl_normals_params_error(const hl_normals_params_t *p)
@@ -106,8 +107,8 @@ hl_status_t hl_normals_fit(const hl_normals_params_t *p, const hl_scan_t *in, hl
     out->count = in->count;
     for (uint32_t i = 0; i < in->count; i++) {
         out->readings[i] = in->readings[i];
-        if (in->readings[i].valid)
-            out->readings[i].valid = fit_one(p, in, i, px, py, &out->readings[i].tilt);
+        if (in->readings[i].valid && !fit_one(p, in, i, px, py, &out->readings[i].tilt))
+            out->readings[i].valid = p->keep_unfitted;
     }
     return HL_OK;
 }

@@ -33,6 +33,7 @@ struct hl_reloc {
     hl_cellhash_t near;         /* the map by cells of verify_mm, for explained() */
     hypothesis_t hyp[HL_RELOC_MAX_HEADINGS * HL_RELOC_MAX_PEAKS];
     hypothesis_t fine_hyp[HL_RELOC_MAX_HYPOTHESES];
+    int8_t verdict_a[HL_SCAN_MAX_READINGS], verdict_b[HL_SCAN_MAX_READINGS];   /* edges() */
 };
 
 void hl_reloc_params_default(hl_reloc_params_t *p)
@@ -75,6 +76,8 @@ const char *hl_reloc_params_error(const hl_reloc_params_t *p)
         return "reloc coarse_blur_mm must be in 0..10 coarse cells";
     if (p->coarse_group_mm != 0 && (p->coarse_group_mm < 8 || p->coarse_group_mm > 1000))
         return "reloc coarse_group_mm must be 0 or in 8..1000";
+    if (p->coarse_stride > 64)
+        return "reloc coarse_stride must be in 0..64";
     if (p->peaks_per_heading < 1 || p->peaks_per_heading > HL_RELOC_MAX_PEAKS)
         return "reloc peaks_per_heading must be in 1..8";
     if (p->coarse_max_cells < 1 || p->coarse_max_cells > (1u << 26))
@@ -89,12 +92,16 @@ const char *hl_reloc_params_error(const hl_reloc_params_t *p)
         return "reloc verify_mm must be in 1..1000";
     if (p->verify_along_mm < 1 || p->verify_along_mm > 1000)
         return "reloc verify_along_mm must be in 1..1000";
+    if (p->short_mm != 0 && (p->short_mm <= 300 || p->short_mm > 10000))
+        return "reloc short_mm must be 0 or in 301..10000";
     if (p->judge_gate > HL_BAM_HALF_TURN)
         return "reloc judge_gate must be at most 180 degrees";
     if (!(p->min_explained_pct >= 0.0 && p->min_explained_pct <= 100.0))
         return "reloc min_explained_pct must be in 0..100";
     if (!(p->max_ratio > 0.0 && p->max_ratio <= 1.0))
         return "reloc max_ratio must be in (0, 1]";
+    if (!(p->max_edge_ratio >= 0.0 && p->max_edge_ratio <= 1.0))
+        return "reloc max_edge_ratio must be in 0..1";
     return NULL;
 }
 
@@ -143,7 +150,7 @@ hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *f
     r->coarse_p.max_cells = p->coarse_max_cells;
     r->coarse_p.group_mm = p->coarse_group_mm;
     r->coarse_p.vote_once = p->coarse_vote_once;
-    r->coarse_p.reading_stride = 1;
+    r->coarse_p.reading_stride = p->coarse_stride > 0 ? p->coarse_stride : 1;
     r->xy_cells = p->coarse_max_cells;
     r->coarse = hl_loc_create(&r->coarse_p);
     r->fine = hl_loc_create(&r->fine_p);
@@ -306,40 +313,56 @@ static bool facing_near(const hl_reloc_t *r, int64_t wx, int64_t wy, hl_bam_t no
     return false;
 }
 
-/* Whether a map surface facing the sensor lies across the beam, well short of where the
- * reading ended: the beam would have echoed from it. Looked for every cell along the beam
- * from 300 mm to 300 mm short of the echo. Any surface facing the sensor side stops a
- * beam, whatever the judge's gate. */
-static bool crosses_surface(const hl_reloc_t *r, hl_pose_t pose, int32_t range, hl_bam_t a,
-                            hl_bam_t normal)
+/* Whether a map surface facing the sensor lies across the beam at @p pose's bearing @p a,
+ * between @p from_mm and @p to_mm from the sensor; looked for every verify_mm. Any
+ * surface facing the sensor's side stops a beam, whatever the judge's gate. */
+static bool surface_on_beam(const hl_reloc_t *r, hl_pose_t pose, hl_bam_t a, int32_t from_mm,
+                            int32_t to_mm)
 {
-    const int32_t margin = 300;
     int32_t step = r->p.verify_mm;
-    for (int32_t d = margin; d < range - margin; d += step) {
+    hl_bam_t facing = (hl_bam_t)(a + HL_BAM_HALF_TURN);
+    for (int32_t d = from_mm; d < to_mm; d += step) {
         int32_t dx, dy;
         hl_polar_to_xy(d, a, &dx, &dy);
-        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, normal,
+        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, facing,
                         HL_BAM_QUARTER_TURN, step / 2, r->p.verify_along_mm))
             return true;
     }
     return false;
 }
 
+/* Whether reading @p rd, not explained at @p pose, contradicts the map: its beam passed
+ * through a mapped surface (from 300 mm out to 300 mm short of the echo: it would have
+ * echoed there), or, with short_mm, it stopped short of one lying within short_mm beyond
+ * the echo (something the map does not hold stood in front of a surface it does: at a
+ * wrong pose that is the common case, at the right one a person or a moved chair). */
+static bool contradicts(const hl_reloc_t *r, hl_pose_t pose, const hl_reading_t *rd)
+{
+    const int32_t margin = 300;
+    hl_bam_t a = (hl_bam_t)(pose.theta + rd->bearing);
+    if (surface_on_beam(r, pose, a, margin, rd->range_mm - margin))
+        return true;
+    return r->p.short_mm > 0 &&
+           surface_on_beam(r, pose, a, rd->range_mm + margin, rd->range_mm + r->p.short_mm);
+}
+
 /*
  * How well @p scan, placed at @p pose, agrees with the map: the valid readings that land
  * within @p tol_mm of a map vector whose normal agrees with theirs within the normal gate
- * (explained), less those whose beam passes through such a surface well before their
- * echo (contradicted). Votes are a poor score across the whole map: a place crowded with
+ * (explained), less those that contradict the map (contradicts(): a beam through a
+ * mapped surface, or stopped short of one). Votes are a poor score across the whole map: a place crowded with
  * map vectors (a cluttered corner) collects many for any heading, as each reading votes
  * once per vector it pairs with; a reading counts once here, and the beams that would
  * have been stopped by a wall of the map count against.
  */
-static uint32_t explained(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t pose,
-                          int32_t tol_mm, uint32_t *contradicted)
+static uint32_t explained_each(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t pose,
+                               int32_t tol_mm, uint32_t *contradicted, int8_t *verdict)
 {
     uint32_t count = 0, against = 0;
     for (uint32_t i = 0; i < scan->count; i++) {
         const hl_reading_t *rd = &scan->readings[i];
+        if (verdict)
+            verdict[i] = 0;
         if (!rd->valid)
             continue;
         hl_bam_t a = (hl_bam_t)(pose.theta + rd->bearing);
@@ -347,16 +370,45 @@ static uint32_t explained(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t 
         hl_polar_to_xy(rd->range_mm, a, &dx, &dy);
         if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy,
                         hl_reading_normal(rd, pose.theta), r->p.judge_gate, tol_mm,
-                        r->p.verify_along_mm))
+                        r->p.verify_along_mm)) {
             count++;
-        /* a surface across the beam stops it whichever way it is tilted */
-        else if (contradicted && crosses_surface(r, pose, rd->range_mm, a,
-                                                 (hl_bam_t)(a + HL_BAM_HALF_TURN)))
+            if (verdict)
+                verdict[i] = 1;
+        } else if (contradicted && contradicts(r, pose, rd)) {
             against++;
+            if (verdict)
+                verdict[i] = -1;
+        }
     }
     if (contradicted)
         *contradicted = against;
     return count;
+}
+
+static uint32_t explained(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t pose,
+                          int32_t tol_mm, uint32_t *contradicted)
+{
+    return explained_each(r, scan, pose, tol_mm, contradicted, NULL);
+}
+
+/* How the answer and the runner-up differ reading by reading: each reading's verdict
+ * (+1 explained, -1 contradicting, 0 neither) at one pose less at the other, summed
+ * where the answer is better (@p edge) and where the runner-up is (@p runner_edge). The
+ * readings both explain, a long wall's, say nothing of which is right. */
+static void edges(hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t a, hl_pose_t b,
+                  uint32_t *edge, uint32_t *runner_edge)
+{
+    uint32_t against;
+    explained_each(r, scan, a, r->p.verify_mm, &against, r->verdict_a);
+    explained_each(r, scan, b, r->p.verify_mm, &against, r->verdict_b);
+    *edge = *runner_edge = 0;
+    for (uint32_t i = 0; i < scan->count; i++) {
+        int32_t d = r->verdict_a[i] - r->verdict_b[i];
+        if (d > 0)
+            *edge += (uint32_t)d;
+        else
+            *runner_edge += (uint32_t)-d;
+    }
 }
 
 static void sort_by_explained(hypothesis_t *h, uint32_t n)
@@ -438,8 +490,14 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
             result->runner_up_score = r->fine_hyp[i].explained;
             break;
         }
+    if (result->have_runner_up)
+        edges(r, scan, result->pose, result->runner_up, &result->edge, &result->runner_edge);
+    else
+        result->edge = result->score;
     result->found = result->explained_pct >= r->p.min_explained_pct &&
-                    (double)result->runner_up_score <= r->p.max_ratio * result->score;
+                    ((double)result->runner_up_score <= r->p.max_ratio * result->score ||
+                     (r->p.max_edge_ratio > 0.0 && 10u * result->edge >= nvalid &&
+                      (double)result->runner_edge <= r->p.max_edge_ratio * result->edge));
     return HL_OK;
 }
 

@@ -28,6 +28,7 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->map_square_mm = 50;
     p->cull_choices = 1;
     p->confirm_mm = 100;
+    p->cull_crowded = false;
     p->seed = 1;
     p->heading_gain = 1.0;
     p->guarded = true;
@@ -65,6 +66,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "cull_choices must be in 1..64";
     if (p->confirm_mm < 1 || p->confirm_mm > HL_MAP_MAX_SQUARE_MM)
         return "confirm_mm must be in 1..1000";
+    if (p->cull_crowded && (p->cull_choices < 2 || p->map_per_place == 0))
+        return "cull_crowded needs cull_choices of 2 or more and a map_per_place bound";
     hl_loc_params_t lp = p->loc;    /* as hl_slam_create makes the localizer */
     lp.max_map_vectors = p->map_capacity;
     const char *e = hl_loc_params_error(&lp);
@@ -90,6 +93,15 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
     return hl_reloc_params_error(&p->reloc);
 }
 
+hl_status_t hl_slam_setup_map(hl_map_t *map, const hl_slam_params_t *p)
+{
+    hl_status_t st = hl_map_set_density(map, p->map_square_mm, p->map_per_place);
+    if (st == HL_OK)
+        st = p->cull_crowded ? hl_map_set_crowding(map, p->cull_choices)
+                             : hl_map_set_evidence(map, p->cull_choices, p->confirm_mm);
+    return st;
+}
+
 hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
 {
     if (hl_slam_params_error(p))
@@ -108,8 +120,7 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->fitted = p->fit_normals ? malloc(sizeof *s->fitted) : NULL;
     s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
     s->reloc = hl_reloc_create(&p->reloc, &lp);
-    if (!s->map || hl_map_set_density(s->map, p->map_square_mm, p->map_per_place) != HL_OK ||
-        hl_map_set_evidence(s->map, p->cull_choices, p->confirm_mm) != HL_OK ||
+    if (!s->map || hl_slam_setup_map(s->map, p) != HL_OK ||
         !s->loc || (p->echo_bearings && !s->echoed) ||
         (p->fit_normals && !s->fitted) || (p->refine && !s->refiner) ||
         !s->reloc) {

@@ -416,6 +416,66 @@ static void test_evidence_cull_arguments(void **state)
     hl_map_destroy(m);
 }
 
+/* Share of a 300-vector map (density bound: 2 per 50 mm square) left on a wall seen by
+ * the first scan only, after 100 more scans of a wall elsewhere seen from many places
+ * (each scan's readings along 4 m of it, shifted so they land in fresh squares). */
+static double first_wall_share(bool crowded)
+{
+    hl_map_t *m = hl_map_create(300, 9);
+    assert_non_null(m);
+    assert_int_equal(hl_map_set_density(m, 50, 2), HL_OK);
+    if (crowded)
+        assert_int_equal(hl_map_set_crowding(m, 8), HL_OK);
+    hl_scan_t *s = calloc(1, sizeof *s);
+    for (int k = 0; k <= 100; k++) {
+        hl_scan_clear(s);
+        for (int i = 0; i < 40; i++)    /* 40 readings, 2 m ahead, +-39 degrees */
+            assert_int_equal(hl_scan_add(s, hl_bam_from_deg(-39.0 + 2.0 * i), 2000, -1, true),
+                             HL_OK);
+        /* scan 0 sees the first wall from (0, 0); the others a second one, 20 m away,
+         * from positions 7 mm apart */
+        hl_pose_t at = k == 0 ? (hl_pose_t){ 0, 0, 0 } : (hl_pose_t){ 20000 + 7 * k, 0, 0 };
+        assert_int_equal(hl_map_add_scan(m, s, at, NULL), HL_OK);
+    }
+    assert_int_equal(hl_map_count(m), 300);
+    const hl_vector_t *v = hl_map_vectors(m);
+    int first = 0;
+    for (uint32_t i = 0; i < 300; i++)
+        first += v[i].x_mm < 10000;
+    free(s);
+    hl_map_destroy(m);
+    return first / 40.0;
+}
+
+/* The crowding cull keeps a surface seen once where the uniform cull forgets it: the map
+ * sheds the much-seen wall's crowded squares first. */
+static void test_crowding_cull_keeps_what_was_seen_once(void **state)
+{
+    (void)state;
+    double uniform = first_wall_share(false), crowded = first_wall_share(true);
+    assert_true(uniform < 0.2);     /* 0.03 here */
+    assert_true(crowded > 0.6);     /* 0.78 here */
+}
+
+static void test_crowding_cull_arguments(void **state)
+{
+    (void)state;
+    hl_map_t *m = hl_map_create(10, 1);
+    assert_int_equal(hl_map_set_crowding(NULL, 4), HL_ERR_ARG);
+    assert_int_equal(hl_map_set_crowding(m, 4), HL_ERR_RANGE);      /* no density bound */
+    assert_int_equal(hl_map_set_density(m, 50, 2), HL_OK);
+    assert_int_equal(hl_map_set_crowding(m, 1), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_crowding(m, HL_MAP_MAX_CHOICES + 1), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_crowding(m, 4), HL_OK);
+    assert_int_equal(hl_map_set_density(m, 50, 0), HL_OK);          /* off: uniform again */
+    for (int i = 0; i < 30; i++) {
+        hl_vector_t v = vec(i * 100, 0);
+        assert_int_equal(hl_map_add(m, &v), HL_OK);
+    }
+    assert_int_equal(hl_map_count(m), 10);
+    hl_map_destroy(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -433,6 +493,8 @@ int main(void)
         cmocka_unit_test(test_density_bound_restores_exactly),
         cmocka_unit_test(test_evidence_cull_keeps_surfaces),
         cmocka_unit_test(test_evidence_cull_arguments),
+        cmocka_unit_test(test_crowding_cull_keeps_what_was_seen_once),
+        cmocka_unit_test(test_crowding_cull_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

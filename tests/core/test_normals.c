@@ -94,7 +94,8 @@ static void test_map_vector_takes_the_fitted_normal(void **state)
 
 /* A right-angled corner: the reading at its apex lies on no line (its neighbours bend
  * 90 degrees) and is dropped; readings a few beams away along either wall are kept. A
- * lone return among no-returns has too few points. */
+ * lone return among no-returns has too few points. With keep_unfitted both stay, at
+ * tilt 0. */
 static void test_corner_and_lone_return_are_dropped(void **state)
 {
     (void)state;
@@ -122,6 +123,14 @@ static void test_corner_and_lone_return_are_dropped(void **state)
     assert_true(out.readings[apex + 6].valid);
     assert_false(out.readings[91 + 10].valid);
     assert_int_equal(hl_scan_check(&out), HL_OK);
+    /* keep_unfitted: the same readings stay, square to their beams (the paper's tangent) */
+    p.keep_unfitted = true;
+    assert_int_equal(hl_normals_fit(&p, &in, &out), HL_OK);
+    assert_true(out.readings[apex].valid);
+    assert_int_equal(out.readings[apex].tilt, 0);
+    assert_true(out.readings[91 + 10].valid);
+    assert_int_equal(out.readings[91 + 10].tilt, 0);
+    assert_int_equal(hl_scan_valid_count(&out), hl_scan_valid_count(&in));
 }
 
 /* A grazing wall, y = 200 mm, seen by beams 6 to 8 degrees from it: its normal is 82 to 84

@@ -65,6 +65,8 @@ static void test_finds_pose_with_heading_unknown(void **state)
             assert_int_equal(hl_reloc_run(f->reloc, f->map, f->n, &f->scan, &r), HL_OK);
             assert_true(r.headings_tried >= 1 && r.hypotheses_tried >= 1);
             bool ok = near_pose(r.pose, truth, 100, 3.0);
+            if (r.found && r.have_runner_up)    /* a clear answer: its readings win */
+                assert_true(r.edge > r.runner_edge);
             found += r.found;
             right += r.found && ok;
             wrong += r.found && !ok;
@@ -105,6 +107,51 @@ static void test_symmetric_room_is_ambiguous(void **state)
         matched += near_pose(r.runner_up, m, 150, 3.0);
     }
     assert_int_equal(matched, 2);
+    /* the mirror poses explain the same readings: no edge either way, and an edge rule
+     * does not call it found */
+    assert_true(r.edge < 13 && r.runner_edge < 13);
+    hl_reloc_params_t p;
+    hl_reloc_params_default(&p);
+    p.headings = 18;
+    p.max_edge_ratio = 0.4;
+    hl_loc_params_t fine;
+    hl_loc_params_default(&fine);
+    hl_reloc_t *edgy = hl_reloc_create(&p, &fine);
+    hl_reloc_result_t e;
+    assert_int_equal(hl_reloc_run(edgy, f->map, f->n, &f->scan, &e), HL_OK);
+    assert_false(e.found);
+    hl_reloc_destroy(edgy);
+    free_fixture(f);
+}
+
+/* short_mm: at a pose 1 m short of where the scan was taken, the readings towards the
+ * far wall stop 1 m before it; with short_mm they count against, and the pose's score
+ * falls, while the true pose's (every reading ends on a wall) stays. */
+static void test_short_readings_count_against(void **state)
+{
+    (void)state;
+    fixture_t *f = make_fixture(6000, 6000, 0, 5);
+    hl_pose_t truth = { -2000 + 3500, 1000 + 2500, hl_bam_from_deg(10.0) };
+    sr_sound(&f->room, truth, 128, 8000, 10, &f->scan);
+    hl_pose_t back = { truth.x_mm - 1000, truth.y_mm, truth.theta };
+    hl_reloc_params_t p;
+    hl_reloc_params_default(&p);
+    p.short_mm = 3000;
+    hl_loc_params_t fine;
+    hl_loc_params_default(&fine);
+    hl_reloc_t *with = hl_reloc_create(&p, &fine);
+    assert_non_null(with);
+    uint32_t t0 = hl_reloc_judge(f->reloc, f->map, f->n, &f->scan, truth);
+    uint32_t t1 = hl_reloc_judge(with, f->map, f->n, &f->scan, truth);
+    uint32_t b0 = hl_reloc_judge(f->reloc, f->map, f->n, &f->scan, back);
+    uint32_t b1 = hl_reloc_judge(with, f->map, f->n, &f->scan, back);
+    assert_true(t0 > 100);
+    assert_int_equal(t1, t0);
+    assert_true(b0 < t0);
+    assert_true(b1 + 10 < b0);
+    p.short_mm = 300;       /* at most the 300 mm margin: refused */
+    assert_non_null(hl_reloc_params_error(&p));
+    hl_reloc_destroy(with);
     free_fixture(f);
 }
 
@@ -164,6 +211,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_finds_pose_with_heading_unknown),
         cmocka_unit_test(test_symmetric_room_is_ambiguous),
+        cmocka_unit_test(test_short_readings_count_against),
         cmocka_unit_test(test_is_deterministic),
         cmocka_unit_test(test_bad_input),
     };

@@ -209,8 +209,9 @@ for c in laser sonar; do
         cmp -s "$1.tail" "$2.tail" && grep -q "^max_cells = 67108864$" "$1"' - "$tmp/$c.paper" "$tmp/paper"
 done
 "$BIN/houghlocd" --config tools/realeval/laser.conf --print-config >"$tmp/laser.improved" 2>&1
-check "laser.conf in improved mode: echo bearings off, the guard on, a bounded 15,000-vector map" sh -c '
+check "laser.conf in improved mode: echo bearings off, fitted normals keeping the unfitted, the guard on, a bounded 15,000-vector map" sh -c '
     grep -q "^mode = improved$" "$1" && grep -q "^echo_bearings = false$" "$1" &&
+    grep -q "^fit_normals = true$" "$1" && grep -q "^keep_unfitted = true$" "$1" &&
     grep -q "^guarded = true$" "$1" && grep -q "^map_capacity = 15000$" "$1" &&
     grep -q "^map_per_place = 2$" "$1"' - "$tmp/laser.improved"
 "$BIN/houghlocd" --config tools/realeval/sonar.conf --print-config >"$tmp/sonar.improved" 2>&1

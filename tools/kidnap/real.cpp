@@ -32,8 +32,7 @@ TruthMapper::TruthMapper(const hl_slam_params_t &p, const hlexp::Soundings &log)
     for (size_t i = 0; i < placed_.size(); i++)
         placed_[i] = hlexp::as_localized(mode, log[i]->msg.scan);
     // The map as hl_slam_create makes it: capacity, culling seed, density bound, cull.
-    ok_ = map_ && hl_map_set_density(map_, p.map_square_mm, p.map_per_place) == HL_OK &&
-          hl_map_set_evidence(map_, p.cull_choices, p.confirm_mm) == HL_OK;
+    ok_ = map_ && hl_slam_setup_map(map_, &p) == HL_OK;
     if (ok_)
         fresh_ = hl_map_rng(map_);
 }
