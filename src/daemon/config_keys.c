@@ -125,7 +125,7 @@ const hl_config_key_t hl_config_keys[] = {
       "points a surface line needs, the reading included; fewer: the reading is dropped" },
     { "normals.max_residual_mm", HL_KEY_I32, S(normals.max_residual_mm), 1, 10000,
       "RMS distance from the line above which the reading is on no surface (a corner) and dropped" },
-    { "normals.max_tilt_deg", HL_KEY_DEG, S(normals.max_tilt), 0.1, 89.9,
+    { "normals.max_tilt_deg", HL_KEY_DEG, S(normals.max_tilt), 0.1, 89,
       "drop readings of surfaces turned farther than this from square to the beam" },
     { "normals.keep_unfitted", HL_KEY_BOOL, S(normals.keep_unfitted), 0, 0,
       "keep a reading with no surface line, square to its beam (the paper's tangent), instead of dropping it" },
