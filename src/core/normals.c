@@ -35,7 +35,7 @@ const char *hl_normals_params_error(const hl_normals_params_t *p)
     return NULL;
 }
 
-/* A reading's point in the robot frame, metres would do as well: the fit is scale-free. */
+/* A reading's point in the robot frame, in mm (the residual test is in mm). */
 static void point_of(const hl_reading_t *r, double *x, double *y)
 {
     double a = hl_bam_to_rad(r->bearing);
