@@ -121,6 +121,16 @@ hl_status_t hl_slam_setup_map(hl_map_t *map, const hl_slam_params_t *p);
 /** A one-line description of what is wrong, or NULL. */
 const char *hl_slam_params_error(const hl_slam_params_t *p);
 
+/**
+ * @p scan as the slam's localizer and map see it: at its echo bearings when @p p asks
+ * (into @p echoed), then with its surface normals when @p p asks (into @p fitted).
+ * Returns the last of @p scan, @p echoed, @p fitted written; a step fails only for a scan
+ * hl_scan_check refuses, and then leaves its input (the localizer refuses it itself).
+ * The buffers are used only when their step is asked for (NULL is fine otherwise).
+ */
+const hl_scan_t *hl_slam_prepare(const hl_slam_params_t *p, const hl_scan_t *scan,
+                                 hl_scan_t *echoed, hl_scan_t *fitted);
+
 typedef struct hl_slam_step {
     hl_pose_t pose;             /* the estimate after this scan */
     hl_pose_t predicted;        /* last estimate moved by the odometry difference */

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cellhash.h"
+#include "judge.h"
 #include "loc_params.h"
 
 #define BINS 256                /* heading histogram bins: 256 BAM each, 1.4 deg */
@@ -30,10 +30,9 @@ struct hl_reloc {
     uint32_t *best_xy;
     uint8_t *best_it;
     uint32_t xy_cells;
-    hl_cellhash_t near;         /* the map by cells of verify_mm, for explained() */
+    hl_judge_t judge;
     hypothesis_t hyp[HL_RELOC_MAX_HEADINGS * HL_RELOC_MAX_PEAKS];
     hypothesis_t fine_hyp[HL_RELOC_MAX_HYPOTHESES];
-    int8_t verdict_a[HL_SCAN_MAX_READINGS], verdict_b[HL_SCAN_MAX_READINGS];   /* edges() */
 };
 
 void hl_reloc_params_default(hl_reloc_params_t *p)
@@ -121,7 +120,7 @@ void hl_reloc_destroy(hl_reloc_t *r)
     hl_loc_destroy(r->fine);
     free(r->best_xy);
     free(r->best_it);
-    hl_cellhash_free(&r->near);
+    hl_judge_free(&r->judge);
     free(r);
 }
 
@@ -156,16 +155,15 @@ hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *f
     r->fine = hl_loc_create(&r->fine_p);
     r->best_xy = calloc(r->xy_cells, sizeof *r->best_xy);
     r->best_it = calloc(r->xy_cells, sizeof *r->best_it);
-    bool hash_ok = hl_cellhash_init(&r->near, p->verify_mm > p->verify_along_mm ? p->verify_mm : p->verify_along_mm,
-                                     fine->max_map_vectors);
-    if (!r->coarse || !r->fine || !r->best_xy || !r->best_it || !hash_ok ||
+    bool judge_ok = hl_judge_init(&r->judge, p, fine->max_map_vectors);
+    if (!r->coarse || !r->fine || !r->best_xy || !r->best_it || !judge_ok ||
         hl_loc_params_error(&r->fine_p)) {
         hl_reloc_destroy(r);
         return NULL;
     }
     r->mem_bytes = sizeof *r + hl_loc_mem_bytes(r->coarse) + hl_loc_mem_bytes(r->fine) +
                    (size_t)r->xy_cells * (sizeof *r->best_xy + sizeof *r->best_it) +
-                   hl_cellhash_mem_bytes(&r->near);
+                   hl_judge_mem_bytes(&r->judge);
     return r;
 }
 
@@ -285,132 +283,6 @@ static uint32_t coarse_peaks(hl_reloc_t *r, uint32_t nhyp)
 
 /* ---- stage 3 and the answer ------------------------------------------------------------- */
 
-/* Whether a map vector's surface passes within @p across mm of (wx, wy), at most @p along
- * mm along it from the vector, facing along @p normal within @p gate; looked for in the
- * 3 x 3 cells around it (cells are at least as large as both). */
-static bool facing_near(const hl_reloc_t *r, int64_t wx, int64_t wy, hl_bam_t normal,
-                        int32_t gate, int32_t across, int32_t along)
-{
-    const hl_cellhash_t *g = &r->near;
-    int32_t cx = hl_cellhash_cell(g, (double)wx), cy = hl_cellhash_cell(g, (double)wy);
-    for (int ddy = -1; ddy <= 1; ddy++)
-        for (int ddx = -1; ddx <= 1; ddx++) {
-            uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
-            for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
-                int32_t dn = hl_bam_diff(g->normal[e], normal);
-                if ((dn < 0 ? -dn : dn) > gate)
-                    continue;
-                int64_t ex = wx - g->x[e], ey = wy - g->y[e];
-                int32_t nx, ny;         /* the vector's unit normal, Q14 */
-                hl_polar_to_xy(1 << 14, g->normal[e], &nx, &ny);
-                int64_t d_across = (ex * nx + ey * ny) >> 14;
-                int64_t d_along = (ey * nx - ex * ny) >> 14;
-                if (d_across <= across && d_across >= -across && d_along <= along &&
-                    d_along >= -along)
-                    return true;
-            }
-        }
-    return false;
-}
-
-/* Whether a map surface facing the sensor lies across the beam at @p pose's bearing @p a,
- * between @p from_mm and @p to_mm from the sensor; looked for every verify_mm. Any
- * surface facing the sensor's side stops a beam, whatever the judge's gate. */
-static bool surface_on_beam(const hl_reloc_t *r, hl_pose_t pose, hl_bam_t a, int32_t from_mm,
-                            int32_t to_mm)
-{
-    int32_t step = r->p.verify_mm;
-    hl_bam_t facing = (hl_bam_t)(a + HL_BAM_HALF_TURN);
-    for (int32_t d = from_mm; d < to_mm; d += step) {
-        int32_t dx, dy;
-        hl_polar_to_xy(d, a, &dx, &dy);
-        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy, facing,
-                        HL_BAM_QUARTER_TURN, step / 2, r->p.verify_along_mm))
-            return true;
-    }
-    return false;
-}
-
-/* Whether reading @p rd, not explained at @p pose, contradicts the map: its beam passed
- * through a mapped surface (from 300 mm out to 300 mm short of the echo: it would have
- * echoed there), or, with short_mm, it stopped short of one lying within short_mm beyond
- * the echo (something the map does not hold stood in front of a surface it does: at a
- * wrong pose that is the common case, at the right one a person or a moved chair). */
-static bool contradicts(const hl_reloc_t *r, hl_pose_t pose, const hl_reading_t *rd)
-{
-    const int32_t margin = 300;
-    hl_bam_t a = (hl_bam_t)(pose.theta + rd->bearing);
-    if (surface_on_beam(r, pose, a, margin, rd->range_mm - margin))
-        return true;
-    return r->p.short_mm > 0 &&
-           surface_on_beam(r, pose, a, rd->range_mm + margin, rd->range_mm + r->p.short_mm);
-}
-
-/*
- * How well @p scan, placed at @p pose, agrees with the map: the valid readings that land
- * within @p tol_mm of a map vector whose normal agrees with theirs within the normal gate
- * (explained), less those that contradict the map (contradicts(): a beam through a
- * mapped surface, or stopped short of one). Votes are a poor score across the whole map: a place crowded with
- * map vectors (a cluttered corner) collects many for any heading, as each reading votes
- * once per vector it pairs with; a reading counts once here, and the beams that would
- * have been stopped by a wall of the map count against.
- */
-static uint32_t explained_each(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t pose,
-                               int32_t tol_mm, uint32_t *contradicted, int8_t *verdict)
-{
-    uint32_t count = 0, against = 0;
-    for (uint32_t i = 0; i < scan->count; i++) {
-        const hl_reading_t *rd = &scan->readings[i];
-        if (verdict)
-            verdict[i] = 0;
-        if (!rd->valid)
-            continue;
-        hl_bam_t a = (hl_bam_t)(pose.theta + rd->bearing);
-        int32_t dx, dy;
-        hl_polar_to_xy(rd->range_mm, a, &dx, &dy);
-        if (facing_near(r, (int64_t)pose.x_mm + dx, (int64_t)pose.y_mm + dy,
-                        hl_reading_normal(rd, pose.theta), r->p.judge_gate, tol_mm,
-                        r->p.verify_along_mm)) {
-            count++;
-            if (verdict)
-                verdict[i] = 1;
-        } else if (contradicted && contradicts(r, pose, rd)) {
-            against++;
-            if (verdict)
-                verdict[i] = -1;
-        }
-    }
-    if (contradicted)
-        *contradicted = against;
-    return count;
-}
-
-static uint32_t explained(const hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t pose,
-                          int32_t tol_mm, uint32_t *contradicted)
-{
-    return explained_each(r, scan, pose, tol_mm, contradicted, NULL);
-}
-
-/* How the answer and the runner-up differ reading by reading: each reading's verdict
- * (+1 explained, -1 contradicting, 0 neither) at one pose less at the other, summed
- * where the answer is better (@p edge) and where the runner-up is (@p runner_edge). The
- * readings both explain, a long wall's, say nothing of which is right. */
-static void edges(hl_reloc_t *r, const hl_scan_t *scan, hl_pose_t a, hl_pose_t b,
-                  uint32_t *edge, uint32_t *runner_edge)
-{
-    uint32_t against;
-    explained_each(r, scan, a, r->p.verify_mm, &against, r->verdict_a);
-    explained_each(r, scan, b, r->p.verify_mm, &against, r->verdict_b);
-    *edge = *runner_edge = 0;
-    for (uint32_t i = 0; i < scan->count; i++) {
-        int32_t d = r->verdict_a[i] - r->verdict_b[i];
-        if (d > 0)
-            *edge += (uint32_t)d;
-        else
-            *runner_edge += (uint32_t)-d;
-    }
-}
-
 static void sort_by_explained(hypothesis_t *h, uint32_t n)
 {
     for (uint32_t i = 1; i < n; i++)          /* insertion sort, descending, stable */
@@ -442,7 +314,7 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
     if (n == 0 || nvalid == 0)
         return HL_ERR_EMPTY;
     result->headings_tried = (uint16_t)nh;
-    hl_cellhash_build(&r->near, map, n);
+    hl_judge_build(&r->judge, map, n);
 
     /* stage 2: coarse hypotheses, ranked by what they explain within a coarse cell */
     uint32_t nhyp = 0;
@@ -458,7 +330,8 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
         nhyp = coarse_peaks(r, nhyp);
     }
     for (uint32_t i = 0; i < nhyp; i++)
-        r->hyp[i].explained = explained(r, scan, r->hyp[i].pose, r->p.coarse_cell_mm, NULL);
+        r->hyp[i].explained = hl_judge_explained(&r->judge, scan, r->hyp[i].pose,
+                                                 r->p.coarse_cell_mm, NULL, NULL);
     sort_by_explained(r->hyp, nhyp);
 
     /* stage 3: the best of them searched finely, and judged by what they explain */
@@ -472,9 +345,8 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
             continue;
         if (st != HL_OK)
             return st;
-        uint32_t against, good = explained(r, scan, lr.pose, r->p.verify_mm, &against);
         r->fine_hyp[nfine++] = (hypothesis_t){ lr.pose, lr.peak,
-                                               good > against ? good - against : 0 };
+                                               hl_judge_score(&r->judge, scan, lr.pose) };
     }
     result->hypotheses_tried = (uint16_t)nfine;
     if (nfine == 0)
@@ -491,7 +363,8 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
             break;
         }
     if (result->have_runner_up)
-        edges(r, scan, result->pose, result->runner_up, &result->edge, &result->runner_edge);
+        hl_judge_edges(&r->judge, scan, result->pose, result->runner_up, &result->edge,
+                       &result->runner_edge);
     else
         result->edge = result->score;
     result->found = result->explained_pct >= r->p.min_explained_pct &&
@@ -511,13 +384,10 @@ void hl_reloc_judge_poses(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
     if (!r || !map || !scan || !poses || n == 0 || n > r->fine_p.max_map_vectors ||
         hl_scan_check(scan) != HL_OK)
         return;
-    hl_cellhash_build(&r->near, map, n);
-    for (uint32_t i = 0; i < count; i++) {
-        if (!hl_pose_in_range(poses[i]))
-            continue;
-        uint32_t against, good = explained(r, scan, poses[i], r->p.verify_mm, &against);
-        scores[i] = good > against ? good - against : 0;
-    }
+    hl_judge_build(&r->judge, map, n);
+    for (uint32_t i = 0; i < count; i++)
+        if (hl_pose_in_range(poses[i]))
+            scores[i] = hl_judge_score(&r->judge, scan, poses[i]);
 }
 
 uint32_t hl_reloc_judge(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,

@@ -206,15 +206,20 @@ static hl_bam_t blend_heading(hl_bam_t predicted, hl_bam_t found, double gain)
     return (hl_bam_t)(predicted + (int32_t)lround(gain * d));
 }
 
-/* The scan as the localizer and the map see it. Only a scan hl_scan_check refuses fails
- * either step, and callers check. */
+const hl_scan_t *hl_slam_prepare(const hl_slam_params_t *p, const hl_scan_t *scan,
+                                 hl_scan_t *echoed, hl_scan_t *fitted)
+{
+    if (p->echo_bearings && hl_echo_correct(&p->echo, scan, echoed) == HL_OK)
+        scan = echoed;
+    if (p->fit_normals && hl_normals_fit(&p->normals, scan, fitted) == HL_OK)
+        scan = fitted;
+    return scan;
+}
+
+/* The scan as the localizer and the map see it. */
 static const hl_scan_t *prepared(hl_slam_t *s, const hl_scan_t *scan)
 {
-    if (s->p.echo_bearings && hl_echo_correct(&s->p.echo, scan, s->echoed) == HL_OK)
-        scan = s->echoed;
-    if (s->p.fit_normals && hl_normals_fit(&s->p.normals, scan, s->fitted) == HL_OK)
-        scan = s->fitted;
-    return scan;
+    return hl_slam_prepare(&s->p, scan, s->echoed, s->fitted);
 }
 
 /* Hough, then the optional refinement. */

@@ -43,15 +43,8 @@ Mode improved_mode()
 
 hl_scan_t as_localized(const Mode &m, const hl_scan_t &scan)
 {
-    // As hl_slam prepares it: echo bearings, then surface normals. Only a bad scan fails
-    // either step, and the localizer rejects that itself.
-    hl_scan_t echoed = scan;
-    if (m.slam.echo_bearings && hl_echo_correct(&m.slam.echo, &scan, &echoed) != HL_OK)
-        echoed = scan;
-    hl_scan_t out = echoed;
-    if (m.slam.fit_normals && hl_normals_fit(&m.slam.normals, &echoed, &out) != HL_OK)
-        out = echoed;
-    return out;
+    hl_scan_t echoed, fitted;
+    return *hl_slam_prepare(&m.slam, &scan, &echoed, &fitted);
 }
 
 }  // namespace hlexp
