@@ -82,16 +82,22 @@ hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm
 /**
  * Culls by crowding (not in the paper): a full map drops, for each new vector, the most
  * crowded of @p choices vectors drawn at random: the one with the most vectors in its
- * density-bound place and the 8 squares around it, seen from the same side. The capacity
+ * square of @p square_mm (0: its density-bound place and the 8 squares around it), seen
+ * from the same side. A wall held at the density bound is as crowded as any other in
+ * the 3 x 3 places, so ties are broken at random and a place seen once thins out as fast
+ * as one seen always; a square a few places wide tells a thinned wall from a full one,
+ * and the capacity spreads evenly. The capacity
  * then spreads over every surface seen rather than over how often each was seen, so a
  * corridor driven once keeps its walls in a map of a whole building (a laser's: the
  * global search needs every place, docs/kidnap.md). Needs the density bound
  * (hl_map_set_density first; turning the bound off turns this off). Replaces the
  * evidence cull. Deterministic like it.
- * @param choices 2 .. HL_MAP_MAX_CHOICES
- * @return HL_OK; HL_ERR_RANGE (bad choices, or no density bound); HL_ERR_ARG on NULL.
+ * @param choices   2 .. HL_MAP_MAX_CHOICES
+ * @param square_mm 0, or HL_MAP_MIN_SQUARE_MM .. HL_MAP_MAX_SQUARE_MM
+ * @return HL_OK; HL_ERR_RANGE (bad choices or square, or no density bound); HL_ERR_NOMEM;
+ *         HL_ERR_ARG on NULL.
  */
-hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices);
+hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm);
 
 /**
  * Adds one vector, culling at random when full (hl_map_set_evidence: by evidence).

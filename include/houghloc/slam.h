@@ -77,6 +77,9 @@ typedef struct hl_slam_params {
     bool cull_crowded;          /* with cull_choices > 1: drop the most crowded of them
                                    instead (map.h, hl_map_set_crowding; needs
                                    map_per_place); default false */
+    hl_mm_t crowd_square_mm;    /* ... crowding counted in squares of this side (0 or
+                                   HL_MAP_MIN_SQUARE_MM..HL_MAP_MAX_SQUARE_MM); 0 (the
+                                   default): the density square and the 8 around it */
     uint64_t seed;              /* map culling seed; default 1 */
     double heading_gain;        /* of an accepted localization's heading correction, the
                                    part taken (the rest stays with the odometry): a

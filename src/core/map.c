@@ -27,6 +27,9 @@ struct hl_map {
     uint16_t *support;      /* [capacity] how many later readings confirmed each vector */
     bool crowd;             /* cull the most crowded of `choices` instead (needs the
                                density bound's index; support and near unallocated) */
+    hl_mapsq_t crowd_sq;    /* crowding measured in squares of this side (crowd_sq
+                               allocated when square_mm > 0); else the density bound's
+                               place and the 8 around it */
     hl_cellhash_t near;     /* the map by cells of confirm_mm, rebuilt for each scan */
 };
 
@@ -53,6 +56,7 @@ void hl_map_destroy(hl_map_t *map)
     if (!map)
         return;
     hl_mapsq_free(&map->places);
+    hl_mapsq_free(&map->crowd_sq);
     hl_cellhash_free(&map->near);
     free(map->support);
     free(map->vectors);
@@ -65,6 +69,8 @@ void hl_map_clear(hl_map_t *map)
     map->version++;
     if (map->per_place)
         hl_mapsq_rebuild(&map->places, map->vectors, 0);
+    if (map->crowd_sq.head)
+        hl_mapsq_rebuild(&map->crowd_sq, map->vectors, 0);
 }
 
 hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm)
@@ -79,6 +85,7 @@ hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm
     map->support = NULL;
     map->choices = 1;
     map->crowd = false;
+    hl_mapsq_free(&map->crowd_sq);
     if (choices == 1)
         return HL_OK;
     map->support = calloc(map->capacity, sizeof *map->support);
@@ -130,15 +137,24 @@ static uint32_t least_confirmed(hl_map_t *map)
     return victim;
 }
 
-hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices)
+hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm)
 {
     if (!map)
         return HL_ERR_ARG;
-    if (choices < 2 || choices > HL_MAP_MAX_CHOICES || !map->per_place)
+    if (choices < 2 || choices > HL_MAP_MAX_CHOICES || !map->per_place ||
+        (square_mm != 0 &&
+         (square_mm < HL_MAP_MIN_SQUARE_MM || square_mm > HL_MAP_MAX_SQUARE_MM)))
         return HL_ERR_RANGE;
     hl_status_t st = hl_map_set_evidence(map, 1, 0);    /* one cull at a time */
     if (st != HL_OK)
         return st;
+    if (square_mm > 0) {
+        if (!hl_mapsq_init(&map->crowd_sq, map->capacity, square_mm)) {
+            hl_mapsq_free(&map->crowd_sq);
+            return HL_ERR_NOMEM;
+        }
+        hl_mapsq_rebuild(&map->crowd_sq, map->vectors, map->count);
+    }
     map->choices = choices;
     map->crowd = true;
     return HL_OK;
@@ -148,6 +164,8 @@ hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices)
  * seen from the same side (the density bound's places, mapsq.h). */
 static uint32_t crowding(const hl_map_t *map, uint32_t c)
 {
+    if (map->crowd_sq.head)
+        return hl_mapsq_count(&map->crowd_sq, map->vectors, &map->vectors[c]);
     int32_t side = map->places.square_mm;
     uint32_t n = 0;
     for (int dy = -1; dy <= 1; dy++)
@@ -193,6 +211,7 @@ hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_pl
     if (map->crowd) {       /* the crowding cull reads the places: back to uniform */
         map->crowd = false;
         map->choices = 1;
+        hl_mapsq_free(&map->crowd_sq);
     }
     if (per_place == 0)
         return HL_OK;
@@ -210,11 +229,15 @@ static void replace(hl_map_t *map, uint32_t slot, const hl_vector_t *v)
 {
     if (map->per_place)
         hl_mapsq_unlink(&map->places, map->vectors, slot);
+    if (map->crowd_sq.head)
+        hl_mapsq_unlink(&map->crowd_sq, map->vectors, slot);
     map->vectors[slot] = *v;
     if (map->support)
         map->support[slot] = 0;
     if (map->per_place)
         hl_mapsq_link(&map->places, map->vectors, slot);
+    if (map->crowd_sq.head)
+        hl_mapsq_link(&map->crowd_sq, map->vectors, slot);
 }
 
 bool hl_vector_in_range(const hl_vector_t *v)
@@ -248,6 +271,8 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
             map->support[map->count] = 0;
         if (map->per_place)
             hl_mapsq_link(&map->places, map->vectors, map->count);
+        if (map->crowd_sq.head)
+            hl_mapsq_link(&map->crowd_sq, map->vectors, map->count);
         map->count++;
         return HL_OK;
     }
@@ -367,6 +392,8 @@ hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n
         memset(map->support, 0, (size_t)map->capacity * sizeof *map->support);
     if (map->per_place)
         hl_mapsq_rebuild(&map->places, map->vectors, n);
+    if (map->crowd_sq.head)
+        hl_mapsq_rebuild(&map->crowd_sq, map->vectors, n);
     return HL_OK;
 }
 
@@ -374,6 +401,7 @@ size_t hl_map_mem_bytes(const hl_map_t *map)
 {
     return sizeof *map + (size_t)map->capacity * sizeof *map->vectors +
            hl_mapsq_mem_bytes(&map->places, map->capacity) +
+           hl_mapsq_mem_bytes(&map->crowd_sq, map->capacity) +
            (map->support ? (size_t)map->capacity * sizeof *map->support +
                                hl_cellhash_mem_bytes(&map->near) : 0);
 }

@@ -29,6 +29,7 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->cull_choices = 1;
     p->confirm_mm = 100;
     p->cull_crowded = false;
+    p->crowd_square_mm = 0;
     p->seed = 1;
     p->heading_gain = 1.0;
     p->guarded = true;
@@ -66,6 +67,9 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "cull_choices must be in 1..64";
     if (p->confirm_mm < 1 || p->confirm_mm > HL_MAP_MAX_SQUARE_MM)
         return "confirm_mm must be in 1..1000";
+    if (p->crowd_square_mm != 0 && (p->crowd_square_mm < HL_MAP_MIN_SQUARE_MM ||
+                                     p->crowd_square_mm > HL_MAP_MAX_SQUARE_MM))
+        return "crowd_square_mm must be 0 or in 10..1000";
     if (p->cull_crowded && (p->cull_choices < 2 || p->map_per_place == 0))
         return "cull_crowded needs cull_choices of 2 or more and a map_per_place bound";
     hl_loc_params_t lp = p->loc;    /* as hl_slam_create makes the localizer */
@@ -97,7 +101,7 @@ hl_status_t hl_slam_setup_map(hl_map_t *map, const hl_slam_params_t *p)
 {
     hl_status_t st = hl_map_set_density(map, p->map_square_mm, p->map_per_place);
     if (st == HL_OK)
-        st = p->cull_crowded ? hl_map_set_crowding(map, p->cull_choices)
+        st = p->cull_crowded ? hl_map_set_crowding(map, p->cull_choices, p->crowd_square_mm)
                              : hl_map_set_evidence(map, p->cull_choices, p->confirm_mm);
     return st;
 }

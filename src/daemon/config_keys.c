@@ -66,6 +66,8 @@ const hl_config_key_t hl_config_keys[] = {
     { "slam.confirm_mm", HL_KEY_I32, S(confirm_mm), 1, 1000, "a new vector confirms an old one this close" },
     { "slam.cull_crowded", HL_KEY_BOOL, S(cull_crowded), 0, 0,
       "with cull_choices > 1 and map_per_place: drop the most crowded of them instead, spreading the map over every surface seen" },
+    { "slam.crowd_square_mm", HL_KEY_I32, S(crowd_square_mm), 0, 1000,
+      "the crowding cull counts a vector's crowd in squares this wide (0: its map_square_mm square and the 8 around it)" },
     { "slam.heading_gain", HL_KEY_DOUBLE, S(heading_gain), 0, 1,
       "the part of a localization's heading correction taken (the rest stays with the odometry); 1: all" },
     { "slam.seed", HL_KEY_U64, S(seed), 0, 9007199254740992.0, "seeds the culling" },

@@ -419,13 +419,13 @@ static void test_evidence_cull_arguments(void **state)
 /* Share of a 300-vector map (density bound: 2 per 50 mm square) left on a wall seen by
  * the first scan only, after 100 more scans of a wall elsewhere seen from many places
  * (each scan's readings along 4 m of it, shifted so they land in fresh squares). */
-static double first_wall_share(bool crowded)
+static double first_wall_share(bool crowded, int32_t crowd_square_mm)
 {
     hl_map_t *m = hl_map_create(300, 9);
     assert_non_null(m);
     assert_int_equal(hl_map_set_density(m, 50, 2), HL_OK);
     if (crowded)
-        assert_int_equal(hl_map_set_crowding(m, 8), HL_OK);
+        assert_int_equal(hl_map_set_crowding(m, 8, crowd_square_mm), HL_OK);
     hl_scan_t *s = calloc(1, sizeof *s);
     for (int k = 0; k <= 100; k++) {
         hl_scan_clear(s);
@@ -452,21 +452,55 @@ static double first_wall_share(bool crowded)
 static void test_crowding_cull_keeps_what_was_seen_once(void **state)
 {
     (void)state;
-    double uniform = first_wall_share(false), crowded = first_wall_share(true);
+    double uniform = first_wall_share(false, 0), crowded = first_wall_share(true, 0);
     assert_true(uniform < 0.2);     /* 0.03 here */
     assert_true(crowded > 0.6);     /* 0.78 here */
+    /* counted in 300 mm squares the sparse wall is plainly the less crowded: more stays */
+    double squares = first_wall_share(true, 300);
+    assert_true(squares > crowded && squares > 0.9);    /* 0.975 here */
+}
+
+/* The squares' index follows the map through restores and culls: a map restored from
+ * another's vectors and generator culls by crowding exactly as the original. */
+static void test_crowding_squares_restore(void **state)
+{
+    (void)state;
+    hl_map_t *a = hl_map_create(60, 3), *b = hl_map_create(60, 77);
+    for (int k = 0; k < 2; k++) {
+        hl_map_t *m = k ? b : a;
+        assert_int_equal(hl_map_set_density(m, 50, 2), HL_OK);
+        assert_int_equal(hl_map_set_crowding(m, 8, 300), HL_OK);
+    }
+    for (int i = 0; i < 400; i++) {     /* a dense row and a sparse one */
+        hl_vector_t v = i % 4 ? vec((i * 7) % 3000, 0) : vec(i * 97, 5000);
+        assert_int_equal(hl_map_add(a, &v), HL_OK);
+    }
+    assert_int_equal(hl_map_restore(b, hl_map_vectors(a), hl_map_count(a), hl_map_version(a),
+                                    hl_map_rng(a)), HL_OK);
+    for (int i = 0; i < 400; i++) {
+        hl_vector_t v = i % 3 ? vec((i * 13) % 3000, 40) : vec(i * 89, 9000);
+        hl_map_add(a, &v);
+        hl_map_add(b, &v);
+    }
+    assert_int_equal(hl_map_count(b), 60);
+    assert_memory_equal(hl_map_vectors(a), hl_map_vectors(b), 60 * sizeof(hl_vector_t));
+    hl_map_destroy(a);
+    hl_map_destroy(b);
 }
 
 static void test_crowding_cull_arguments(void **state)
 {
     (void)state;
     hl_map_t *m = hl_map_create(10, 1);
-    assert_int_equal(hl_map_set_crowding(NULL, 4), HL_ERR_ARG);
-    assert_int_equal(hl_map_set_crowding(m, 4), HL_ERR_RANGE);      /* no density bound */
+    assert_int_equal(hl_map_set_crowding(NULL, 4, 0), HL_ERR_ARG);
+    assert_int_equal(hl_map_set_crowding(m, 4, 0), HL_ERR_RANGE);      /* no density bound */
     assert_int_equal(hl_map_set_density(m, 50, 2), HL_OK);
-    assert_int_equal(hl_map_set_crowding(m, 1), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_crowding(m, HL_MAP_MAX_CHOICES + 1), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_crowding(m, 4), HL_OK);
+    assert_int_equal(hl_map_set_crowding(m, 1, 0), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_crowding(m, HL_MAP_MAX_CHOICES + 1, 0), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_crowding(m, 4, HL_MAP_MIN_SQUARE_MM - 1), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_crowding(m, 4, HL_MAP_MAX_SQUARE_MM + 1), HL_ERR_RANGE);
+    assert_int_equal(hl_map_set_crowding(m, 4, 300), HL_OK);
+    assert_int_equal(hl_map_set_crowding(m, 4, 0), HL_OK);
     assert_int_equal(hl_map_set_density(m, 50, 0), HL_OK);          /* off: uniform again */
     for (int i = 0; i < 30; i++) {
         hl_vector_t v = vec(i * 100, 0);
@@ -494,6 +528,7 @@ int main(void)
         cmocka_unit_test(test_evidence_cull_keeps_surfaces),
         cmocka_unit_test(test_evidence_cull_arguments),
         cmocka_unit_test(test_crowding_cull_keeps_what_was_seen_once),
+        cmocka_unit_test(test_crowding_squares_restore),
         cmocka_unit_test(test_crowding_cull_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
