@@ -70,6 +70,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
     if (p->crowd_square_mm != 0 && (p->crowd_square_mm < HL_MAP_MIN_SQUARE_MM ||
                                      p->crowd_square_mm > HL_MAP_MAX_SQUARE_MM))
         return "crowd_square_mm must be 0 or in 10..1000";
+    if (p->crowd_square_mm != 0 && !p->cull_crowded)
+        return "crowd_square_mm is the crowding cull's: it needs cull_crowded";
     if (p->cull_crowded && (p->cull_choices < 2 || p->map_per_place == 0))
         return "cull_crowded needs cull_choices of 2 or more and a map_per_place bound";
     hl_loc_params_t lp = p->loc;    /* as hl_slam_create makes the localizer */

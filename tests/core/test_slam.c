@@ -256,6 +256,16 @@ static void test_params_and_inputs_validated(void **state)
     p.refine_params.match_mm = 0;
     assert_non_null(hl_slam_params_error(&p));
     assert_null(hl_slam_create(&p));
+    hl_slam_params_default(&p);
+    p.crowd_square_mm = 300;        /* the crowding cull's, which is off */
+    assert_string_equal(hl_slam_params_error(&p),
+                        "crowd_square_mm is the crowding cull's: it needs cull_crowded");
+    p.map_per_place = 2;
+    p.cull_choices = 8;
+    p.cull_crowded = true;
+    assert_null(hl_slam_params_error(&p));
+    p.crowd_square_mm = 5;
+    assert_string_equal(hl_slam_params_error(&p), "crowd_square_mm must be 0 or in 10..1000");
 
     hl_slam_params_default(&p);
     hl_slam_t *s = hl_slam_create(&p);
