@@ -27,9 +27,9 @@ struct hl_map {
     uint16_t *support;      /* [capacity] how many later readings confirmed each vector */
     bool crowd;             /* cull the most crowded of `choices` instead (needs the
                                density bound's index; support and near unallocated) */
-    hl_mapsq_t crowd_sq;    /* crowding measured in squares of this side (crowd_sq
-                               allocated when square_mm > 0); else the density bound's
-                               place and the 8 around it */
+    hl_mapsq_t crowd_sq;    /* the crowding cull's squares (hl_map_set_crowding's
+                               square_mm); unallocated when it counts the density
+                               bound's place and the 8 around it */
     hl_cellhash_t near;     /* the map by cells of confirm_mm, rebuilt for each scan */
 };
 
@@ -160,8 +160,8 @@ hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices, int32_t square_
     return HL_OK;
 }
 
-/* How many map vectors share the place of slot @p c or one of the 8 squares around it,
- * seen from the same side (the density bound's places, mapsq.h). */
+/* How many map vectors share slot @p c's crowding square, or else its place or one of the
+ * 8 squares around it (the density bound's places, mapsq.h), seen from the same side. */
 static uint32_t crowding(const hl_map_t *map, uint32_t c)
 {
     if (map->crowd_sq.head)
