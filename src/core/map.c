@@ -63,14 +63,37 @@ void hl_map_destroy(hl_map_t *map)
     free(map);
 }
 
+/* The place indexes (the density bound's and the crowding cull's squares) follow every
+ * write to a slot; these keep both in step. */
+static void index_unlink(hl_map_t *map, uint32_t slot)
+{
+    if (map->per_place)
+        hl_mapsq_unlink(&map->places, map->vectors, slot);
+    if (map->crowd_sq.head)
+        hl_mapsq_unlink(&map->crowd_sq, map->vectors, slot);
+}
+
+static void index_link(hl_map_t *map, uint32_t slot)
+{
+    if (map->per_place)
+        hl_mapsq_link(&map->places, map->vectors, slot);
+    if (map->crowd_sq.head)
+        hl_mapsq_link(&map->crowd_sq, map->vectors, slot);
+}
+
+static void index_rebuild(hl_map_t *map)
+{
+    if (map->per_place)
+        hl_mapsq_rebuild(&map->places, map->vectors, map->count);
+    if (map->crowd_sq.head)
+        hl_mapsq_rebuild(&map->crowd_sq, map->vectors, map->count);
+}
+
 void hl_map_clear(hl_map_t *map)
 {
     map->count = 0;
     map->version++;
-    if (map->per_place)
-        hl_mapsq_rebuild(&map->places, map->vectors, 0);
-    if (map->crowd_sq.head)
-        hl_mapsq_rebuild(&map->crowd_sq, map->vectors, 0);
+    index_rebuild(map);
 }
 
 hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm)
@@ -208,11 +231,8 @@ hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_pl
         return HL_ERR_RANGE;
     hl_mapsq_free(&map->places);
     map->per_place = 0;
-    if (map->crowd) {       /* the crowding cull reads the places: back to uniform */
-        map->crowd = false;
-        map->choices = 1;
-        hl_mapsq_free(&map->crowd_sq);
-    }
+    if (map->crowd)         /* the crowding cull reads the places: back to uniform */
+        hl_map_set_evidence(map, 1, 0);
     if (per_place == 0)
         return HL_OK;
     if (!hl_mapsq_init(&map->places, map->capacity, square_mm)) {
@@ -227,17 +247,11 @@ hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_pl
 /* Writes *v into slot `slot` (below count), keeping the place index in step. */
 static void replace(hl_map_t *map, uint32_t slot, const hl_vector_t *v)
 {
-    if (map->per_place)
-        hl_mapsq_unlink(&map->places, map->vectors, slot);
-    if (map->crowd_sq.head)
-        hl_mapsq_unlink(&map->crowd_sq, map->vectors, slot);
+    index_unlink(map, slot);
     map->vectors[slot] = *v;
     if (map->support)
         map->support[slot] = 0;
-    if (map->per_place)
-        hl_mapsq_link(&map->places, map->vectors, slot);
-    if (map->crowd_sq.head)
-        hl_mapsq_link(&map->crowd_sq, map->vectors, slot);
+    index_link(map, slot);
 }
 
 bool hl_vector_in_range(const hl_vector_t *v)
@@ -269,10 +283,7 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
         map->vectors[map->count] = *v;
         if (map->support)
             map->support[map->count] = 0;
-        if (map->per_place)
-            hl_mapsq_link(&map->places, map->vectors, map->count);
-        if (map->crowd_sq.head)
-            hl_mapsq_link(&map->crowd_sq, map->vectors, map->count);
+        index_link(map, map->count);
         map->count++;
         return HL_OK;
     }
@@ -324,7 +335,7 @@ hl_status_t hl_map_add_scan(hl_map_t *map, const hl_scan_t *scan, hl_pose_t pose
     if (!hl_pose_in_range(pose) || scan->count > HL_SCAN_MAX_READINGS)
         return HL_ERR_RANGE;
     uint32_t n = 0;
-    if (map->choices > 1 && !map->crowd) {
+    if (map->support) {     /* the evidence cull */
         /* The scan's vectors first confirm what the map holds, then join it. */
         hl_vector_t v[HL_SCAN_MAX_READINGS];
         uint32_t nv = 0;
@@ -390,10 +401,7 @@ hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n
     map->rng = rng;
     if (map->support)       /* not saved: a restored map learns it again */
         memset(map->support, 0, (size_t)map->capacity * sizeof *map->support);
-    if (map->per_place)
-        hl_mapsq_rebuild(&map->places, map->vectors, n);
-    if (map->crowd_sq.head)
-        hl_mapsq_rebuild(&map->crowd_sq, map->vectors, n);
+    index_rebuild(map);
     return HL_OK;
 }
 
