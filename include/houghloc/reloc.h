@@ -51,7 +51,7 @@ extern "C" {
 #define HL_RELOC_MAX_HYPOTHESES 64
 
 typedef struct hl_reloc_params {
-    uint16_t headings;          /* heading windows searched (stage 1), 1..64; default 8
+    uint16_t headings;          /* heading windows searched (stage 1), 1..64; default 12
                                    of the 18 (2 x 5 x 2 deg each) */
     hl_bam_t heading_smooth;    /* half-width of the correlation's triangular smoothing;
                                    default 4 deg (a sonar normal is good to a few
