@@ -1,7 +1,8 @@
 #!/bin/sh
 # run_row.sh - one step of `make kidnap` (tools/kidnap/kidnap.mk).
 #
-#   run_row.sh tour WORLD        hl-sim-logs --seed 1 of WORLD (lab: the built-in lab,
+#   run_row.sh tour WORLD        hl-sim-logs --seed KIDNAP_TOUR_SEED (default 1) of WORLD
+#                                (lab: the built-in lab,
 #                                else tools/sim/worlds/WORLD.world) into KIDNAP_OUT/sim/WORLD/
 #   run_row.sh map WORLD         houghlocd replays that tour in batch, with the compiled-in
 #                                defaults, from the tour's true start pose (so that the
@@ -19,7 +20,7 @@
 # A row is one line in KIDNAP_OUT/rows/WORLD_INPUT.tsv (hl-kidnap's columns), with each
 # trial in KIDNAP_OUT/trials/WORLD_INPUT.tsv. Environment: BUILD, DATA, EVAL_OUT,
 # KIDNAP_OUT, KIDNAP_TRIALS_SIM, KIDNAP_TRIALS_REAL, KIDNAP_TOUR_SET (--set options of the
-# map-making tour). Any failure stops with one line
+# map-making tour), KIDNAP_TOUR_SEED (its hl-sim-logs seed). Any failure stops with one line
 #   kidnap: WHAT: STEP failed: REASON
 # and exit status 1 (2 for bad usage), leaving no output file.
 set -u
@@ -29,6 +30,7 @@ BIN=$BUILD/bin
 DATA=${DATA:-../shared/data}
 EVAL_OUT=${EVAL_OUT:-$BUILD/eval}
 OUT=${KIDNAP_OUT:-$BUILD/kidnap}
+tour_seed=${KIDNAP_TOUR_SEED:-1}
 HERE=$(dirname "$0")
 
 usage() {
@@ -81,10 +83,13 @@ world_opt() {   # the world's hl-sim-logs option
 case $cmd in
 tour)
     [ "$w" = lab ] || [ -r "$HERE/../sim/worlds/$w.world" ] || die tour "no world tools/sim/worlds/$w.world"
-    echo "kidnap: $what: simulating the tour" >&2
+    case $tour_seed in
+    '' | *[!0-9]*) die tour "KIDNAP_TOUR_SEED '$tour_seed' is not a whole number" ;;
+    esac
+    echo "kidnap: $what: simulating the tour (hl-sim-logs --seed $tour_seed)" >&2
     rm -rf "$sim/logs"
     # shellcheck disable=SC2046  # the option and its value
-    "$BIN/hl-sim-logs" --seed 1 --out-dir "$sim/logs" $(world_opt) >"$sim/sim.out" 2>"$sim/sim.err" ||
+    "$BIN/hl-sim-logs" --seed "$tour_seed" --out-dir "$sim/logs" $(world_opt) >"$sim/sim.out" 2>"$sim/sim.err" ||
         die tour "$(lasterr "$sim/sim.err")"
     mv "$sim/logs/tour.lcmlog" "$sim/tour.lcmlog" || die tour "no tour.lcmlog written"
     rm -rf "$sim/logs"
