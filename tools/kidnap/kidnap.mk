@@ -6,15 +6,14 @@
 #   make kidnap KIDNAP_TRIALS_SIM=50 KIDNAP_TRIALS_REAL=20 BUILDINGS='intel aces'
 #   make kidnap BUILDINGS= KIDNAP_WORLDS=lab  the simulated lab only
 #   make kidnap DATA=/elsewhere              the data folder (holding raw/), as eval-real
-#   make kidnap BUILDINGS= KIDNAP_TOUR_SEED=3 KIDNAP_OUT=build/kidnap-tour3
-#                                            the simulated rows on another tour (a folder
-#                                            of its own: the tour file is kept)
+#   make kidnap BUILDINGS= KIDNAP_TOUR_SEED=3 the simulated rows on another tour
 #
 # Writes $(BUILD)/experiments/kidnap.tsv, one row per (world, input):
 #   world input trials success_pct ambiguous_pct wrong_pct median_ms p90_ms
 # - the simulated worlds (lab, corridor), sonar: the map is the one houghlocd makes on its
-#   tour of the world (hl-sim-logs --seed KIDNAP_TOUR_SEED, 1 by default, replayed in batch with the compiled-in
-#   defaults from the true start pose, so that the map's frame is the world's); the tests
+#   tour of the world (hl-sim-logs --seed KIDNAP_TOUR_SEED, 1 by default, replayed in
+#   batch with the compiled-in defaults from the true start pose, so that the map's frame
+#   is the world's); the tests
 #   are KIDNAP_TRIALS_SIM soundings of the same robot at random free poses, random
 #   headings (tools/kidnap/sim.cpp), relocalized with the compiled-in defaults but for
 #   what tools/kidnap/WORLD.conf sets (corridor.conf: a larger coarse raster);
@@ -85,9 +84,15 @@ kidnap: deps
 
 kidnap-rows: $(KIDNAP_ROWS)
 
+# The tour's seed as a file that changes only with it, so that another seed makes the
+# tours (and everything after them) again.
+KIDNAP_SEED_FILE := $(KIDNAP_OUT)/sim/tour-seed
+$(KIDNAP_SEED_FILE): kidnap-always
+	$(Q)mkdir -p $(@D); echo '$(KIDNAP_TOUR_SEED)' | cmp -s - $@ || echo '$(KIDNAP_TOUR_SEED)' >$@
+
 # kidnap_sim WORLD: its tour, the daemon's map of it, the row.
 define kidnap_sim
-$(KIDNAP_OUT)/sim/$(1)/tour.lcmlog: $(BUILD)/bin/hl-sim-logs tools/kidnap/run_row.sh \
+$(KIDNAP_OUT)/sim/$(1)/tour.lcmlog: $(BUILD)/bin/hl-sim-logs tools/kidnap/run_row.sh $(KIDNAP_SEED_FILE) \
         $(if $(filter lab,$(1)),tools/sim/worlds/lab.world,tools/sim/worlds/$(1).world)
 	$$(Q)$$(KIDNAP_ENV) sh tools/kidnap/run_row.sh tour $(1)
 $(KIDNAP_OUT)/sim/$(1)/map.hlmap: $(KIDNAP_OUT)/sim/$(1)/tour.lcmlog $(BUILD)/bin/houghlocd \

@@ -2,8 +2,8 @@
 # run_row.sh - one step of `make kidnap` (tools/kidnap/kidnap.mk).
 #
 #   run_row.sh tour WORLD        hl-sim-logs --seed KIDNAP_TOUR_SEED (default 1) of WORLD
-#                                (lab: the built-in lab,
-#                                else tools/sim/worlds/WORLD.world) into KIDNAP_OUT/sim/WORLD/
+#                                (lab: the built-in lab, else tools/sim/worlds/WORLD.world)
+#                                into KIDNAP_OUT/sim/WORLD/
 #   run_row.sh map WORLD         houghlocd replays that tour in batch, with the compiled-in
 #                                defaults, from the tour's true start pose (so that the
 #                                map's frame is the world's): KIDNAP_OUT/sim/WORLD/map.hlmap
@@ -89,7 +89,8 @@ tour)
     echo "kidnap: $what: simulating the tour (hl-sim-logs --seed $tour_seed)" >&2
     rm -rf "$sim/logs"
     # shellcheck disable=SC2046  # the option and its value
-    "$BIN/hl-sim-logs" --seed "$tour_seed" --out-dir "$sim/logs" $(world_opt) >"$sim/sim.out" 2>"$sim/sim.err" ||
+    "$BIN/hl-sim-logs" --seed "$tour_seed" --out-dir "$sim/logs" $(world_opt) \
+        >"$sim/sim.out" 2>"$sim/sim.err" ||
         die tour "$(lasterr "$sim/sim.err")"
     mv "$sim/logs/tour.lcmlog" "$sim/tour.lcmlog" || die tour "no tour.lcmlog written"
     rm -rf "$sim/logs"
