@@ -19,37 +19,57 @@ tsv=$tmp/kidnap.tsv
 header=$(printf 'world\tinput\ttrials\tsuccess_pct\tambiguous_pct\twrong_pct\tmedian_ms\tp90_ms')
 
 make --no-print-directory BUILD="$BUILD" kidnap BUILDINGS= KIDNAP_WORLDS=lab \
-    KIDNAP_TRIALS_SIM=10 KIDNAP_OUT="$out" KIDNAP_TSV="$tsv" >"$tmp/make.out" 2>"$tmp/make.err"
+    KIDNAP_TRIALS_SIM=10 KIDNAP_TOUR_SEEDS='1 2' KIDNAP_OUT="$out" KIDNAP_TSV="$tsv" \
+    >"$tmp/make.out" 2>"$tmp/make.err"
 rc=$?
-check "make kidnap on the lab, 10 trials, exits 0" [ $rc -eq 0 ]
+check "make kidnap on the lab, two tours, 10 trials each, exits 0" [ $rc -eq 0 ]
 [ $rc -eq 0 ] || tail -n 5 "$tmp/make.err"
 check "kidnap.tsv's header" [ "$(head -n 1 "$tsv" 2>/dev/null)" = "$header" ]
 check "kidnap.tsv has the header and one row" [ "$(wc -l <"$tsv" 2>/dev/null)" -eq 2 ]
-check "the row: lab sonar 10, numbers in range, shares add up to 100, median <= p90" \
+check "the row: lab sonar 20, numbers in range, shares add up to 100, median <= p90" \
     awk -F'\t' 'NR == 2 {
-        if (NF != 8 || $1 != "lab" || $2 != "sonar" || $3 != 10) exit 1
+        if (NF != 8 || $1 != "lab" || $2 != "sonar" || $3 != 20) exit 1
         for (k = 4; k <= 8; k++) if ($k !~ /^[0-9]+(\.[0-9]+)?$/) exit 1
         for (k = 4; k <= 6; k++) if ($k < 0 || $k > 100) exit 1
         s = $4 + $5 + $6; if (s < 99.8 || s > 100.2) exit 1
-        # ten trials: every share a whole multiple of 10 %
-        for (k = 4; k <= 6; k++) if (($k * 10) % 100 != 0) exit 1
+        # twenty trials: every share a whole multiple of 5 %
+        for (k = 4; k <= 6; k++) if (($k * 10) % 50 != 0) exit 1
         if ($7 <= 0 || $7 > $8 || $8 > 60000) exit 1
         ok = 1 }
         END { exit !ok }' "$tsv"
 check "stdout ends with the table and the summary line" \
-    sh -c "tail -n 1 '$tmp/make.out' | grep -q '^kidnap rows=1 trials=10 worst_success_pct=[0-9.]* (lab sonar) worst_wrong_pct=[0-9.]* (lab sonar) seconds=[0-9]*\$' &&
-           grep -q '^lab	sonar	10	' '$tmp/make.out'"
-check "progress on stderr: the tour's error and the trials" \
-    sh -c "grep -q '^kidnap: lab sonar: the tour.s stops=' '$tmp/make.err' &&
-           grep -q '^kidnap: lab sonar: 10/10 trials: success' '$tmp/make.err'"
-check "one line per trial in the detail file" \
-    [ "$(awk -F'\t' 'NR > 1 && ($2 == "success" || $2 == "ambiguous" || $2 == "wrong")' \
-        "$out/trials/lab_sonar.tsv" | wc -l)" -eq 10 ]
+    sh -c "tail -n 1 '$tmp/make.out' | grep -q '^kidnap rows=1 trials=20 worst_success_pct=[0-9.]* (lab sonar) worst_wrong_pct=[0-9.]* (lab sonar) seconds=[0-9]*\$' &&
+           grep -q '^lab	sonar	20	' '$tmp/make.out'"
+check "progress on stderr: each tour's error and each map's trials" \
+    sh -c "grep -q '^kidnap: lab sonar, tour 1: the tour.s stops=' '$tmp/make.err' &&
+           grep -q '^kidnap: lab sonar, tour 2: the tour.s stops=' '$tmp/make.err' &&
+           grep -q '^kidnap: lab sonar: map 1/2: 10/10 trials: success' '$tmp/make.err' &&
+           grep -q '^kidnap: lab sonar: map 2/2: 10/10 trials: success' '$tmp/make.err'"
+check "one line per trial in the detail file, ten in each map" \
+    [ "$(awk -F'\t' 'NR > 1 && ($2 == "success" || $2 == "ambiguous" || $2 == "wrong") &&
+                      $24 >= 1 && $24 <= 2 { n[$24]++ } END { print n[1] + 0, n[2] + 0 }' \
+        "$out/trials/lab_sonar.tsv")" = "10 10" ]
+# The answers judged in each tour's own frame: one line per tour whose counts add up.
+check "the map-frame judgement: a line per tour, counts adding up to 10" \
+    awk '{ for (i = 1; i <= NF; i++) { split($i, kv, "="); v[kv[1]] = kv[2] }
+           if (v["trials"] != 10 || v["found_right"] + v["found_wrong"] + v["ambiguous"] != 10 ||
+               v["tour"] != NR || v["map"] != NR) exit 1 }
+         END { exit NR != 2 }' "$out/trials/lab_sonar.map_frame"
+check "the map-frame summary on stderr" \
+    grep -q "^kidnap: lab sonar: in the maps' own frames: found [0-9.]* % right" "$tmp/make.err"
+
+# A tour seed that is not a whole number: the row fails with one line naming it.
+make --no-print-directory BUILD="$BUILD" kidnap BUILDINGS= KIDNAP_WORLDS=lab \
+    KIDNAP_TRIALS_SIM=10 KIDNAP_TOUR_SEEDS='x1' KIDNAP_OUT="$out" KIDNAP_TSV="$tsv" \
+    >"$tmp/seed.out" 2>"$tmp/seed.err"
+rc=$?
+check "KIDNAP_TOUR_SEEDS=x1 fails, naming the seed" \
+    sh -c "[ $rc -ne 0 ] && grep -q \"^kidnap: lab sonar: tour failed: the tour seed 'x1' is not a whole number\" '$tmp/seed.err'"
 
 # The real buildings' path (a map of every scan more than 2 m away, at its true pose) on
 # any log with ground truth: the lab tour's 128 soundings.
 "$BIN/hl-kidnap" --config /dev/null --world tour --input sonar --trials 4 \
-    --log "$out/sim/lab/tour.lcmlog" >"$tmp/real.row" 2>"$tmp/real.err"
+    --log "$out/sim/lab/1/tour.lcmlog" >"$tmp/real.row" 2>"$tmp/real.err"
 check "hl-kidnap --log: one row of 4 trials" \
     awk -F'\t' 'NR == 1 && NF == 8 && $1 == "tour" && $3 == 4 { ok = 1 } END { exit !(ok && NR == 1) }' \
     "$tmp/real.row"

@@ -26,7 +26,7 @@ void usage(FILE *to)
 {
     std::fprintf(to,
         "usage: hl-kidnap --config FILE [--set K=V]... --world NAME --input INPUT --trials N\n"
-        "                 (--sim-world FILE (--map MAP | --truth-map TOUR) --test-log LOG\n"
+        "                 (--sim-world FILE (--map MAP... | --truth-map TOUR...) --test-log LOG\n"
         "                  [--seed S]\n"
         "                  | --log IMPORT [--exclude-m M]) [--detail FILE]\n"
         "       hl-kidnap --header\n"
@@ -41,6 +41,8 @@ void usage(FILE *to)
         "FILE ('lab': the built-in lab); N soundings at random free poses, drawn with seed S\n"
         "(default 1), are written to LOG first. --truth-map TOUR: the map is made instead of\n"
         "the tour log TOUR's scans at their true poses (a drift-free tour), as the slam does.\n"
+        "Several maps (--map or --truth-map again, one kind): the same N soundings in each,\n"
+        "one row of them all (N times the maps trials), a line for each map on stderr.\n"
         "A real building: every scan of the imported log IMPORT (houghloc-import-carmen with\n"
         "--truth) more than M metres (default 2) from the test scan's true position makes\n"
         "its map, at its true pose; N test scans spread evenly over the log.\n"
@@ -50,8 +52,8 @@ void usage(FILE *to)
 }
 
 struct Options {
-    std::string config, world, input, sim_world, map, truth_map, test_log, log, detail;
-    std::vector<std::string> sets;
+    std::string config, world, input, sim_world, test_log, log, detail;
+    std::vector<std::string> sets, maps, truth_maps;
     long trials = 0;
     unsigned long long seed = 1;
     double exclude_m = 2.0;
@@ -110,8 +112,8 @@ int parse(int argc, char **argv, Options *o)
         case WORLD: o->world = optarg; break;
         case INPUT: o->input = optarg; break;
         case SIM_WORLD: o->sim_world = optarg; break;
-        case MAP: o->map = optarg; break;
-        case TRUTH_MAP: o->truth_map = optarg; break;
+        case MAP: o->maps.push_back(optarg); break;
+        case TRUTH_MAP: o->truth_maps.push_back(optarg); break;
         case TEST_LOG: o->test_log = optarg; break;
         case LOG: o->log = optarg; break;
         case SEED:
@@ -135,7 +137,7 @@ int parse(int argc, char **argv, Options *o)
                           o->config.empty() ? "--config" : o->world.empty() ? "--world" :
                           o->input.empty() ? "--input" : o->trials == 0 ? "--trials" :
                           sim == real ? "one of --sim-world and --log" :
-                          sim && o->map.empty() == o->truth_map.empty() ?
+                          sim && o->maps.empty() == o->truth_maps.empty() ?
                               "one of --map and --truth-map" :
                           sim && o->test_log.empty() ? "--test-log" : nullptr;
     if (missing) {
@@ -172,6 +174,43 @@ bool truth_map(const hl_slam_params_t &p, const std::string &path, hl_slam_t *sl
                               err);
 }
 
+// The trials of the soundings @p tests in one map of a simulated world: the daemon's map
+// file @p path, or (@p truth) the tour log @p path mapped at its true poses. @p index of
+// @p count maps, for the trials' map column and the lines on stderr.
+bool run_sim_map(const hl_slam_params_t &p, const std::string &what, const std::string &path,
+                 bool truth, int index, int count, const hlexp::Soundings &tests,
+                 hlkid::Scorer *scorer)
+{
+    std::string err;
+    std::unique_ptr<hl_slam_t, hlkid::SlamDeleter> slam(hl_slam_create(&p));
+    if (!slam) {
+        std::fprintf(stderr, "hl-kidnap: %s: cannot create the slam\n", what.c_str());
+        return false;
+    }
+    if (!(truth ? truth_map(p, path, slam.get(), &err)
+                : hlkid::load_daemon_map(slam.get(), path, &err))) {
+        std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
+        return false;
+    }
+    double w, h;
+    uint32_t n = hl_map_count(hl_slam_map(slam.get()));
+    unsigned long long cells = hlkid::coarse_cells_needed(
+        p.reloc, hl_map_vectors(hl_slam_map(slam.get())), n, &w, &h);
+    std::fprintf(stderr,
+                 "kidnap: %s: map %d of %d (%s): %u vectors over %.1f x %.1f m (%llu coarse "
+                 "cells), %zu test soundings\n",
+                 what.c_str(), index, count, path.c_str(), n, w, h, cells, tests.size());
+    scorer->set_map(index, count);
+    for (const auto &t : tests) {
+        if (!scorer->run(slam.get(), *t, &err)) {
+            std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
+            return false;
+        }
+        scorer->progress(static_cast<int>(tests.size()), 20);
+    }
+    return true;
+}
+
 int run(const Options &o)
 {
     std::vector<const char *> sets;
@@ -190,35 +229,19 @@ int run(const Options &o)
     std::string err;
     hlexp::Soundings tests;
     if (!o.sim_world.empty()) {
-        std::unique_ptr<hl_slam_t, hlkid::SlamDeleter> slam(hl_slam_create(&p));
-        if (!slam) {
-            std::fprintf(stderr, "hl-kidnap: %s: cannot create the slam\n", what.c_str());
-            return 1;
-        }
         const std::string world = o.sim_world == "lab" ? "" : o.sim_world;
         if (!hlkid::write_sim_tests(world, static_cast<int>(o.trials), o.seed, o.test_log,
                                     &err) ||
-            !load_soundings(o.test_log, &tests, &err) ||
-            !(o.map.empty() ? truth_map(p, o.truth_map, slam.get(), &err)
-                            : hlkid::load_daemon_map(slam.get(), o.map, &err))) {
+            !load_soundings(o.test_log, &tests, &err)) {
             std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
             return 1;
         }
-        double w, h;
-        uint32_t n = hl_map_count(hl_slam_map(slam.get()));
-        unsigned long long cells = hlkid::coarse_cells_needed(
-            p.reloc, hl_map_vectors(hl_slam_map(slam.get())), n, &w, &h);
-        std::fprintf(stderr,
-                     "kidnap: %s: map %u vectors over %.1f x %.1f m (%llu coarse cells), "
-                     "%zu test soundings\n",
-                     what.c_str(), n, w, h, cells, tests.size());
-        for (const auto &t : tests) {
-            if (!scorer.run(slam.get(), *t, &err)) {
-                std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
+        const bool truth = o.maps.empty();
+        const std::vector<std::string> &maps = truth ? o.truth_maps : o.maps;
+        for (size_t i = 0; i < maps.size(); i++)
+            if (!run_sim_map(p, what, maps[i], truth, static_cast<int>(i) + 1,
+                             static_cast<int>(maps.size()), tests, &scorer))
                 return 1;
-            }
-            scorer.progress(static_cast<int>(o.trials), 20);
-        }
     } else {
         if (!load_soundings(o.log, &tests, &err) ||
             !hlkid::run_real(p, tests, static_cast<int>(o.trials), 1000.0 * o.exclude_m,

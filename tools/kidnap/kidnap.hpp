@@ -42,6 +42,7 @@ struct Trial {
                                 // of the truth: what the map lets the search find there
     double error_mm = 0.0, error_deg = 0.0;     // of result.pose, when it has one
     Outcome outcome = Outcome::Ambiguous;
+    int map = 1;                // which of the row's maps (1..), for the detail file
 };
 
 // Runs the trials one by one and keeps what the row and the detail file need.
@@ -56,19 +57,26 @@ public:
     // set up wrong (a map too big for the configured search): false, with one line.
     bool run(hl_slam_t *slam, const hlexp::Sounding &test, std::string *err);
 
+    // The trials that follow are in map @p index of @p count (1 of 1 until called).
+    void set_map(int index, int count)
+    {
+        map_ = index;
+        maps_ = count;
+    }
     const std::vector<Trial> &trials() const { return trials_; }
     std::string name() const { return world_ + " " + input_; }
     // The row: world input trials success_pct ambiguous_pct wrong_pct median_ms p90_ms.
     void write_row(FILE *out) const;
     // One line per trial (seq, truth, answer, runner-up, errors, time), for tuning.
     bool write_detail(const std::string &path, std::string *err) const;
-    // One progress line every @p every trials and at the end.
+    // One progress line every @p every trials of the current map and at its @p total.
     void progress(int total, int every) const;
 
 private:
     std::string world_, input_;
     hl_reloc_params_t reloc_;   // the search's parameters, for the reason of a failure
     std::vector<Trial> trials_;
+    int map_ = 1, maps_ = 1;
 };
 
 // The coarse raster one candidate heading of the global search needs over the bounding

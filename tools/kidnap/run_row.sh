@@ -1,15 +1,17 @@
 #!/bin/sh
 # run_row.sh - one step of `make kidnap` (tools/kidnap/kidnap.mk).
 #
-#   run_row.sh tour WORLD        hl-sim-logs --seed KIDNAP_TOUR_SEED (default 1) of WORLD
-#                                (lab: the built-in lab, else tools/sim/worlds/WORLD.world)
-#                                into KIDNAP_OUT/sim/WORLD/
-#   run_row.sh map WORLD         houghlocd replays that tour in batch, with the compiled-in
-#                                defaults, from the tour's true start pose (so that the
-#                                map's frame is the world's): KIDNAP_OUT/sim/WORLD/map.hlmap
-#   run_row.sh sim WORLD         the row WORLD sonar: KIDNAP_TRIALS_SIM soundings at random
-#                                free poses relocalized in that map, with the compiled-in
-#                                defaults (tools/kidnap/WORLD.conf when there is one)
+#   run_row.sh tour WORLD SEED   hl-sim-logs --seed SEED of WORLD (lab: the built-in lab,
+#                                else tools/sim/worlds/WORLD.world) into
+#                                KIDNAP_OUT/sim/WORLD/SEED/tour.lcmlog
+#   run_row.sh map WORLD SEED    houghlocd replays that tour in batch, with the compiled-in
+#                                defaults and KIDNAP_TOUR_SET, from the tour's true start
+#                                pose (so that the map's frame is the world's):
+#                                KIDNAP_OUT/sim/WORLD/SEED/map.hlmap
+#   run_row.sh sim WORLD         the row WORLD sonar: the same KIDNAP_TRIALS_SIM soundings
+#                                at random free poses relocalized in the map of each tour
+#                                of KIDNAP_TOUR_SEEDS, with the compiled-in defaults
+#                                (tools/kidnap/WORLD.conf when there is one)
 #   run_row.sh real BUILDING INPUT   the row BUILDING INPUT (laser or sonar): the import
 #                                EVAL_OUT/input/BUILDING_INPUT_every.lcmlog (made by
 #                                tools/realeval/realeval.mk's rule), KIDNAP_TRIALS_REAL
@@ -20,7 +22,8 @@
 # A row is one line in KIDNAP_OUT/rows/WORLD_INPUT.tsv (hl-kidnap's columns), with each
 # trial in KIDNAP_OUT/trials/WORLD_INPUT.tsv. Environment: BUILD, DATA, EVAL_OUT,
 # KIDNAP_OUT, KIDNAP_TRIALS_SIM, KIDNAP_TRIALS_REAL, KIDNAP_TOUR_SET (--set options of the
-# map-making tour), KIDNAP_TOUR_SEED (its hl-sim-logs seed). Any failure stops with one line
+# map-making tours), KIDNAP_TOUR_SEEDS (their hl-sim-logs seeds, whole numbers, default
+# 1 2 3 4 5 6 7 8). Any failure stops with one line
 #   kidnap: WHAT: STEP failed: REASON
 # and exit status 1 (2 for bad usage), leaving no output file.
 set -u
@@ -30,11 +33,12 @@ BIN=$BUILD/bin
 DATA=${DATA:-../shared/data}
 EVAL_OUT=${EVAL_OUT:-$BUILD/eval}
 OUT=${KIDNAP_OUT:-$BUILD/kidnap}
-tour_seed=${KIDNAP_TOUR_SEED:-1}
+tour_seeds=${KIDNAP_TOUR_SEEDS-1 2 3 4 5 6 7 8}
 HERE=$(dirname "$0")
 
 usage() {
-    echo "usage: run_row.sh tour|map|sim WORLD | run_row.sh real BUILDING laser|sonar" >&2
+    echo "usage: run_row.sh tour|map WORLD SEED | run_row.sh sim WORLD" \
+         "| run_row.sh real BUILDING laser|sonar" >&2
     exit 2
 }
 
@@ -54,6 +58,10 @@ lasterr() { # lasterr FILE: its last line that is not a syslog info/debug line
     echo "$l" | sed 's/^<[0-7]>//'
 }
 
+seed_ok() {     # seed_ok WORD: a whole number (hl-sim-logs --seed)
+    case $1 in '' | *[!0-9]*) return 1 ;; esac
+}
+
 conf_sets() {   # conf_sets FILE: its keys as --set options ([section] key = value)
     awk '/^[[:space:]]*([;#]|$)/ { next }
          /^[[:space:]]*\[/ { gsub(/[][[:space:]]/, ""); sect = $0; next }
@@ -65,7 +73,14 @@ conf_sets() {   # conf_sets FILE: its keys as --set options ([section] key = val
 [ $# -ge 2 ] || usage
 cmd=$1 w=$2
 case $cmd in
-tour | map | sim) [ $# -eq 2 ] || usage; what="$w sonar" ;;
+tour | map) [ $# -eq 3 ] || usage; what="$w sonar"
+    seed_ok "$3" || die $cmd "the tour seed '$3' is not a whole number"
+    what="$w sonar, tour $3" ;;
+sim) [ $# -eq 2 ] || usage; what="$w sonar"
+    [ -n "$(echo $tour_seeds)" ] || die sim "KIDNAP_TOUR_SEEDS is empty"
+    for s in $tour_seeds; do
+        seed_ok "$s" || die sim "KIDNAP_TOUR_SEEDS '$s' is not a whole number"
+    done ;;
 real) [ $# -eq 3 ] || usage
     case $3 in laser | sonar) ;; *) usage ;; esac
     what="$w $3" ;;
@@ -74,7 +89,9 @@ esac
 case $w in '' | */* | .*) usage ;; esac
 
 sim=$OUT/sim/$w
-mkdir -p "$sim" "$OUT/rows" "$OUT/trials" || die setup "cannot create folders in $OUT"
+tour=$sim           # tour and map: the tour's own folder
+case $cmd in tour | map) tour=$sim/$3 ;; esac
+mkdir -p "$tour" "$OUT/rows" "$OUT/trials" || die setup "cannot create folders in $OUT"
 
 world_opt() {   # the world's hl-sim-logs option
     if [ "$w" = lab ]; then echo ""; else echo "--world $HERE/../sim/worlds/$w.world"; fi
@@ -83,47 +100,52 @@ world_opt() {   # the world's hl-sim-logs option
 case $cmd in
 tour)
     [ "$w" = lab ] || [ -r "$HERE/../sim/worlds/$w.world" ] || die tour "no world tools/sim/worlds/$w.world"
-    case $tour_seed in
-    '' | *[!0-9]*) die tour "KIDNAP_TOUR_SEED '$tour_seed' is not a whole number" ;;
-    esac
-    echo "kidnap: $what: simulating the tour (hl-sim-logs --seed $tour_seed)" >&2
-    rm -rf "$sim/logs"
+    echo "kidnap: $what: simulating the tour (hl-sim-logs --seed $3)" >&2
+    rm -rf "$tour/logs"
     # shellcheck disable=SC2046  # the option and its value
-    "$BIN/hl-sim-logs" --seed "$tour_seed" --out-dir "$sim/logs" $(world_opt) \
-        >"$sim/sim.out" 2>"$sim/sim.err" ||
-        die tour "$(lasterr "$sim/sim.err")"
-    mv "$sim/logs/tour.lcmlog" "$sim/tour.lcmlog" || die tour "no tour.lcmlog written"
-    rm -rf "$sim/logs"
+    "$BIN/hl-sim-logs" --seed "$3" --out-dir "$tour/logs" $(world_opt) \
+        >"$tour/sim.out" 2>"$tour/sim.err" ||
+        die tour "$(lasterr "$tour/sim.err")"
+    mv "$tour/logs/tour.lcmlog" "$tour/tour.lcmlog" || die tour "no tour.lcmlog written"
+    rm -rf "$tour/logs"
     ;;
 map)
-    start=$("$BIN/hl-eval" start "$sim/tour.lcmlog" 2>"$sim/start.err") ||
-        die map "$(lasterr "$sim/start.err")"
+    start=$("$BIN/hl-eval" start "$tour/tour.lcmlog" 2>"$tour/start.err") ||
+        die map "$(lasterr "$tour/start.err")"
     # shellcheck disable=SC2086
     set -- $start
     [ $# -eq 3 ] || die map "hl-eval start printed '$start'"
     echo "kidnap: $what: the daemon's tour" >&2
     sets=""
     for kv in ${KIDNAP_TOUR_SET:-}; do sets="$sets --set $kv"; done
-    rm -f "$sim/map.hlmap" "$sim/map.tmp.hlmap"
+    rm -f "$tour/map.hlmap" "$tour/map.tmp.hlmap"
     # shellcheck disable=SC2086  # $sets is a list of options
     "$BIN/houghlocd" --config /dev/null $sets \
         --set "start.x_m=$1" --set "start.y_m=$2" --set "start.heading_deg=$3" \
-        --fresh-map --map "$sim/map.tmp.hlmap" \
-        --lcm-url "file://$(abs "$sim/tour.lcmlog")?speed=0" \
-        --lcm-out "file://$(abs "$sim/out.lcmlog")?mode=w" 2>"$sim/daemon.err" ||
-        die map "$(lasterr "$sim/daemon.err")"
+        --fresh-map --map "$tour/map.tmp.hlmap" \
+        --lcm-url "file://$(abs "$tour/tour.lcmlog")?speed=0" \
+        --lcm-out "file://$(abs "$tour/out.lcmlog")?mode=w" 2>"$tour/daemon.err" ||
+        die map "$(lasterr "$tour/daemon.err")"
     # How far the map is from the world: the tour's own error (hl-eval score).
-    "$BIN/hl-eval" score "$sim/tour.lcmlog" "$sim/out.lcmlog" >"$sim/score.txt" 2>&1 ||
-        die map "hl-eval score: $(lasterr "$sim/score.txt")"
-    echo "kidnap: $what: the tour's $(tail -n 1 "$sim/score.txt" | sed 's/^demo //')" >&2
-    mv "$sim/map.tmp.hlmap" "$sim/map.hlmap" || die map "cannot rename the map"
+    "$BIN/hl-eval" score "$tour/tour.lcmlog" "$tour/out.lcmlog" >"$tour/score.txt" 2>&1 ||
+        die map "hl-eval score: $(lasterr "$tour/score.txt")"
+    echo "kidnap: $what: the tour's $(tail -n 1 "$tour/score.txt" | sed 's/^demo //')" >&2
+    # ... and its poses, true and estimated, for judging answers in the map's own frame
+    "$BIN/houghloc-eval" --tsv --tum-gt "$tour/truth.tum" --tum-est "$tour/estimate.tum" \
+        "$tour/tour.lcmlog" "$tour/out.lcmlog" >"$tour/eval.txt" 2>&1 ||
+        die map "houghloc-eval: $(lasterr "$tour/eval.txt")"
+    mv "$tour/map.tmp.hlmap" "$tour/map.hlmap" || die map "cannot rename the map"
     ;;
 sim | real)
     if [ "$cmd" = sim ]; then
         input=sonar trials=${KIDNAP_TRIALS_SIM:-200}
         world=$w
         [ "$w" = lab ] || world=$HERE/../sim/worlds/$w.world
-        src="--sim-world $world --map $sim/map.hlmap --test-log $sim/tests.lcmlog"
+        src="--sim-world $world --test-log $sim/tests.lcmlog"
+        for s in $tour_seeds; do
+            [ -s "$sim/$s/map.hlmap" ] || die sim "no map of tour $s ($sim/$s/map.hlmap)"
+            src="$src --map $sim/$s/map.hlmap"
+        done
         # The compiled-in defaults, but for what tools/kidnap/WORLD.conf says the world needs.
         conf=/dev/null
         [ -r "$HERE/$w.conf" ] && conf=$HERE/$w.conf
@@ -156,6 +178,23 @@ sim | real)
         die trials "$(lasterr "$err")"
     fi
     rm -f "$err.status"
+    if [ "$cmd" = sim ]; then
+        frame=$OUT/trials/${w}_$input.map_frame
+        i=0
+        for s in $tour_seeds; do
+            i=$((i + 1))
+            line=$(sh "$HERE/map_frame.sh" "$sim/$s/truth.tum" "$sim/$s/estimate.tum" \
+                   "$OUT/trials/${w}_$input.tsv" $i 2>"$frame.err") ||
+                die "map frame" "$(lasterr "$frame.err")"
+            echo "tour=$s $line"
+        done >"$frame"
+        rm -f "$frame.err"
+        echo "kidnap: $what: in the maps' own frames: $(awk '{ for (i = 1; i <= NF; i++) {
+            split($i, kv, "="); sum[kv[1]] += kv[2] } }
+            END { printf "found %.1f %% right, %.1f %% wrong (of %d trials)",
+                  100 * sum["found_right"] / sum["trials"],
+                  100 * sum["found_wrong"] / sum["trials"], sum["trials"] }' "$frame")" >&2
+    fi
     mv "$row.tmp" "$row" || die row "cannot rename $row.tmp"
     echo "kidnap: $what: done in $(( $(date +%s) - t0 )) s" >&2
     ;;

@@ -107,6 +107,7 @@ static uint32_t truth_score(hl_slam_t *slam, const hl_scan_t &scan, hl_pose_t tr
 bool Scorer::run(hl_slam_t *slam, const hlexp::Sounding &test, std::string *err)
 {
     Trial t;
+    t.map = map_;
     t.seq = test.msg.seq;
     t.truth = test.truth;
     t.map_vectors = hl_map_count(hl_slam_map(slam));
@@ -166,21 +167,26 @@ void Scorer::write_row(FILE *out) const
 
 void Scorer::progress(int total, int every) const
 {
-    size_t n = trials_.size();
-    if (n == 0 || (n % static_cast<size_t>(every) != 0 && n != static_cast<size_t>(total)))
-        return;
+    size_t n = 0;
     int ok = 0, amb = 0;
     std::vector<double> ms;
     for (const Trial &t : trials_) {
+        if (t.map != map_)
+            continue;
+        n++;
         ok += t.outcome == Outcome::Success;
         amb += t.outcome == Outcome::Ambiguous;
         ms.push_back(t.ms);
     }
+    if (n == 0 || (n % static_cast<size_t>(every) != 0 && n != static_cast<size_t>(total)))
+        return;
+    std::string which = maps_ > 1 ? " map " + std::to_string(map_) + "/" +
+                                        std::to_string(maps_) + ":" : "";
     std::fprintf(stderr,
-                 "kidnap: %s %s: %zu/%d trials: success %.1f %%, ambiguous %.1f %%, wrong "
+                 "kidnap: %s %s:%s %zu/%d trials: success %.1f %%, ambiguous %.1f %%, wrong "
                  "%.1f %%, median %.1f ms\n",
-                 world_.c_str(), input_.c_str(), n, total, pct(ok, n), pct(amb, n),
-                 pct(static_cast<int>(n) - ok - amb, n), median(ms));
+                 world_.c_str(), input_.c_str(), which.c_str(), n, total, pct(ok, n),
+                 pct(amb, n), pct(static_cast<int>(n) - ok - amb, n), median(ms));
 }
 
 bool Scorer::write_detail(const std::string &path, std::string *err) const
@@ -193,17 +199,17 @@ bool Scorer::write_detail(const std::string &path, std::string *err) const
     std::fprintf(f, "seq\toutcome\tstatus\ttrue_x_mm\ttrue_y_mm\ttrue_deg\tx_mm\ty_mm\tdeg\t"
                     "error_mm\terror_deg\texplained_pct\tscore\trunner_up_score\t"
                     "runner_x_mm\trunner_y_mm\trunner_deg\tmap_vectors\tnear_vectors\tms\t"
-                    "truth_score\tedge\trunner_edge\n");
+                    "truth_score\tedge\trunner_edge\tmap\n");
     for (const Trial &t : trials_) {
         const hl_reloc_result_t &r = t.result;
         std::fprintf(f, "%d\t%s\t%s\t%d\t%d\t%.1f\t%d\t%d\t%.1f\t%.0f\t%.1f\t%.1f\t%u\t%u\t"
-                        "%d\t%d\t%.1f\t%u\t%u\t%.2f\t%u\t%u\t%u\n",
+                        "%d\t%d\t%.1f\t%u\t%u\t%.2f\t%u\t%u\t%u\t%d\n",
                      t.seq, outcome_name(t.outcome), hl_status_str(t.status), t.truth.x_mm,
                      t.truth.y_mm, hl_bam_to_deg(t.truth.theta), r.pose.x_mm, r.pose.y_mm,
                      hl_bam_to_deg(r.pose.theta), t.error_mm, t.error_deg, r.explained_pct,
                      r.score, r.runner_up_score, r.runner_up.x_mm, r.runner_up.y_mm,
                      hl_bam_to_deg(r.runner_up.theta), t.map_vectors, t.near_vectors, t.ms,
-                     t.truth_score, r.edge, r.runner_edge);
+                     t.truth_score, r.edge, r.runner_edge, t.map);
     }
     if (std::fclose(f) != 0) {
         *err = path + ": write failed";
