@@ -50,9 +50,10 @@ check "one line per trial in the detail file, ten in each map" \
                       $24 >= 1 && $24 <= 2 { n[$24]++ } END { print n[1] + 0, n[2] + 0 }' \
         "$out/trials/lab_sonar.tsv")" = "10 10" ]
 # The answers judged in each tour's own frame: one line per tour whose counts add up.
-check "the map-frame judgement: a line per tour, counts adding up to 10" \
+check "the map-frame judgement: a line per tour, counts adding up to 10, aligned to the found" \
     awk '{ for (i = 1; i <= NF; i++) { split($i, kv, "="); v[kv[1]] = kv[2] }
            if (v["trials"] != 10 || v["found_right"] + v["found_wrong"] + v["ambiguous"] != 10 ||
+               v["aligned_right"] + v["aligned_wrong"] != v["found_right"] + v["found_wrong"] ||
                v["tour"] != NR || v["map"] != NR) exit 1 }
          END { exit NR != 2 }' "$out/trials/lab_sonar.map_frame"
 check "the map-frame summary on stderr" \

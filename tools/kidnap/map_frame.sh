@@ -8,11 +8,14 @@
 # map's frame by the tour stop nearest to it (TRUTH.tum and ESTIMATE.tum: that tour's
 # true and estimated poses, houghloc-eval --tum-gt/--tum-est, in stop order): the pose
 # the stop's estimate puts it at. The trials are hl-kidnap's --detail rows whose map
-# column is MAP. Prints one line:
-#   map=MAP trials=N found_right=A found_wrong=B ambiguous=C
+# column is MAP. It also carries them by the one rigid motion that best lays the tour's
+# true stops onto its estimated ones (least squares, as an ATE's alignment): what is left
+# once the map's frame as a whole is forgiven, and only its bends count. Prints one line:
+#   map=MAP trials=N found_right=A found_wrong=B ambiguous=C aligned_right=D aligned_wrong=E
 # found_right: found within 0.5 m and 5 degrees of that map-frame pose (hl-kidnap's
-# success bar), found_wrong: found farther off. Exit status 1 with one line on stderr
-# on a missing file or no such trial, 2 on bad usage.
+# success bar), found_wrong: found farther off; aligned_*: the same against the aligned
+# truth. Exit status 1 with one line on stderr on a missing file or no such trial, 2 on
+# bad usage.
 set -u
 [ $# -eq 4 ] || { echo "usage: map_frame.sh TRUTH.tum ESTIMATE.tum DETAIL.tsv MAP" >&2; exit 2; }
 for f in "$1" "$2" "$3"; do
@@ -30,6 +33,25 @@ FILENAME == ARGV[1] || FILENAME == ARGV[2] {
     if (FILENAME == ARGV[1]) { gx[k] = x; gy[k] = y; gh[k] = h }
     else { ex[k] = x; ey[k] = y; eh[k] = h }
     next
+}
+# The rigid alignment of the true stops onto the estimated ones (2-D Umeyama, no scale):
+# rotation ar, translation (ax, ay).
+function align(   i, n, gmx, gmy, emx, emy, sxx, sxy, dx, dy, fx, fy) {
+    n = ng < ne ? ng : ne
+    for (i = 0; i < n; i++) { gmx += gx[i]; gmy += gy[i]; emx += ex[i]; emy += ey[i] }
+    gmx /= n; gmy /= n; emx /= n; emy /= n
+    for (i = 0; i < n; i++) {
+        dx = gx[i] - gmx; dy = gy[i] - gmy; fx = ex[i] - emx; fy = ey[i] - emy
+        sxx += dx * fx + dy * fy; sxy += dx * fy - dy * fx
+    }
+    ar = atan2(sxy, sxx)
+    ax = emx - (cos(ar) * gmx - sin(ar) * gmy); ay = emy - (sin(ar) * gmx + cos(ar) * gmy)
+    aligned = 1
+}
+function judge(x, y, h,   e, ed) {   # 1 when the answer is within the bar of (x, y, h)
+    e = sqrt(($col["x_mm"] - x) ^ 2 + ($col["y_mm"] - y) ^ 2)
+    ed = wrapdeg($col["deg"] - h * 180 / atan2(0, -1)); if (ed < 0) ed = -ed
+    return e <= 500 && ed <= 5
 }
 FNR == 1 {      # the detail header: columns by name
     for (i = 1; i <= NF; i++) col[$i] = i
@@ -52,15 +74,18 @@ $col["map"] == map {
     c = cos(eh[best]); s = sin(eh[best])
     mx = ex[best] + c * rx - s * ry; my = ey[best] + s * rx + c * ry
     mh = eh[best] + (th - gh[best])
-    e = sqrt(($col["x_mm"] - mx) ^ 2 + ($col["y_mm"] - my) ^ 2)
-    ed = wrapdeg($col["deg"] - mh * 180 / atan2(0, -1)); if (ed < 0) ed = -ed
+    if (!aligned) align()
     trials++
-    if ($col["outcome"] == "ambiguous") amb++
-    else if (e <= 500 && ed <= 5) right++
-    else wrong++
+    if ($col["outcome"] == "ambiguous") { amb++; next }
+    if (judge(mx, my, mh)) right++; else wrong++
+    if (judge(cos(ar) * tx - sin(ar) * ty + ax, sin(ar) * tx + cos(ar) * ty + ay, th + ar))
+        aright++
+    else
+        awrong++
 }
 END {
     if (bad != "") { print "map_frame.sh: " bad > "/dev/stderr"; exit 1 }
     if (trials == 0) { print "map_frame.sh: no trial of map " map > "/dev/stderr"; exit 1 }
-    printf "map=%s trials=%d found_right=%d found_wrong=%d ambiguous=%d\n", map, trials, right + 0, wrong + 0, amb + 0
+    printf "map=%s trials=%d found_right=%d found_wrong=%d ambiguous=%d aligned_right=%d aligned_wrong=%d\n",
+           map, trials, right + 0, wrong + 0, amb + 0, aright + 0, awrong + 0
 }' "$1" "$2" "$3"

@@ -191,9 +191,12 @@ sim | real)
         rm -f "$frame.err"
         echo "kidnap: $what: in the maps' own frames: $(awk '{ for (i = 1; i <= NF; i++) {
             split($i, kv, "="); sum[kv[1]] += kv[2] } }
-            END { printf "found %.1f %% right, %.1f %% wrong (of %d trials)",
+            END { printf "found %.1f %% right, %.1f %% wrong (of %d trials); with each " \
+                         "map aligned to the world as a whole, %.1f %% right, %.1f %% wrong",
                   100 * sum["found_right"] / sum["trials"],
-                  100 * sum["found_wrong"] / sum["trials"], sum["trials"] }' "$frame")" >&2
+                  100 * sum["found_wrong"] / sum["trials"], sum["trials"],
+                  100 * sum["aligned_right"] / sum["trials"],
+                  100 * sum["aligned_wrong"] / sum["trials"] }' "$frame")" >&2
     fi
     mv "$row.tmp" "$row" || die row "cannot rename $row.tmp"
     echo "kidnap: $what: done in $(( $(date +%s) - t0 )) s" >&2
