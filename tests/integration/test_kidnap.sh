@@ -92,5 +92,9 @@ exits "hl-kidnap without a source is bad usage" 2 "one of --sim-world and --log"
     "$BIN/hl-kidnap" --config /dev/null --world w --input sonar --trials 3
 exits "hl-kidnap with a bad config key" 1 "nosuch" \
     "$BIN/hl-kidnap" --config /dev/null --set reloc.nosuch=1 --world w --input sonar --trials 3 --log x
+exits "hl-kidnap with a missing second map fails before any trial, naming it" 1 \
+    "$tmp/nomap.hlmap: cannot open" \
+    "$BIN/hl-kidnap" --config /dev/null --world lab --input sonar --trials 2 --sim-world lab \
+    --map "$out/sim/lab/1/map.hlmap" --map "$tmp/nomap.hlmap" --test-log "$tmp/t.lcmlog"
 check "hl-kidnap --header" [ "$("$BIN/hl-kidnap" --header)" = "$header" ]
 exit $fail

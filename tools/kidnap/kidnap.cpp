@@ -238,6 +238,15 @@ int run(const Options &o)
         }
         const bool truth = o.maps.empty();
         const std::vector<std::string> &maps = truth ? o.truth_maps : o.maps;
+        // Every map readable before the first trial: a run of several maps takes minutes.
+        for (const std::string &m : maps)
+            if (FILE *f = std::fopen(m.c_str(), "rb"))
+                std::fclose(f);
+            else {
+                std::fprintf(stderr, "hl-kidnap: %s: %s: cannot open: %s\n", what.c_str(),
+                             m.c_str(), std::strerror(errno));
+                return 1;
+            }
         for (size_t i = 0; i < maps.size(); i++)
             if (!run_sim_map(p, what, maps[i], truth, static_cast<int>(i) + 1,
                              static_cast<int>(maps.size()), tests, &scorer))
