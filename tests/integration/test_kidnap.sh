@@ -59,6 +59,31 @@ check "the map-frame judgement: a line per tour, counts adding up to 10, aligned
 check "the map-frame summary on stderr" \
     grep -q "^kidnap: lab sonar: in the maps' own frames: found [0-9.]* % right" "$tmp/make.err"
 
+# hl-tour-study replays tour 1 as the daemon did (the tours' settings, from make's stamp
+# file): the same RMSE and far poses as hl-eval score on the daemon's own output.
+tour_sets=$(for kv in $(cat "$out/sim/tour-set"); do printf -- '--set %s ' "$kv"; done)
+# shellcheck disable=SC2086  # a list of options
+"$BIN/hl-tour-study" --config /dev/null $tour_sets --quiet "$out/sim/lab/1/tour.lcmlog" \
+    >"$tmp/study.out" 2>"$tmp/study.err"
+study=$(sed -n 's/^tour_study mode=track stops=128 rmse_mm=\([0-9.]*\) .* far=\([0-9]*\)$/\1 \2/p' \
+        "$tmp/study.out")
+daemon=$(tail -n 1 "$out/sim/lab/1/score.txt" |
+         sed -n 's/.* rmse_mm=\([0-9.]*\) .* wild_accepted=\([0-9]*\)$/\1 \2/p')
+check "hl-tour-study --mode track matches the daemon's tour (hl-eval score: $daemon)" \
+    [ "${daemon:-no score}" = "$study" ]
+# Each scan alone from its true pose against a drift-free map: never 0.5 m off (none of
+# the 24 lab tours' 3,048 stops was, docs/kidnap.md).
+# shellcheck disable=SC2086
+"$BIN/hl-tour-study" --config /dev/null $tour_sets --mode oracle --quiet \
+    "$out/sim/lab/1/tour.lcmlog" >"$tmp/oracle.out" 2>&1
+check "hl-tour-study --mode oracle: 127 stops scored, none far" \
+    grep -q '^tour_study mode=oracle stops=127 rmse_mm=[0-9.]* heading_rms_deg=[0-9.]* heading_mean_deg=-*[0-9.]* far=0$' \
+    "$tmp/oracle.out"
+exits "hl-tour-study --mode bogus is bad usage" 2 "--mode wants track, exact or oracle" \
+    "$BIN/hl-tour-study" --config /dev/null --mode bogus "$out/sim/lab/1/tour.lcmlog"
+exits "hl-tour-study on a file that is not a log" 1 "not an LCM log" \
+    "$BIN/hl-tour-study" --config /dev/null "$tsv"
+
 # A tour seed that is not a whole number: the row fails with one line naming it.
 make --no-print-directory BUILD="$BUILD" kidnap BUILDINGS= KIDNAP_WORLDS=lab \
     KIDNAP_TRIALS_SIM=10 KIDNAP_TOUR_SEEDS='x1' KIDNAP_OUT="$out" KIDNAP_TSV="$tsv" \

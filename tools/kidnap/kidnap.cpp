@@ -14,10 +14,7 @@
 #include <string>
 #include <vector>
 
-extern "C" {
-#include "config.h"
-}
-
+#include "inputs.hpp"
 #include "kidnap.hpp"
 
 namespace {
@@ -147,25 +144,13 @@ int parse(int argc, char **argv, Options *o)
     return -1;
 }
 
-bool load_soundings(const std::string &path, hlexp::Soundings *out, std::string *err)
-{
-    if (!hlexp::read_soundings(path, out, err))
-        return false;
-    // Only SONAR: a log's other scan channels (SONAR_TEST) are not the robot's scans.
-    hlexp::Soundings keep;
-    for (auto &s : *out)
-        if (s->channel == "SONAR")
-            keep.push_back(std::move(s));
-    out->swap(keep);
-    return true;
-}
 
 // The map of the tour log @p path's scans at their true poses, into @p slam.
 bool truth_map(const hl_slam_params_t &p, const std::string &path, hl_slam_t *slam,
                std::string *err)
 {
     hlexp::Soundings tour;
-    if (!load_soundings(path, &tour, err))
+    if (!hlkid::load_soundings(path, &tour, err))
         return false;
     hlkid::TruthMapper mapper(p, tour);
     if (!mapper.make(hl_pose_t{}, -1.0, err))
@@ -213,14 +198,10 @@ bool run_sim_map(const hl_slam_params_t &p, const std::string &what, const std::
 
 int run(const Options &o)
 {
-    std::vector<const char *> sets;
-    for (const std::string &s : o.sets)
-        sets.push_back(s.c_str());
-    auto cfg = std::make_unique<hl_config_t>();
-    char why[HL_CONFIG_WHY_LEN];
-    if (!hl_config_load(cfg.get(), o.config.c_str(), false, sets.data(),
-                        static_cast<int>(sets.size()), why)) {
-        std::fprintf(stderr, "hl-kidnap: %s\n", why);
+    std::string why;
+    std::unique_ptr<hl_config_t> cfg = hlkid::load_config(o.config, o.sets, &why);
+    if (!cfg) {
+        std::fprintf(stderr, "hl-kidnap: %s\n", why.c_str());
         return 1;
     }
     const hl_slam_params_t &p = cfg->slam;
@@ -232,7 +213,7 @@ int run(const Options &o)
         const std::string world = o.sim_world == "lab" ? "" : o.sim_world;
         if (!hlkid::write_sim_tests(world, static_cast<int>(o.trials), o.seed, o.test_log,
                                     &err) ||
-            !load_soundings(o.test_log, &tests, &err)) {
+            !hlkid::load_soundings(o.test_log, &tests, &err)) {
             std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
             return 1;
         }
@@ -252,7 +233,7 @@ int run(const Options &o)
                              static_cast<int>(maps.size()), tests, &scorer))
                 return 1;
     } else {
-        if (!load_soundings(o.log, &tests, &err) ||
+        if (!hlkid::load_soundings(o.log, &tests, &err) ||
             !hlkid::run_real(p, tests, static_cast<int>(o.trials), 1000.0 * o.exclude_m,
                              &scorer, &err)) {
             std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());

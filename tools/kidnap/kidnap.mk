@@ -56,7 +56,7 @@ BUILDINGS ?= intel aces freiburg-079 csail freiburg-101
 EVAL_OUT  ?= $(BUILD)/eval
 
 KIDNAP_SRCS := tools/kidnap/kidnap.cpp tools/kidnap/trials.cpp tools/kidnap/sim.cpp \
-               tools/kidnap/real.cpp
+               tools/kidnap/real.cpp tools/kidnap/inputs.cpp
 KIDNAP_OBJS := $(call obj,$(KIDNAP_SRCS)) \
                $(call obj,tools/experiments/dataset.cpp tools/experiments/modes.cpp)
 KIDNAP_ROWS := $(foreach w,$(KIDNAP_WORLDS),$(KIDNAP_OUT)/rows/$(w)_sonar.tsv) \
@@ -65,12 +65,18 @@ KIDNAP_ENV = BUILD='$(BUILD)' DATA='$(DATA)' EVAL_OUT='$(EVAL_OUT)' KIDNAP_OUT='
              KIDNAP_TRIALS_SIM='$(KIDNAP_TRIALS_SIM)' KIDNAP_TRIALS_REAL='$(KIDNAP_TRIALS_REAL)' \
              KIDNAP_TOUR_SET='$(KIDNAP_TOUR_SET)' KIDNAP_TOUR_SEEDS='$(KIDNAP_TOUR_SEEDS)'
 
-BINS += $(BUILD)/bin/hl-kidnap
+# hl-tour-study: where a tour's error comes from (the tour replayed as houghlocd does,
+# with exact motion, or each scan alone against a drift-free map).
+TOUR_STUDY_OBJS := $(call obj,tools/kidnap/tour_study.cpp tools/kidnap/inputs.cpp \
+                              tools/experiments/dataset.cpp)
+
+BINS += $(BUILD)/bin/hl-kidnap $(BUILD)/bin/hl-tour-study
 INTEGRATION_TESTS += tests/integration/test_kidnap.sh
 
 # hl-kidnap reads the daemon's configuration and map files with the daemon's own code
-# (src/daemon: config.h, mapstore.h), the logs with the experiments' reader.
-$(call obj,$(KIDNAP_SRCS)): $(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
+# (src/daemon: config.h, mapstore.h), the logs with the experiments' reader; so does
+# hl-tour-study.
+$(call obj,$(KIDNAP_SRCS) tools/kidnap/tour_study.cpp): $(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CXX     $<"
 	$(Q)$(CXX) $(CPPFLAGS) -Isrc/daemon $(PKG_CFLAGS) $(CXXFLAGS) -c -o $@ $<
@@ -81,6 +87,12 @@ $(BUILD)/bin/hl-kidnap: $(KIDNAP_OBJS) $(BUILD)/lib/libhoughloc_sim.a $(DAEMON_L
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $(KIDNAP_OBJS) $(BUILD)/lib/libhoughloc_sim.a $(DAEMON_LIB) $(DAEMON_LDLIBS)
+
+$(BUILD)/bin/hl-tour-study: $(TOUR_STUDY_OBJS) $(DAEMON_LIB) $(ROBOT_LIB) $(BUS_LIB) $(LCM_LIB) \
+                            $(CORE_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD      $@"
+	$(Q)$(CXX) -o $@ $(TOUR_STUDY_OBJS) $(DAEMON_LIB) $(DAEMON_LDLIBS)
 
 .PHONY: kidnap kidnap-rows kidnap-always
 

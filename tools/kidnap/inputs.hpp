@@ -1,0 +1,30 @@
+// inputs.hpp - what the kidnap tools (hl-kidnap, hl-tour-study) read: houghlocd's
+// configuration, through the daemon's own loader, and the robot's scans of a log.
+#ifndef HLKID_INPUTS_HPP
+#define HLKID_INPUTS_HPP
+
+#include <memory>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "config.h"
+}
+
+#include "../experiments/dataset.hpp"
+
+namespace hlkid {
+
+// houghlocd's configuration from @p file, then the K=V keys of @p sets in order (as
+// `houghlocd --config FILE --set K=V`). nullptr with the loader's one-line reason in
+// @p why on any bad key, value or file.
+std::unique_ptr<hl_config_t> load_config(const std::string &file,
+                                         const std::vector<std::string> &sets,
+                                         std::string *why);
+
+// The SONAR scans of the log @p path with their ground truth (hlexp::read_soundings):
+// a log's other scan channels (SONAR_TEST) are not the robot's tour.
+bool load_soundings(const std::string &path, hlexp::Soundings *out, std::string *err);
+
+}  // namespace hlkid
+#endif
