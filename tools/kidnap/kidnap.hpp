@@ -62,6 +62,7 @@ public:
     {
         map_ = index;
         maps_ = count;
+        map_first_ = trials_.size();
     }
     const std::vector<Trial> &trials() const { return trials_; }
     std::string name() const { return world_ + " " + input_; }
@@ -77,6 +78,7 @@ private:
     hl_reloc_params_t reloc_;   // the search's parameters, for the reason of a failure
     std::vector<Trial> trials_;
     int map_ = 1, maps_ = 1;
+    size_t map_first_ = 0;      // the current map's first trial: its trials are the rest
 };
 
 // The coarse raster one candidate heading of the global search needs over the bounding

@@ -112,12 +112,10 @@ KIDNAP_SET_FILE := $(KIDNAP_OUT)/sim/tour-set
 $(KIDNAP_SET_FILE): kidnap-always
 	$(Q)mkdir -p $(@D); echo '$(KIDNAP_TOUR_SET)' | cmp -s - $@ || echo '$(KIDNAP_TOUR_SET)' >$@
 
-kidnap_world_file = tools/sim/worlds/$(1).world
-
 # kidnap_tour WORLD SEED: one tour and the daemon's map of it.
 define kidnap_tour
 $(KIDNAP_OUT)/sim/$(1)/$(2)/tour.lcmlog: $(BUILD)/bin/hl-sim-logs tools/kidnap/run_row.sh \
-        $(call kidnap_world_file,$(1))
+        tools/sim/worlds/$(1).world
 	$$(Q)$$(KIDNAP_ENV) sh tools/kidnap/run_row.sh tour $(1) $(2)
 $(KIDNAP_OUT)/sim/$(1)/$(2)/map.hlmap: $(KIDNAP_OUT)/sim/$(1)/$(2)/tour.lcmlog \
         $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval $(BUILD)/bin/houghloc-eval $(KIDNAP_SET_FILE)

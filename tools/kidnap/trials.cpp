@@ -167,19 +167,17 @@ void Scorer::write_row(FILE *out) const
 
 void Scorer::progress(int total, int every) const
 {
-    size_t n = 0;
+    size_t n = trials_.size() - map_first_;
+    if (n == 0 || (n % static_cast<size_t>(every) != 0 && n != static_cast<size_t>(total)))
+        return;
     int ok = 0, amb = 0;
     std::vector<double> ms;
-    for (const Trial &t : trials_) {
-        if (t.map != map_)
-            continue;
-        n++;
+    for (size_t i = map_first_; i < trials_.size(); i++) {
+        const Trial &t = trials_[i];
         ok += t.outcome == Outcome::Success;
         amb += t.outcome == Outcome::Ambiguous;
         ms.push_back(t.ms);
     }
-    if (n == 0 || (n % static_cast<size_t>(every) != 0 && n != static_cast<size_t>(total)))
-        return;
     std::string which = maps_ > 1 ? " map " + std::to_string(map_) + "/" +
                                         std::to_string(maps_) + ":" : "";
     std::fprintf(stderr,
