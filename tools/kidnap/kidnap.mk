@@ -67,7 +67,7 @@ KIDNAP_ENV = BUILD='$(BUILD)' DATA='$(DATA)' EVAL_OUT='$(EVAL_OUT)' KIDNAP_OUT='
 
 # hl-tour-study: where a tour's error comes from (the tour replayed as houghlocd does,
 # with exact motion, or each scan alone against a drift-free map).
-TOUR_STUDY_OBJS := $(call obj,tools/kidnap/tour_study.cpp tools/kidnap/inputs.cpp \
+TOUR_STUDY_OBJS := $(call obj,tools/kidnap/tour_study.cpp tools/kidnap/inputs.cpp tools/kidnap/pose_graph.cpp \
                               tools/experiments/dataset.cpp)
 
 BINS += $(BUILD)/bin/hl-kidnap $(BUILD)/bin/hl-tour-study
@@ -76,7 +76,7 @@ INTEGRATION_TESTS += tests/integration/test_kidnap.sh
 # hl-kidnap reads the daemon's configuration and map files with the daemon's own code
 # (src/daemon: config.h, mapstore.h), the logs with the experiments' reader; so does
 # hl-tour-study.
-$(call obj,$(KIDNAP_SRCS) tools/kidnap/tour_study.cpp): $(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
+$(call obj,$(KIDNAP_SRCS) tools/kidnap/tour_study.cpp tools/kidnap/pose_graph.cpp): $(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CXX     $<"
 	$(Q)$(CXX) $(CPPFLAGS) -Isrc/daemon $(PKG_CFLAGS) $(CXXFLAGS) -c -o $@ $<
