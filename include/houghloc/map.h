@@ -137,6 +137,16 @@ hl_rng_t hl_map_rng(const hl_map_t *map);
 hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n,
                            uint32_t version, hl_rng_t rng);
 
+/*
+ * Stamps. Each vector keeps the stamp the map had when it was added (a stop's number, for
+ * loop closure: slam.h), so that a fit of the stops can tell which vectors it draws
+ * again. Restored vectors have stamp 0.
+ */
+/** Vectors added from now on get @p stamp. */
+void hl_map_set_stamp(hl_map_t *map, uint32_t stamp);
+/** Each vector's stamp, in the order of hl_map_vectors. */
+const uint32_t *hl_map_stamps(const hl_map_t *map);
+
 /** Checks one vector's fields against their ranges. */
 bool hl_vector_in_range(const hl_vector_t *v);
 

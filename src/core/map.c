@@ -19,6 +19,8 @@ struct hl_map {
     uint32_t version;
     hl_rng_t rng;
     hl_vector_t *vectors;   /* [capacity] */
+    uint32_t *stamps;       /* [capacity] the stamp each vector was added under */
+    uint32_t stamp;         /* ... vectors added now get this (hl_map_set_stamp) */
     uint32_t per_place;     /* the density bound; 0: none (and `places` unallocated) */
     hl_mapsq_t places;
     uint32_t choices;       /* the evidence cull's draws; 1: the paper's random cull (and
@@ -41,7 +43,10 @@ hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed)
     if (!map)
         return NULL;
     map->vectors = calloc(capacity, sizeof *map->vectors);
-    if (!map->vectors) {
+    map->stamps = calloc(capacity, sizeof *map->stamps);
+    if (!map->vectors || !map->stamps) {
+        free(map->vectors);
+        free(map->stamps);
         free(map);
         return NULL;
     }
@@ -60,6 +65,7 @@ void hl_map_destroy(hl_map_t *map)
     hl_cellhash_free(&map->near);
     free(map->support);
     free(map->vectors);
+    free(map->stamps);
     free(map);
 }
 
@@ -249,6 +255,7 @@ static void replace(hl_map_t *map, uint32_t slot, const hl_vector_t *v)
 {
     index_unlink(map, slot);
     map->vectors[slot] = *v;
+    map->stamps[slot] = map->stamp;
     if (map->support)
         map->support[slot] = 0;
     index_link(map, slot);
@@ -281,6 +288,7 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
     }
     if (map->count < map->capacity) {
         map->vectors[map->count] = *v;
+        map->stamps[map->count] = map->stamp;
         if (map->support)
             map->support[map->count] = 0;
         index_link(map, map->count);
@@ -401,13 +409,25 @@ hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n
     map->rng = rng;
     if (map->support)       /* not saved: a restored map learns it again */
         memset(map->support, 0, (size_t)map->capacity * sizeof *map->support);
+    memset(map->stamps, 0, (size_t)map->capacity * sizeof *map->stamps);
     index_rebuild(map);
     return HL_OK;
 }
 
+void hl_map_set_stamp(hl_map_t *map, uint32_t stamp)
+{
+    map->stamp = stamp;
+}
+
+const uint32_t *hl_map_stamps(const hl_map_t *map)
+{
+    return map->stamps;
+}
+
+
 size_t hl_map_mem_bytes(const hl_map_t *map)
 {
-    return sizeof *map + (size_t)map->capacity * sizeof *map->vectors +
+    return sizeof *map + (size_t)map->capacity * (sizeof *map->vectors + sizeof *map->stamps) +
            hl_mapsq_mem_bytes(&map->places, map->capacity) +
            hl_mapsq_mem_bytes(&map->crowd_sq, map->capacity) +
            (map->support ? (size_t)map->capacity * sizeof *map->support +

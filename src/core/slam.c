@@ -5,6 +5,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "closure.h"
+
+/* A loop-closure match counts when its peak is this distinct (hl_loc_confidence), has
+ * the guard's votes and lies within its wild error of the estimate: 0.3 on the lab tours
+ * (0.15 and 0.5 were within their scatter, docs/kidnap.md "Tenth session"); far above the
+ * guard's 0.05, as a match moves every stop. */
+#define CLOSURE_MIN_CONFIDENCE 0.3
+
 struct hl_slam {
     hl_slam_params_t p;
     hl_map_t *map;
@@ -18,6 +26,7 @@ struct hl_slam {
     hl_scan_t *fitted;  /* ... with its surface normals, when the params ask for them */
     hl_refiner_t *refiner;  /* when the params ask for refinement */
     hl_reloc_t *reloc;      /* the global search (hl_slam_relocalize) */
+    hl_closure_t *closure;  /* loop closure, when the params ask for it */
 };
 
 void hl_slam_params_default(hl_slam_params_t *p)
@@ -48,6 +57,8 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->refine = true;
     p->refine_heading = true;
     hl_refine_params_default(&p->refine_params);
+    p->close_loops = false;
+    p->closure_stops = 256;
     hl_reloc_params_default(&p->reloc);
 }
 
@@ -96,6 +107,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return hl_normals_params_error(&p->normals);
     if (p->refine && hl_refine_params_error(&p->refine_params))
         return hl_refine_params_error(&p->refine_params);
+    if (p->closure_stops < 2 || p->closure_stops > HL_CLOSURE_MAX_STOPS)
+        return "closure_stops must be in 2..4096";
     return hl_reloc_params_error(&p->reloc);
 }
 
@@ -126,10 +139,12 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->fitted = p->fit_normals ? malloc(sizeof *s->fitted) : NULL;
     s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
     s->reloc = hl_reloc_create(&p->reloc, &lp);
+    s->closure = p->close_loops ? hl_closure_create(p->closure_stops, p->map_capacity, p->seed)
+                                : NULL;
     if (!s->map || hl_slam_setup_map(s->map, p) != HL_OK ||
         !s->loc || (p->echo_bearings && !s->echoed) ||
         (p->fit_normals && !s->fitted) || (p->refine && !s->refiner) ||
-        !s->reloc) {
+        !s->reloc || (p->close_loops && !s->closure)) {
         hl_slam_destroy(s);
         return NULL;
     }
@@ -146,6 +161,7 @@ void hl_slam_destroy(hl_slam_t *s)
     free(s->fitted);
     hl_refine_destroy(s->refiner);
     hl_reloc_destroy(s->reloc);
+    hl_closure_destroy(s->closure);
     free(s);
 }
 
@@ -155,6 +171,8 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start)
     s->started = false;
     s->pose = start;
     s->peak_avg = 0;
+    if (s->closure)
+        hl_closure_reset(s->closure);
 }
 
 static int64_t dist2(hl_pose_t a, hl_pose_t b)
@@ -228,21 +246,53 @@ static const hl_scan_t *prepared(hl_slam_t *s, const hl_scan_t *scan)
     return hl_slam_prepare(&s->p, scan, s->echoed, s->fitted);
 }
 
-/* Hough, then the optional refinement. */
-static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
-                            hl_loc_result_t *loc, hl_pose_t *pose)
+/* Hough, then the optional refinement, against @p map (the slam's, or a loop closure's
+ * map of one earlier stop). */
+static hl_status_t localize_in(hl_slam_t *s, const hl_map_t *map, const hl_scan_t *scan,
+                               hl_pose_t predicted, hl_loc_result_t *loc, hl_pose_t *pose)
 {
     hl_loc_query_t q = { .predicted = predicted, .window_mm = s->p.window_mm,
                          .search_theta = s->p.search_theta, .use_prior = s->p.use_prior };
-    hl_status_t st = hl_loc_run(s->loc, hl_map_vectors(s->map), hl_map_count(s->map), scan,
-                                &q, loc);
+    hl_status_t st = hl_loc_run(s->loc, hl_map_vectors(map), hl_map_count(map), scan, &q, loc);
     if (st != HL_OK)
         return st;
     *pose = s->p.interpolate ? loc->pose : loc->cell_pose;
     if (s->refiner)  /* a refused refinement leaves the Hough pose */
-        hl_refine_run(s->refiner, hl_map_vectors(s->map), hl_map_count(s->map), scan, *pose,
+        hl_refine_run(s->refiner, hl_map_vectors(map), hl_map_count(map), scan, *pose,
                       s->p.refine_heading, pose);
     return HL_OK;
+}
+
+static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
+                            hl_loc_result_t *loc, hl_pose_t *pose)
+{
+    return localize_in(s, s->map, scan, predicted, loc, pose);
+}
+
+/* Loop closure after a committed stop (slam.h): the stop remembered, matched against the
+ * earlier stops near it, and, when any match is taken, every stop fitted and the map
+ * moved with them. @return the matches taken; *pose becomes the stop's fitted pose. */
+static uint32_t close_loops(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t *pose,
+                            hl_rng_t rng_before)
+{
+    hl_closure_record(s->closure, scan, *pose, rng_before);
+    uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
+    uint32_t n = hl_closure_candidates(s->closure, stamps, HL_CLOSURE_MAX_MATCHES), taken = 0;
+    for (uint32_t k = 0; k < n; k++) {
+        const hl_map_t *sub = hl_closure_submap(s->closure, stamps[k]);
+        hl_loc_result_t loc;
+        hl_pose_t found;
+        if (sub && localize_in(s, sub, scan, *pose, &loc, &found) == HL_OK &&
+            hl_loc_confidence(&loc) >= CLOSURE_MIN_CONFIDENCE && loc.votes >= s->p.min_votes &&
+            dist2(found, *pose) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
+            hl_closure_match(s->closure, stamps[k], found))
+            taken++;
+    }
+    if (taken) {
+        hl_closure_fit(s->closure, s->map);
+        *pose = hl_closure_newest(s->closure);
+    }
+    return taken;
 }
 
 hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
@@ -340,11 +390,18 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
         return HL_ERR_RANGE;
 
     /* Commit. */
+    hl_rng_t rng_before = hl_map_rng(s->map);
     if (extend) {
+        if (s->closure)
+            hl_map_set_stamp(s->map, hl_closure_next_stamp(s->closure));
         st = hl_map_add_scan(s->map, scan, step.pose, &step.added);
         if (st != HL_OK)    /* unreachable (above); the map is unchanged if it happens */
             return st;
     }
+    /* Loop closure cannot fail (its memory is its own, from create). A rejected scan is
+     * not remembered: its pose is odometry's alone. */
+    if (s->closure && extend)
+        step.loops = close_loops(s, scan, &step.pose, rng_before);
     s->started = true;
     s->odom = odometry;
     s->pose = step.pose;
@@ -360,6 +417,8 @@ hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry)
     if (!hl_pose_in_range(pose) || !hl_pose_in_range(odometry))
         return HL_ERR_RANGE;
     s->pose = pose;
+    if (s->closure)     /* no step joins the stops before to the ones after */
+        hl_closure_reset(s->closure);
     /* Before the first scan there is no reference yet: the first scan's odometry
      * becomes it, at this pose. */
     if (s->started)
@@ -401,6 +460,8 @@ hl_status_t hl_slam_restore(hl_slam_t *s, const hl_slam_state_t *state,
     s->pose = state->pose;
     s->odom = state->odom;
     s->peak_avg = state->peak_avg;
+    if (s->closure)     /* the stops are not saved: the restored vectors stay put */
+        hl_closure_reset(s->closure);
     return HL_OK;
 }
 

@@ -268,10 +268,13 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
         static const char *const names[] = { "ACCEPTED", "REJECTED_WILD", "ODOMETRY_ONLY",
                                              "RELOCALIZED", "LOST" };
         /* "changed": the scan went into the map, and counts towards daemon.save_every */
-        hl_log(HL_LOG_DEBUG, "scan %llu (seq %d): %s at (%.3f, %.3f) m, %.1f deg; map %u%s",
+        /* "loops": matches with earlier stops (slam.close_loops): every stop was fitted
+         * again and the map drawn again with them */
+        hl_log(HL_LOG_DEBUG, "scan %llu (seq %d): %s at (%.3f, %.3f) m, %.1f deg; map %u%s; "
+               "loops %u",
                (unsigned long long)c->scans_total, in->seq, names[status],
                step.pose.x_mm / 1000.0, step.pose.y_mm / 1000.0, hl_bam_to_sdeg(step.pose.theta),
-               hl_map_count(hl_slam_map(c->slam)), changed ? ", changed" : "");
+               hl_map_count(hl_slam_map(c->slam)), changed ? ", changed" : "", step.loops);
     }
 
     if (changed) {

@@ -17,47 +17,32 @@
 #include <vector>
 
 extern "C" {
+#include "../../src/core/closure.h"
+#include "../../src/core/posegraph.h"
 #include "mapstore.h"
 }
 
 #include "houghloc/map.h"
 #include "houghloc/slam.h"
 #include "inputs.hpp"
-#include "pose_graph.hpp"
 
 namespace {
 
-using hlkid::Edge;
-using hlkid::Pose2;
+using Pose2 = hl_pg_pose_t;
+using Edge = hl_pg_edge_t;
 
 // A stop is "far" beyond this (the paper's wild error; hl-eval score's wild_accepted).
 constexpr double kFarMm = 500.0;
 
-// Loop closure (--mode graph). Each stop is matched against each earlier stop at least
-// kClosureGap stops before it whose estimate lies within kClosureRadiusMm of its own:
-// against a map of that stop and its neighbours (kClosureSide each way) drawn at their
-// estimates, by the tracker's own local search from the stop's estimate. A match counts
-// if it is as distinct as kClosureConfidence, has 20 votes, and lies within the paper's
-// wild error of the estimate. Chosen on tours 1-24 (gap 5: mean RMSE 323 mm, gap 10: 350,
-// gap 20: 390, tracked: 387; docs/kidnap.md).
-constexpr int kClosureGap = 5;
-constexpr double kClosureRadiusMm = 1500.0;
-constexpr int kClosureSide = 1;
+// Loop closure after the tour (--mode graph): the rules of houghlocd's own loop closure
+// (slam.close_loops; src/core/closure.h), applied once to the tracked tour instead of at
+// every stop: each stop matched against each earlier stop at least HL_CLOSURE_GAP before
+// it and within HL_CLOSURE_RADIUS_MM, in a map of that stop and its neighbours, by the
+// tracker's local search from the stop's estimate; a match counts with a confidence of
+// kClosureConfidence, 20 votes, and within the paper's wild error of the estimate (no
+// gate on how far it moves the stop: nothing has been fitted yet).
 constexpr double kClosureConfidence = 0.3;
 constexpr uint32_t kClosureVotes = 20;
-// Every edge, step or closure, is weighted as one localization's error (the oracle's
-// 1.4 degrees rms, docs/kidnap.md) and 50 mm; a closure more than kGate standard
-// deviations from the first fit is dropped and the fit made again.
-constexpr double kEdgeMm = 50.0;
-constexpr double kEdgeDeg = 1.5;
-constexpr double kGate = 3.0;
-constexpr int kIterations = 20;
-// Online, a match that would move the stop more than this from its fitted pose is not
-// taken: the fit so far has absorbed every match before it, so the gate above cannot
-// see a wrong one there (without it tours 1-8 went 449 -> 506 mm mean RMSE, tour 2 to
-// 1.97 m; with 250 mm and 4 degrees 238, with 150 mm and 3 degrees 273).
-constexpr double kOnlineGateMm = 250.0;
-constexpr double kOnlineGateDeg = 4.0;
 
 void usage(FILE *to)
 {
@@ -75,22 +60,21 @@ void usage(FILE *to)
         "          it at their true poses: one localization's own error, nothing inherited\n"
         "  graph   track, then each stop matched against the earlier stops near it and\n"
         "          every stop moved to the least-squares fit of all the matches (loop\n"
-        "          closure; one line on stderr says how many matches were kept)\n"
-        "  online  loop closure as the tour goes: each stop tracked against the map drawn\n"
-        "          at the poses fitted so far, matched against the earlier stops near it,\n"
-        "          the fit made again and the map drawn again after each match\n"
+        "          closure after the tour, by houghlocd's rules; one line on stderr says\n"
+        "          how many matches were kept)\n"
+        "(Loop closure as the tour goes is houghlocd's own: --set slam.close_loops=true.)\n"
         "Prints a line per stop (stop, heading error in degrees, position error in mm), then\n"
         "  tour_study mode=MODE stops=N rmse_mm=X heading_rms_deg=X heading_mean_deg=X far=K\n"
         "(far: stops more than 0.5 m off). --quiet prints the last line alone.\n"
         "  --config FILE     houghlocd's configuration (/dev/null: the defaults)\n"
         "  --set K=V         a configuration key, after the file (repeatable)\n"
-        "  --write-map MAP   (track, exact, graph, online) the scans the tour put in its map, drawn\n"
-        "                    again at the mode's poses as the slam draws them, saved as a\n"
-        "                    houghlocd map file (hl-kidnap --map reads it)\n"
+        "  --write-map MAP   (track, exact, graph) the tour's map as a houghlocd map file\n"
+        "                    (hl-kidnap --map reads it): the slam's own; with graph, the\n"
+        "                    scans the tour mapped drawn again at the fitted poses\n"
         "Exit status: 0 done; 1 an error (one line on stderr); 2 bad usage.\n");
 }
 
-enum class Mode { Track, Exact, Oracle, Graph, Online };
+enum class Mode { Track, Exact, Oracle, Graph };
 
 struct Options {
     std::string config, tour, write_map;
@@ -114,7 +98,7 @@ int parse(int argc, char **argv, Options *o)
     };
     static const struct { const char *name; Mode mode; } modes[] = {
         { "track", Mode::Track }, { "exact", Mode::Exact },
-        { "oracle", Mode::Oracle }, { "graph", Mode::Graph }, { "online", Mode::Online },
+        { "oracle", Mode::Oracle }, { "graph", Mode::Graph },
     };
     for (int c; (c = getopt_long(argc, argv, "c:s:m:w:qh", longs, nullptr)) != -1;) {
         switch (c) {
@@ -126,7 +110,7 @@ int parse(int argc, char **argv, Options *o)
             });
             if (m == std::end(modes)) {
                 std::fprintf(stderr,
-                             "hl-tour-study: --mode wants track, exact, oracle, graph or online, got '%s'\n",
+                             "hl-tour-study: --mode wants track, exact, oracle or graph, got '%s'\n",
                              optarg);
                 return 2;
             }
@@ -160,6 +144,9 @@ struct SlamDeleter {
 struct MapDeleter {
     void operator()(hl_map_t *m) const { hl_map_destroy(m); }
 };
+struct GraphDeleter {
+    void operator()(hl_posegraph_t *g) const { hl_posegraph_destroy(g); }
+};
 
 // A tour as its tracker left it: each stop's estimate, whether its scan went into the map,
 // and the scan as the map saw it (at its echo bearings, with its normals).
@@ -167,6 +154,9 @@ struct Tracked {
     std::vector<hl_pose_t> est;
     std::vector<bool> mapped;
     std::vector<hl_scan_t> placed;
+    std::vector<hl_vector_t> own;   // the slam's own map at the end (track, exact), as
+    hl_rng_t own_rng{};             // houghlocd saves it; empty when the poses moved after
+    uint32_t own_version = 0;
 };
 
 // The tour through hl_slam_update, with its odometry or (@p exact) its true poses.
@@ -195,6 +185,10 @@ bool track(const hl_slam_params_t &p, const hlexp::Soundings &tour, bool exact, 
         t->mapped.push_back(step.status != HL_SLAM_REJECTED_WILD);
         t->placed[i] = *hl_slam_prepare(&p, &s.msg.scan, &scratch[0], &scratch[1]);
     }
+    const hl_map_t *map = hl_slam_map(slam.get());
+    t->own.assign(hl_map_vectors(map), hl_map_vectors(map) + hl_map_count(map));
+    t->own_rng = hl_map_rng(map);
+    t->own_version = hl_map_version(map);
     return true;
 }
 
@@ -229,7 +223,7 @@ bool oracle(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracked *t,
 Pose2 to_pose2(hl_pose_t p)
 {
     return Pose2{ static_cast<double>(p.x_mm), static_cast<double>(p.y_mm),
-                  p.theta * (2 * M_PI / 65536.0) };
+                  hl_bam_to_rad(p.theta) };
 }
 
 hl_pose_t from_pose2(const Pose2 &p)
@@ -237,11 +231,11 @@ hl_pose_t from_pose2(const Pose2 &p)
     hl_pose_t q;
     q.x_mm = static_cast<hl_mm_t>(std::lround(p.x));
     q.y_mm = static_cast<hl_mm_t>(std::lround(p.y));
-    q.theta = static_cast<hl_bam_t>(std::lround(p.theta * 65536.0 / (2 * M_PI)) & 0xffff);
+    q.theta = hl_bam_from_rad(p.theta);
     return q;
 }
 
-// Stop @p k matched against stop @p j and its neighbours (those kClosureGap before k);
+// Stop @p k matched against stop @p j and its neighbours (those HL_CLOSURE_GAP before k);
 // false when the match does not count (above).
 bool match(const hlexp::Soundings &tour, const Tracked &t,
            size_t j, size_t k, hl_map_t *sub, hl_slam_t *probe, Pose2 *found)
@@ -249,8 +243,9 @@ bool match(const hlexp::Soundings &tour, const Tracked &t,
     hl_slam_state_t state;
     hl_slam_get_state(probe, &state);
     hl_map_restore(sub, nullptr, 0, 0, state.cull_rng);
-    for (long q = static_cast<long>(j) - kClosureSide;
-         q <= static_cast<long>(j) + kClosureSide && q + kClosureGap <= static_cast<long>(k); q++)
+    for (long q = static_cast<long>(j) - HL_CLOSURE_SIDE;
+         q <= static_cast<long>(j) + HL_CLOSURE_SIDE && q + HL_CLOSURE_GAP <= static_cast<long>(k);
+         q++)
         if (q >= 0)
             hl_map_add_scan(sub, &t.placed[q], t.est[q], nullptr);
     if (hl_slam_restore(probe, &state, hl_map_vectors(sub), hl_map_count(sub)) != HL_OK)
@@ -270,147 +265,52 @@ bool match(const hlexp::Soundings &tour, const Tracked &t,
 bool close_loops(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracked *t,
                  std::string *err)
 {
+    const size_t n = t->est.size();
     std::unique_ptr<hl_slam_t, SlamDeleter> probe(hl_slam_create(&p));
     std::unique_ptr<hl_map_t, MapDeleter> sub(hl_map_create(p.map_capacity, p.seed));
-    if (!probe || !sub) {
-        *err = "cannot create the slam";
-        return false;
-    }
-    const size_t n = t->est.size();
-    const double sigma_rad = kEdgeDeg * M_PI / 180.0;
     std::vector<Pose2> poses;
     std::vector<Edge> edges;
     for (size_t i = 0; i < n; i++) {
         poses.push_back(to_pose2(t->est[i]));
         if (i > 0)
-            edges.push_back(Edge{ static_cast<int>(i - 1), static_cast<int>(i),
-                                  hlkid::between(poses[i - 1], poses[i]), kEdgeMm, sigma_rad,
-                                  false });
+            edges.push_back(Edge{ static_cast<uint32_t>(i - 1), static_cast<uint32_t>(i),
+                                  hl_pg_between(poses[i - 1], poses[i]), false });
     }
     int tried = 0;
     for (size_t k = 0; k < n; k++)
-        for (size_t j = 0; j + kClosureGap <= k; j++) {
-            if (std::hypot(poses[j].x - poses[k].x, poses[j].y - poses[k].y) > kClosureRadiusMm)
+        for (size_t j = 0; j + HL_CLOSURE_GAP <= k; j++) {
+            if (std::hypot(poses[j].x - poses[k].x, poses[j].y - poses[k].y) >
+                HL_CLOSURE_RADIUS_MM)
                 continue;
             Pose2 found;
             tried++;
             if (match(tour, *t, j, k, sub.get(), probe.get(), &found))
-                edges.push_back(Edge{ static_cast<int>(j), static_cast<int>(k),
-                                      hlkid::between(poses[j], found), kEdgeMm, sigma_rad,
-                                      true });
+                edges.push_back(Edge{ static_cast<uint32_t>(j), static_cast<uint32_t>(k),
+                                      hl_pg_between(poses[j], found), true });
         }
-    size_t proposed = edges.size() - (n - 1);
-    int kept = hlkid::solve_pose_graph(&poses, &edges, kIterations, kGate);
-    std::fprintf(stderr, "hl-tour-study: graph: %d matches tried, %zu counted, %d kept\n", tried,
-                 proposed, kept);
-    for (size_t i = 0; i < n; i++)
-        t->est[i] = from_pose2(poses[i]);
-    return true;
-}
-
-// The drawn map: every mapped scan so far at @p t's poses, in order, as the slam draws.
-bool redraw(const hl_slam_params_t &p, const Tracked &t, size_t upto, hl_map_t *map)
-{
-    hl_rng_t fresh;     // as a new map's, so the drawing depends on the poses alone
-    hl_rng_seed(&fresh, p.seed);
-    hl_map_restore(map, nullptr, 0, 0, fresh);
-    for (size_t i = 0; i < upto; i++)
-        if (t.mapped[i] && hl_map_add_scan(map, &t.placed[i], t.est[i], nullptr) != HL_OK)
-            return false;
-    return true;
-}
-
-// Loop closure as the tour goes: each stop tracked against the map drawn at the poses
-// fitted so far (the tracker's local search and its wild, confidence and votes guard;
-// not its peak-ratio test or heading gain, which the tours' settings leave at 0.25 and 1),
-// matched against the earlier stops near it, the graph fitted again when a match was
-// found, and the map drawn again at the fitted poses.
-bool online(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracked *t,
-            std::string *err)
-{
-    std::unique_ptr<hl_slam_t, SlamDeleter> probe(hl_slam_create(&p)), closer(hl_slam_create(&p));
-    std::unique_ptr<hl_map_t, MapDeleter> drawn(hl_map_create(p.map_capacity, p.seed)),
-        sub(hl_map_create(p.map_capacity, p.seed));
-    if (!probe || !closer || !drawn || !sub || hl_slam_setup_map(drawn.get(), &p) != HL_OK) {
+    std::unique_ptr<hl_posegraph_t, GraphDeleter> graph(
+        hl_posegraph_create(static_cast<uint32_t>(n), static_cast<uint32_t>(edges.size())));
+    if (!probe || !sub || !graph) {
         *err = "cannot create the slam";
         return false;
     }
-    auto scratch = std::make_unique<hl_scan_t[]>(2);
-    const size_t n = tour.size();
-    const double sigma_rad = kEdgeDeg * M_PI / 180.0;
-    t->placed.resize(n);
-    std::vector<Pose2> poses;
-    std::vector<Edge> edges;
-    hl_slam_state_t state;
-    hl_slam_get_state(probe.get(), &state);
-    int tried = 0, counted = 0, fits = 0;
-    for (size_t i = 0; i < n; i++) {
-        const hlexp::Sounding &s = *tour[i];
-        t->placed[i] = *hl_slam_prepare(&p, &s.msg.scan, &scratch[0], &scratch[1]);
-        hl_pose_t pose = s.truth;       // the first stop: the start pose
-        bool mapped = true;
-        if (i > 0) {
-            hl_pose_t predicted = hl_pose_compose(
-                t->est[i - 1], hl_pose_between(tour[i - 1]->msg.odometry, s.msg.odometry));
-            pose = predicted;
-            hl_loc_result_t loc;
-            hl_pose_t found;
-            if (hl_slam_restore(probe.get(), &state, hl_map_vectors(drawn.get()),
-                                hl_map_count(drawn.get())) == HL_OK &&
-                hl_slam_localize(probe.get(), &s.msg.scan, predicted, &loc, &found) == HL_OK) {
-                Pose2 f = to_pose2(found), pr = to_pose2(predicted);
-                mapped = std::hypot(f.x - pr.x, f.y - pr.y) <= p.wild_mm &&
-                         hl_loc_confidence(&loc) >= p.min_confidence && loc.votes >= p.min_votes;
-                if (mapped)
-                    pose = found;
-            }
-        }
-        t->est.push_back(pose);
-        t->mapped.push_back(mapped);
-        poses.push_back(to_pose2(pose));
-        if (i > 0)
-            edges.push_back(Edge{ static_cast<int>(i - 1), static_cast<int>(i),
-                                  hlkid::between(poses[i - 1], poses[i]), kEdgeMm, sigma_rad,
-                                  false });
-        bool closed = false;
-        for (size_t j = 0; j + kClosureGap <= i; j++) {
-            if (std::hypot(poses[j].x - poses[i].x, poses[j].y - poses[i].y) > kClosureRadiusMm)
-                continue;
-            Pose2 found;
-            tried++;
-            if (!match(tour, *t, j, i, sub.get(), closer.get(), &found))
-                continue;
-            Pose2 now = hlkid::between(poses[j], poses[i]), said = hlkid::between(poses[j], found);
-            double inn_mm = std::hypot(now.x - said.x, now.y - said.y);
-            double inn_deg = std::fabs(std::remainder(now.theta - said.theta, 2 * M_PI)) * 180 / M_PI;
-            if (inn_mm <= kOnlineGateMm && inn_deg <= kOnlineGateDeg) {
-                edges.push_back(Edge{ static_cast<int>(j), static_cast<int>(i),
-                                      hlkid::between(poses[j], found), kEdgeMm, sigma_rad, true });
-                counted++;
-                closed = true;
-            }
-        }
-        if (closed) {
-            hlkid::solve_pose_graph(&poses, &edges, kIterations, kGate);
-            fits++;
-            for (size_t q = 0; q <= i; q++)
-                t->est[q] = from_pose2(poses[q]);
-            if (!redraw(p, *t, i + 1, drawn.get())) {
-                *err = "cannot draw the map";
-                return false;
-            }
-        } else if (mapped && hl_map_add_scan(drawn.get(), &t->placed[i], t->est[i], nullptr) != HL_OK) {
-            *err = "cannot draw the map";
-            return false;
-        }
-    }
-    std::fprintf(stderr, "hl-tour-study: online: %d matches tried, %d counted, %zu kept, %d fits\n",
-                 tried, counted, edges.size() - (n - 1), fits);
+    size_t proposed = edges.size() - (n - 1);
+    uint32_t n_edges = static_cast<uint32_t>(edges.size());
+    uint32_t dropped = hl_posegraph_fit(graph.get(), poses.data(), static_cast<uint32_t>(n),
+                                        edges.data(), &n_edges, HL_CLOSURE_SIGMA_MM,
+                                        hl_bam_to_rad(hl_bam_from_deg(HL_CLOSURE_SIGMA_DEG)),
+                                        HL_CLOSURE_OUTLIER);
+    std::fprintf(stderr, "hl-tour-study: graph: %d matches tried, %zu counted, %zu kept\n", tried,
+                 proposed, proposed - dropped);
+    for (size_t i = 0; i < n; i++)
+        t->est[i] = from_pose2(poses[i]);
+    t->own.clear();     // the map is drawn again at the fitted poses (write_map)
     return true;
 }
 
-// The scans the tour mapped, drawn again at @p t's poses into a map made as the slam
-// makes its own, saved as houghlocd saves its map.
+// The tour's map, saved as houghlocd saves its map: the slam's own (track, exact), or the
+// scans the tour mapped drawn again at the fitted poses into a map made as the slam makes
+// its own (graph).
 bool write_map(const hl_slam_params_t &p, const hlexp::Soundings &tour, const Tracked &t,
                const std::string &path, std::string *err)
 {
@@ -419,11 +319,17 @@ bool write_map(const hl_slam_params_t &p, const hlexp::Soundings &tour, const Tr
         *err = "cannot create the map";
         return false;
     }
-    for (size_t i = 0; i < t.est.size(); i++)
-        if (t.mapped[i] && hl_map_add_scan(map.get(), &t.placed[i], t.est[i], nullptr) != HL_OK) {
-            *err = "scan " + std::to_string(tour[i]->msg.seq) + ": cannot map it there";
-            return false;
-        }
+    if (!t.own.empty()) {
+        hl_map_restore(map.get(), t.own.data(), static_cast<uint32_t>(t.own.size()),
+                       t.own_version, t.own_rng);
+    } else {
+        for (size_t i = 0; i < t.est.size(); i++)
+            if (t.mapped[i] &&
+                hl_map_add_scan(map.get(), &t.placed[i], t.est[i], nullptr) != HL_OK) {
+                *err = "scan " + std::to_string(tour[i]->msg.seq) + ": cannot map it there";
+                return false;
+            }
+    }
     hl_mapfile_t m{};
     m.state.started = true;
     m.state.pose = t.est.back();
@@ -474,8 +380,7 @@ int run(const Options &o)
     Tracked t;
     std::vector<bool> scored(tour.size(), true);
     bool ok = o.mode == Mode::Oracle ? (scored.clear(), oracle(p, tour, &t, &scored, &err))
-              : o.mode == Mode::Online ? online(p, tour, &t, &err)
-                                       : track(p, tour, o.mode == Mode::Exact, &t, &err);
+                                     : track(p, tour, o.mode == Mode::Exact, &t, &err);
     if (ok && o.mode == Mode::Graph)
         ok = close_loops(p, tour, &t, &err);
     if (ok && !o.write_map.empty())

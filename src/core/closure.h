@@ -1,0 +1,88 @@
+/*
+ * closure.h (private) - loop closure for the slam (slam.h, slam.close_loops): a record of
+ * the last stops (pose and the scan as mapped), the earlier stops each new one should be
+ * matched against, and the fit of every stop to its steps and matches (posegraph.h),
+ * which moves each stop's map vectors with it (map.h, stamps).
+ *
+ * Not in the paper. Its tracker matches each scan against a map drawn by the scans before
+ * it, so every localization's error goes into the map the next one is matched against,
+ * and nothing takes it back: the simulated tours bend even with the motion known exactly
+ * (docs/kidnap.md, "Ninth session"). Here, when the robot comes back within
+ * HL_CLOSURE_RADIUS_MM of a stop made at least HL_CLOSURE_GAP stops before, the new scan
+ * is matched against that stop and its neighbours alone, and all the stops are fitted to
+ * all such matches at once (docs/kidnap.md, "Tenth session").
+ *
+ * The record holds `stops` stops; when full, the oldest is forgotten with its matches,
+ * and the oldest left is held where it is. Its vectors stay in the map where they are.
+ * Memory: create only.
+ */
+#ifndef HOUGHLOC_CORE_CLOSURE_H
+#define HOUGHLOC_CORE_CLOSURE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "houghloc/map.h"
+#include "houghloc/rng.h"
+#include "houghloc/scan.h"
+
+/* Chosen on 24 simulated lab tours, the online mode of hl-tour-study (docs/kidnap.md,
+ * "Tenth session"): none of them moved the mean tour error by more than the tours'
+ * scatter within a factor of two around it. */
+#define HL_CLOSURE_GAP 5            /* stops between a stop and those it is matched with */
+#define HL_CLOSURE_RADIUS_MM 1500   /* ... whose poses lie this near */
+#define HL_CLOSURE_SIDE 1           /* the matched stop's neighbours drawn with it */
+#define HL_CLOSURE_MAX_MATCHES 16   /* matches sought a stop, oldest stops first */
+#define HL_CLOSURE_GATE_MM 250      /* a match moving the stop farther is not taken ... */
+#define HL_CLOSURE_GATE_DEG 4.0     /* ... nor one turning it more */
+#define HL_CLOSURE_SIGMA_MM 50.0    /* every step and match: one localization's error */
+#define HL_CLOSURE_SIGMA_DEG 1.5
+#define HL_CLOSURE_OUTLIER 3.0      /* a match this many sigmas off the fit is dropped */
+#define HL_CLOSURE_MAX_STOPS 4096
+
+typedef struct hl_closure hl_closure_t;
+
+/** A record of @p stops stops (2..HL_CLOSURE_MAX_STOPS), each matched against maps of up
+ *  to @p map_capacity vectors. NULL on a bad size or no memory. */
+hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t seed);
+void hl_closure_destroy(hl_closure_t *c);   /* accepts NULL */
+size_t hl_closure_mem_bytes(const hl_closure_t *c);
+
+/** Forgets every stop (a new map, or a pose set from outside: no step joins them). */
+void hl_closure_reset(hl_closure_t *c);
+
+/** The stamp the next recorded stop's vectors are to carry (hl_map_set_stamp). */
+uint32_t hl_closure_next_stamp(const hl_closure_t *c);
+
+/** Records the next stop: @p placed, the scan as the map saw it, taken at @p pose, drawn
+ *  into the map when its culling generator was @p rng_before. The step from the stop
+ *  before becomes part of the fit. */
+void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
+                       hl_rng_t rng_before);
+
+/** The newest stop's fitted pose (the recorded one until a fit moves it). */
+hl_pose_t hl_closure_newest(const hl_closure_t *c);
+
+/** The earlier stops (their stamps, oldest first, at most @p max) that the newest should be
+ *  matched against. @return how many. */
+uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t *stamps, uint32_t max);
+
+/** A map of the stop stamped @p stamp and its neighbours at their fitted poses (those
+ *  HL_CLOSURE_GAP before the newest), valid until the next call; NULL if not recorded. */
+const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp);
+
+/**
+ * The newest stop found at @p found in stop @p stamp's submap. Taken as a match unless it
+ * lies farther than the gate from the newest stop's fitted pose.
+ * @return whether it was taken.
+ */
+bool hl_closure_match(hl_closure_t *c, uint32_t stamp, hl_pose_t found);
+
+/**
+ * Fits every recorded stop to its steps and matches, and moves the vectors of @p map
+ * stamped with a stop by that stop's move. @return the matches dropped as outliers.
+ */
+uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map);
+
+#endif

@@ -1,0 +1,272 @@
+/* posegraph.c - a 2-D pose graph by Gauss-Newton and conjugate gradients (posegraph.h). */
+#include "posegraph.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define GN_STEPS 10             /* Gauss-Newton steps at most ... */
+#define GN_DONE_MM 0.01         /* ... until no pose moves more than this */
+#define GN_DONE_RAD 1e-7
+#define CG_TOLERANCE 1e-12      /* residual / right-hand side, squared */
+#define MAX_DROPS 8             /* outliers dropped a fit, one at a time, at most */
+
+typedef struct { double v[9]; } mat3_t;     /* row-major */
+
+typedef struct edge_terms {
+    double r[3];        /* the edge's error at the current poses */
+    mat3_t a, b;        /* its Jacobians in the `from` and `to` poses */
+} edge_terms_t;
+
+struct hl_posegraph {
+    uint32_t max_poses, max_edges;
+    edge_terms_t *terms;            /* [max_edges] */
+    mat3_t *block_inv;              /* [max_poses] the preconditioner */
+    double *g, *dx, *res, *z, *p, *hp;  /* [3 * max_poses] each */
+};
+
+size_t hl_posegraph_mem_bytes(uint32_t max_poses, uint32_t max_edges)
+{
+    return sizeof(hl_posegraph_t) + (size_t)max_edges * sizeof(edge_terms_t) +
+           (size_t)max_poses * (sizeof(mat3_t) + 6 * 3 * sizeof(double));
+}
+
+hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges)
+{
+    hl_posegraph_t *g = calloc(1, sizeof *g);
+    if (!g)
+        return NULL;
+    g->max_poses = max_poses;
+    g->max_edges = max_edges;
+    g->terms = calloc(max_edges ? max_edges : 1, sizeof *g->terms);
+    g->block_inv = calloc(max_poses ? max_poses : 1, sizeof *g->block_inv);
+    double **vecs[] = { &g->g, &g->dx, &g->res, &g->z, &g->p, &g->hp };
+    bool ok = g->terms && g->block_inv;
+    for (size_t k = 0; k < sizeof vecs / sizeof vecs[0]; k++) {
+        *vecs[k] = calloc(3 * (size_t)(max_poses ? max_poses : 1), sizeof(double));
+        ok = ok && *vecs[k];
+    }
+    if (!ok) {
+        hl_posegraph_destroy(g);
+        return NULL;
+    }
+    return g;
+}
+
+void hl_posegraph_destroy(hl_posegraph_t *g)
+{
+    if (!g)
+        return;
+    free(g->terms);
+    free(g->block_inv);
+    free(g->g);
+    free(g->dx);
+    free(g->res);
+    free(g->z);
+    free(g->p);
+    free(g->hp);
+    free(g);
+}
+
+static double wrap(double a)
+{
+    return atan2(sin(a), cos(a));
+}
+
+hl_pg_pose_t hl_pg_between(hl_pg_pose_t a, hl_pg_pose_t b)
+{
+    double c = cos(a.theta), s = sin(a.theta), dx = b.x - a.x, dy = b.y - a.y;
+    return (hl_pg_pose_t){ c * dx + s * dy, -s * dx + c * dy, wrap(b.theta - a.theta) };
+}
+
+hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel)
+{
+    double c = cos(a.theta), s = sin(a.theta);
+    return (hl_pg_pose_t){ a.x + c * rel.x - s * rel.y, a.y + s * rel.x + c * rel.y,
+                           wrap(a.theta + rel.theta) };
+}
+
+/* The edge's error (the measured relative pose against the poses' own) and Jacobians. */
+static void linearize(const hl_pg_pose_t *poses, const hl_pg_edge_t *e, edge_terms_t *t)
+{
+    hl_pg_pose_t a = poses[e->from], b = poses[e->to];
+    double c = cos(a.theta), s = sin(a.theta), dx = b.x - a.x, dy = b.y - a.y;
+    t->r[0] = c * dx + s * dy - e->rel.x;
+    t->r[1] = -s * dx + c * dy - e->rel.y;
+    t->r[2] = wrap(b.theta - a.theta - e->rel.theta);
+    t->a = (mat3_t){ { -c, -s, -s * dx + c * dy,
+                       s, -c, -c * dx - s * dy,
+                       0, 0, -1 } };
+    t->b = (mat3_t){ { c, s, 0,
+                       -s, c, 0,
+                       0, 0, 1 } };
+}
+
+/* out += m^T diag(w) m, and the same for vectors below. */
+static void add_jtwj(mat3_t *out, const mat3_t *m, const double w[3])
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            for (int k = 0; k < 3; k++)
+                out->v[3 * i + j] += m->v[3 * k + i] * w[k] * m->v[3 * k + j];
+}
+
+static void add_jtw(double *out, const mat3_t *m, const double w[3], const double r[3])
+{
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++)
+            out[i] += m->v[3 * k + i] * w[k] * r[k];
+}
+
+static void mul3(const mat3_t *m, const double *x, double *out)
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = m->v[3 * i] * x[0] + m->v[3 * i + 1] * x[1] + m->v[3 * i + 2] * x[2];
+}
+
+/* The inverse of a symmetric positive definite 3 x 3 block; zero when it has none (a
+ * pose no edge reaches: it does not move). */
+static mat3_t inverse(const mat3_t *m)
+{
+    const double *a = m->v;
+    mat3_t inv = { { a[4] * a[8] - a[5] * a[7], a[2] * a[7] - a[1] * a[8], a[1] * a[5] - a[2] * a[4],
+                     a[5] * a[6] - a[3] * a[8], a[0] * a[8] - a[2] * a[6], a[2] * a[3] - a[0] * a[5],
+                     a[3] * a[7] - a[4] * a[6], a[1] * a[6] - a[0] * a[7], a[0] * a[4] - a[1] * a[3] } };
+    double det = a[0] * inv.v[0] + a[1] * inv.v[3] + a[2] * inv.v[6];
+    if (!(fabs(det) > 1e-300))
+        return (mat3_t){ { 0 } };
+    for (int i = 0; i < 9; i++)
+        inv.v[i] /= det;
+    return inv;
+}
+
+/* hp = H p, matrix-free: the sum over the edges of J^T W J p; pose 0 held (its rows and
+ * columns left out). */
+static void product(const hl_posegraph_t *g, const hl_pg_edge_t *edges, uint32_t n_edges,
+                    uint32_t n, const double w[3], const double *p, double *hp)
+{
+    memset(hp, 0, 3 * (size_t)n * sizeof *hp);
+    for (uint32_t k = 0; k < n_edges; k++) {
+        const edge_terms_t *t = &g->terms[k];
+        uint32_t i = edges[k].from, j = edges[k].to;
+        double ja[3], jb[3], jp[3];
+        mul3(&t->a, &p[3 * i], ja);     /* p is zero at pose 0: it is held */
+        mul3(&t->b, &p[3 * j], jb);
+        for (int q = 0; q < 3; q++)
+            jp[q] = ja[q] + jb[q];
+        add_jtw(&hp[3 * i], &t->a, w, jp);
+        add_jtw(&hp[3 * j], &t->b, w, jp);
+    }
+    hp[0] = hp[1] = hp[2] = 0;
+}
+
+static double dot(const double *a, const double *b, uint32_t n)
+{
+    double s = 0;
+    for (uint32_t i = 0; i < n; i++)
+        s += a[i] * b[i];
+    return s;
+}
+
+/* One Gauss-Newton step: g->dx solves H dx = -g, pose 0 held. */
+static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint32_t n,
+                              const hl_pg_edge_t *edges, uint32_t n_edges, const double w[3])
+{
+    const uint32_t m = 3 * n;
+    memset(g->g, 0, m * sizeof *g->g);
+    mat3_t *blocks = g->block_inv;
+    memset(blocks, 0, n * sizeof *blocks);
+    for (uint32_t k = 0; k < n_edges; k++) {
+        edge_terms_t *t = &g->terms[k];
+        linearize(poses, &edges[k], t);
+        add_jtw(&g->g[3 * edges[k].from], &t->a, w, t->r);
+        add_jtw(&g->g[3 * edges[k].to], &t->b, w, t->r);
+        add_jtwj(&blocks[edges[k].from], &t->a, w);
+        add_jtwj(&blocks[edges[k].to], &t->b, w);
+    }
+    for (uint32_t i = 0; i < n; i++)
+        blocks[i] = i ? inverse(&blocks[i]) : (mat3_t){ { 0 } };
+    /* Preconditioned conjugate gradients from dx = 0: res = -g. */
+    memset(g->dx, 0, m * sizeof *g->dx);
+    for (uint32_t i = 0; i < m; i++)
+        g->res[i] = i < 3 ? 0 : -g->g[i];
+    for (uint32_t i = 0; i < n; i++)
+        mul3(&blocks[i], &g->res[3 * i], &g->z[3 * i]);
+    memcpy(g->p, g->z, m * sizeof *g->p);
+    double rz = dot(g->res, g->z, m), rz0 = rz;
+    for (uint32_t it = 0; it < 2 * m && rz > CG_TOLERANCE * rz0 && rz > 0; it++) {
+        product(g, edges, n_edges, n, w, g->p, g->hp);
+        double php = dot(g->p, g->hp, m);
+        if (!(php > 0))
+            break;
+        double alpha = rz / php;
+        for (uint32_t i = 0; i < m; i++) {
+            g->dx[i] += alpha * g->p[i];
+            g->res[i] -= alpha * g->hp[i];
+        }
+        for (uint32_t i = 0; i < n; i++)
+            mul3(&blocks[i], &g->res[3 * i], &g->z[3 * i]);
+        double rz_next = dot(g->res, g->z, m);
+        for (uint32_t i = 0; i < m; i++)
+            g->p[i] = g->z[i] + (rz_next / rz) * g->p[i];
+        rz = rz_next;
+    }
+}
+
+static void solve(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n, const hl_pg_edge_t *edges,
+                  uint32_t n_edges, const double w[3])
+{
+    for (int step = 0; step < GN_STEPS; step++) {
+        gauss_newton_step(g, poses, n, edges, n_edges, w);
+        double most_mm = 0, most_rad = 0;
+        for (uint32_t i = 1; i < n; i++) {
+            const double *d = &g->dx[3 * i];
+            poses[i].x += d[0];
+            poses[i].y += d[1];
+            poses[i].theta = wrap(poses[i].theta + d[2]);
+            most_mm = fmax(most_mm, fmax(fabs(d[0]), fabs(d[1])));
+            most_rad = fmax(most_rad, fabs(d[2]));
+        }
+        if (most_mm < GN_DONE_MM && most_rad < GN_DONE_RAD)
+            break;
+    }
+}
+
+/* An edge's squared error in standard deviations, averaged over its three terms. */
+static double chi2(const hl_pg_pose_t *poses, const hl_pg_edge_t *e, const double w[3])
+{
+    edge_terms_t t;
+    linearize(poses, e, &t);
+    return (t.r[0] * t.r[0] * w[0] + t.r[1] * t.r[1] * w[1] + t.r[2] * t.r[2] * w[2]) / 3;
+}
+
+uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
+                          hl_pg_edge_t *edges, uint32_t *n_edges, double sigma_mm,
+                          double sigma_rad, double gate)
+{
+    if (!g || !poses || !edges || !n_edges || n < 2 || n > g->max_poses ||
+        *n_edges > g->max_edges)
+        return 0;
+    const double w[3] = { 1 / (sigma_mm * sigma_mm), 1 / (sigma_mm * sigma_mm),
+                          1 / (sigma_rad * sigma_rad) };
+    /* One wrong match bends the whole fit, so right matches near it can look wrong too:
+     * drop only the worst match beyond the gate, fit again, and repeat. */
+    uint32_t dropped = 0;
+    for (;;) {
+        solve(g, poses, n, edges, *n_edges, w);
+        uint32_t worst = UINT32_MAX;
+        double worst_chi2 = gate * gate;
+        for (uint32_t k = 0; k < *n_edges; k++) {
+            double c = edges[k].loop ? chi2(poses, &edges[k], w) : 0;
+            if (c > worst_chi2) {
+                worst_chi2 = c;
+                worst = k;
+            }
+        }
+        if (worst == UINT32_MAX || dropped == MAX_DROPS)
+            return dropped;
+        memmove(&edges[worst], &edges[worst + 1], (*n_edges - worst - 1) * sizeof *edges);
+        (*n_edges)--;
+        dropped++;
+    }
+}

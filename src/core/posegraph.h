@@ -1,0 +1,52 @@
+/*
+ * posegraph.h (private) - the least-squares fit of 2-D poses to relative measurements
+ * between them (a pose graph): what loop closure (closure.h) asks of the stops when a
+ * new match says where one stop lies from another.
+ *
+ * Gauss-Newton; each step's normal equations are solved by conjugate gradients with a
+ * block-Jacobi preconditioner, matrix-free (one pass over the edges a product), so the
+ * cost grows with the edges, not with the square of the poses: a chain of stops and its
+ * matches is sparse. Every edge weighs the same (one localization's error, sigma_mm and
+ * sigma_rad). Pose 0 is held where it is. Memory: the workspace, from create only.
+ */
+#ifndef HOUGHLOC_CORE_POSEGRAPH_H
+#define HOUGHLOC_CORE_POSEGRAPH_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct hl_pg_pose {
+    double x, y, theta;     /* mm, mm, radians */
+} hl_pg_pose_t;
+
+typedef struct hl_pg_edge {
+    uint32_t from, to;      /* pose indices */
+    hl_pg_pose_t rel;       /* pose `to` in the frame of pose `from`, as measured */
+    bool loop;              /* a match (may be dropped as an outlier), not a step */
+} hl_pg_edge_t;
+
+typedef struct hl_posegraph hl_posegraph_t;
+
+/** A workspace for up to @p max_poses poses and @p max_edges edges; NULL on no memory. */
+hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges);
+void hl_posegraph_destroy(hl_posegraph_t *g);     /* accepts NULL */
+size_t hl_posegraph_mem_bytes(uint32_t max_poses, uint32_t max_edges);
+
+/* Pose @p b in the frame of @p a, and its inverse. */
+hl_pg_pose_t hl_pg_between(hl_pg_pose_t a, hl_pg_pose_t b);
+hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
+
+/**
+ * Moves @p poses[1 .. n - 1] to the least-squares fit of @p edges (pose 0 held). Then,
+ * while the loop edge farthest from the fit is more than @p gate standard deviations off
+ * (rms over its three terms), it is dropped from @p edges (*n_edges shrinks, the order
+ * kept) and the fit made again, up to 8 times. n <= max_poses, *n_edges <= max_edges;
+ * edges must name poses below n.
+ * @return the number of loop edges dropped.
+ */
+uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
+                          hl_pg_edge_t *edges, uint32_t *n_edges, double sigma_mm,
+                          double sigma_rad, double gate);
+
+#endif

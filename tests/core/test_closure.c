@@ -1,0 +1,202 @@
+/* Tests for src/core/closure.c and loop closure in the slam (slam.close_loops): a stop
+ * back near an old one is matched with it, a match beyond the gate is refused, the fit
+ * pulls a drifted stop back and the map is drawn again with it, forgotten stops are not
+ * offered, and the slam starts its record afresh when its pose is set from outside. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "../../src/core/closure.h"
+#include "slam_walk.h"
+
+#define CAP 1500
+
+/* A room, and stops 0..6 2 m apart around a loop, the last 0.3 m from stop 0 and 1.9 m
+ * from stop 1. */
+typedef struct loop {
+    sr_room_t room;
+    hl_pose_t truth[7];
+} loop_t;
+
+static loop_t *make_loop(void)
+{
+    loop_t *l = calloc(1, sizeof *l);
+    sr_room_make(&l->room, 0, 0, 10000, 8000, 6, 7);
+    static const int xy[7][2] = { { 2000, 2000 }, { 4000, 2000 }, { 6000, 2000 },
+                                  { 6000, 4000 }, { 4000, 4000 }, { 2000, 4000 },
+                                  { 2000, 2300 } };
+    for (int i = 0; i < 7; i++)
+        l->truth[i] = (hl_pose_t){ xy[i][0], xy[i][1], 0 };
+    return l;
+}
+
+/* Records stops 0..6 (the last at @p last instead of its truth) into @p c, drawing
+ * each into @p map under its stamp. */
+static void record_loop(loop_t *l, hl_closure_t *c, hl_map_t *map, hl_pose_t last,
+                        hl_scan_t *scan)
+{
+    for (int i = 0; i < 7; i++) {
+        hl_pose_t at = i == 6 ? last : l->truth[i];
+        sr_sound(&l->room, l->truth[i], 128, 8000, 5, scan);
+        hl_rng_t before = hl_map_rng(map);
+        hl_map_set_stamp(map, hl_closure_next_stamp(c));
+        assert_int_equal(hl_map_add_scan(map, scan, at, NULL), HL_OK);
+        hl_closure_record(c, scan, at, before);
+    }
+}
+
+static void test_a_stop_back_near_an_old_one_is_matched_and_pulled_back(void **state)
+{
+    (void)state;
+    loop_t *l = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_closure_t *c = hl_closure_create(16, CAP, 1);
+    hl_map_t *map = hl_map_create(CAP, 1);
+    assert_non_null(c);
+    hl_pose_t drifted = { l->truth[6].x_mm + 150, l->truth[6].y_mm, hl_bam_from_deg(2.0) };
+    record_loop(l, c, map, drifted, scan);
+    assert_pose_equal(hl_closure_newest(c), drifted);
+
+    /* Only stop 0 is 5 stops back and within 1.5 m: stamps count from 1. */
+    uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
+    assert_int_equal(hl_closure_candidates(c, stamps, HL_CLOSURE_MAX_MATCHES), 1);
+    assert_int_equal(stamps[0], 1);
+    const hl_map_t *sub = hl_closure_submap(c, stamps[0]);
+    assert_non_null(sub);
+    assert_true(hl_map_count(sub) > 150);   /* stop 0 and stop 1, its neighbour */
+    assert_null(hl_closure_submap(c, 99));
+
+    /* A match 300 mm from the estimate is beyond the gate; the truth (150 mm, 2 deg) is
+     * not. */
+    hl_pose_t far = { drifted.x_mm + 300, drifted.y_mm, drifted.theta };
+    assert_false(hl_closure_match(c, stamps[0], far));
+    assert_true(hl_closure_match(c, stamps[0], l->truth[6]));
+
+    /* The step says "drifted", the match says "truth", every edge weighted alike: the
+     * 150 mm and 2 degrees are spread over the loop's seven edges, a seventh at each. */
+    uint32_t before_count = hl_map_count(map);
+    assert_int_equal(hl_closure_fit(c, map), 0);
+    hl_pose_t fitted = hl_closure_newest(c);
+    assert_true(dist(fitted, l->truth[6]) < 40 && dist(fitted, drifted) > 110);
+    double turn = hl_bam_diff(fitted.theta, 0) * (360.0 / 65536.0);
+    assert_true(turn > 0.1 && turn < 0.6);
+
+    /* The map drawn again: as many vectors (none culled: far below capacity), the last
+     * stop's under its stamp, now where the fitted pose puts them. */
+    assert_int_equal(hl_map_count(map), before_count);
+    const uint32_t *st = hl_map_stamps(map);
+    uint32_t last = 0;
+    for (uint32_t i = 0; i < hl_map_count(map); i++)
+        last += st[i] == 7;
+    assert_true(last > 50);
+    hl_map_t *expect = hl_map_create(CAP, 1);
+    hl_map_add_scan(expect, scan, fitted, NULL);    /* scan: the loop's last, stop 6's */
+    for (uint32_t i = 0, k = 0; i < hl_map_count(map); i++)
+        if (st[i] == 7) {
+            assert_int_equal(hl_map_vectors(map)[i].x_mm, hl_map_vectors(expect)[k].x_mm);
+            assert_int_equal(hl_map_vectors(map)[i].normal, hl_map_vectors(expect)[k].normal);
+            k++;
+        }
+    hl_map_destroy(expect);
+    hl_map_destroy(map);
+    hl_closure_destroy(c);
+    free(scan);
+    free(l);
+}
+
+static void test_forgotten_stops_are_not_offered(void **state)
+{
+    (void)state;
+    loop_t *l = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_closure_t *c = hl_closure_create(6, CAP, 1);   /* one fewer than the loop */
+    hl_map_t *map = hl_map_create(CAP, 1);
+    record_loop(l, c, map, l->truth[6], scan);
+    /* Stop 0 (stamp 1) is forgotten; stop 1 (stamp 2) is 1.9 m away. */
+    uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
+    assert_int_equal(hl_closure_candidates(c, stamps, HL_CLOSURE_MAX_MATCHES), 0);
+    assert_null(hl_closure_submap(c, 1));
+    assert_false(hl_closure_match(c, 1, l->truth[6]));
+    assert_false(hl_closure_match(c, 7, l->truth[6]));   /* itself: too recent */
+    /* A reset forgets all, and stamps go on rising. */
+    uint32_t next = hl_closure_next_stamp(c);
+    hl_closure_reset(c);
+    assert_int_equal(hl_closure_next_stamp(c), next);
+    assert_int_equal(hl_closure_candidates(c, stamps, HL_CLOSURE_MAX_MATCHES), 0);
+    assert_null(hl_closure_create(1, CAP, 1));
+    assert_null(hl_closure_create(HL_CLOSURE_MAX_STOPS + 1, CAP, 1));
+    hl_closure_destroy(NULL);
+    hl_map_destroy(map);
+    hl_closure_destroy(c);
+    free(scan);
+    free(l);
+}
+
+/* The slam with close_loops on the noisy walk of slam_walk.h. */
+static void test_the_slam_closes_loops_and_starts_afresh_when_placed(void **state)
+{
+    (void)state;
+    walk_t *w = make_walk(3);
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_slam_params_t p;
+    ray_sensor_defaults(&p);
+    p.closure_stops = 1;
+    assert_non_null(hl_slam_params_error(&p));
+    p.closure_stops = 4097;
+    assert_non_null(hl_slam_params_error(&p));
+    p.closure_stops = 256;
+    p.close_loops = true;
+    hl_slam_t *s = hl_slam_create(&p);
+    assert_non_null(s);
+    hl_slam_reset(s, w->truth[0]);
+    uint32_t loops = 0;
+    hl_slam_step_t step;
+    for (int i = 0; i < STEPS; i++) {
+        sr_sound(&w->room, w->truth[i], 128, 8000, 15, scan);
+        assert_int_equal(hl_slam_update(s, scan, w->odom[i], &step), HL_OK);
+        loops += step.loops;
+        if (i < HL_CLOSURE_GAP)
+            assert_int_equal(step.loops, 0);     /* nothing old enough to match */
+    }
+    assert_true(loops > 0);     /* 40 steps in a 10 x 8 m room come back */
+    const uint32_t *st = hl_map_stamps(hl_slam_map(s));
+    for (uint32_t i = 0; i < hl_map_count(hl_slam_map(s)); i++)
+        assert_true(st[i] >= 1 && st[i] <= STEPS);
+    /* Placed by hand: no step joins the stops before to those after. */
+    assert_int_equal(hl_slam_set_pose(s, w->truth[0], w->odom[0]), HL_OK);
+    for (int i = 0; i < HL_CLOSURE_GAP; i++) {
+        sr_sound(&w->room, w->truth[i], 128, 8000, 15, scan);
+        assert_int_equal(hl_slam_update(s, scan, w->odom[i], &step), HL_OK);
+        assert_int_equal(step.loops, 0);
+    }
+    hl_slam_destroy(s);
+
+    /* Off (the default): never a loop. */
+    ray_sensor_defaults(&p);
+    assert_false(p.close_loops);
+    s = hl_slam_create(&p);
+    hl_slam_reset(s, w->truth[0]);
+    for (int i = 0; i < STEPS; i++) {
+        sr_sound(&w->room, w->truth[i], 128, 8000, 15, scan);
+        assert_int_equal(hl_slam_update(s, scan, w->odom[i], &step), HL_OK);
+        assert_int_equal(step.loops, 0);
+    }
+    hl_slam_destroy(s);
+    free(scan);
+    free(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_a_stop_back_near_an_old_one_is_matched_and_pulled_back),
+        cmocka_unit_test(test_forgotten_stops_are_not_offered),
+        cmocka_unit_test(test_the_slam_closes_loops_and_starts_afresh_when_placed),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

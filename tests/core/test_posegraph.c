@@ -1,0 +1,147 @@
+/* Tests for src/core/posegraph.c: a loop's drift taken back by one match, a wrong match
+ * dropped, pose 0 held, a consistent graph left alone, bad calls refused. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+
+#include "../../src/core/posegraph.h"
+
+#define N 12                /* poses around a loop */
+#define PI 3.14159265358979323846
+#define SIGMA_MM 50.0
+#define SIGMA_RAD (1.5 * PI / 180)
+
+/* The true poses: a 12-gon of 1 m sides, each pose facing along its side. */
+static void truth(hl_pg_pose_t *p)
+{
+    p[0] = (hl_pg_pose_t){ 0, 0, 0 };
+    for (int i = 1; i < N; i++)
+        p[i] = hl_pg_compose(p[i - 1], (hl_pg_pose_t){ 1000, 0, 2 * PI / N });
+}
+
+/* Steps measured with a heading bias of @p bias_rad each (drift), and the poses they
+ * chain to. */
+static uint32_t drifting_chain(const hl_pg_pose_t *t, double bias_rad, hl_pg_pose_t *poses,
+                               hl_pg_edge_t *edges)
+{
+    poses[0] = t[0];
+    for (int i = 1; i < N; i++) {
+        hl_pg_pose_t rel = hl_pg_between(t[i - 1], t[i]);
+        rel.theta += bias_rad;
+        edges[i - 1] = (hl_pg_edge_t){ (uint32_t)i - 1, (uint32_t)i, rel, false };
+        poses[i] = hl_pg_compose(poses[i - 1], rel);
+    }
+    return N - 1;
+}
+
+static double worst_mm(const hl_pg_pose_t *a, const hl_pg_pose_t *b)
+{
+    double w = 0;
+    for (int i = 0; i < N; i++)
+        w = fmax(w, hypot(a[i].x - b[i].x, a[i].y - b[i].y));
+    return w;
+}
+
+static void test_one_match_takes_back_a_loops_drift(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], poses[N];
+    hl_pg_edge_t edges[N + 2];
+    truth(t);
+    uint32_t n = drifting_chain(t, 5.0 * PI / 180, poses, edges);
+    double before = worst_mm(poses, t);
+    assert_true(before > 1000);     /* 5 degrees a step: more than a metre off by the end */
+    /* The last pose seen again from the first, as it truly lies. */
+    edges[n++] = (hl_pg_edge_t){ 0, N - 1, hl_pg_between(t[0], t[N - 1]), true };
+    hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
+    assert_non_null(g);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 0);
+    assert_int_equal(n, N);
+    /* The 55 degrees of bias spread over the loop's 12 edges: every pose within a
+     * fraction of what it was off, the last one's heading a twelfth of it. */
+    assert_true(worst_mm(poses, t) < before / 4);
+    double turn = fabs(remainder(poses[N - 1].theta - t[N - 1].theta, 2 * PI));
+    assert_true(turn > 4.0 * PI / 180 && turn < 5.2 * PI / 180);
+    hl_posegraph_destroy(g);
+}
+
+static void test_a_wrong_match_is_dropped(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], poses[N], clean[N];
+    hl_pg_edge_t edges[N + 2];
+    truth(t);
+    uint32_t n = drifting_chain(t, 0.5 * PI / 180, poses, edges);
+    edges[n++] = (hl_pg_edge_t){ 0, N - 1, hl_pg_between(t[0], t[N - 1]), true };
+    for (int i = 0; i < N; i++)
+        clean[i] = poses[i];
+    hl_pg_edge_t clean_edges[N + 2];
+    for (uint32_t k = 0; k < n; k++)
+        clean_edges[k] = edges[k];
+    uint32_t n_clean = n;
+    /* A match 3 m and 40 degrees off what the others say. */
+    hl_pg_pose_t wrong = hl_pg_between(t[2], t[8]);
+    wrong.x += 3000;
+    wrong.theta += 40 * PI / 180;
+    edges[n++] = (hl_pg_edge_t){ 2, 8, wrong, true };
+    hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 1);
+    assert_int_equal(n, N);                       /* the wrong one gone, the order kept */
+    assert_int_equal(edges[N - 1].from, 0);
+    assert_int_equal(edges[N - 1].to, N - 1);
+    assert_int_equal(hl_posegraph_fit(g, clean, N, clean_edges, &n_clean, SIGMA_MM, SIGMA_RAD,
+                                      3.0), 0);
+    assert_true(worst_mm(poses, clean) < 1.0);    /* as if it had never been there */
+    hl_posegraph_destroy(g);
+}
+
+static void test_pose_zero_is_held_and_a_consistent_graph_stays(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], poses[N];
+    hl_pg_edge_t edges[N + 2];
+    truth(t);
+    uint32_t n = drifting_chain(t, 0.0, poses, edges);
+    edges[n++] = (hl_pg_edge_t){ 3, 9, hl_pg_between(t[3], t[9]), true };
+    hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 0);
+    assert_true(worst_mm(poses, t) < 0.01);
+    /* Moved away as a whole, the graph is fitted back to pose 0, which stays. */
+    for (int i = 0; i < N; i++)
+        poses[i].x += (i == 0) ? 0 : 500;
+    hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0);
+    assert_true(poses[0].x == t[0].x && poses[0].y == t[0].y && poses[0].theta == t[0].theta);
+    assert_true(worst_mm(poses, t) < 0.01);
+    hl_posegraph_destroy(g);
+}
+
+static void test_bad_calls_change_nothing(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], poses[N];
+    hl_pg_edge_t edges[N + 2];
+    truth(t);
+    uint32_t n = drifting_chain(t, 0.1, poses, edges);
+    hl_posegraph_t *g = hl_posegraph_create(4, N + 2);     /* too few poses */
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 0);
+    assert_int_equal(n, N - 1);
+    assert_true(worst_mm(poses, t) > 1000);               /* not fitted */
+    assert_int_equal(hl_posegraph_fit(NULL, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 0);
+    hl_posegraph_destroy(g);
+    hl_posegraph_destroy(NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_one_match_takes_back_a_loops_drift),
+        cmocka_unit_test(test_a_wrong_match_is_dropped),
+        cmocka_unit_test(test_pose_zero_is_held_and_a_consistent_graph_stays),
+        cmocka_unit_test(test_bad_calls_change_nothing),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
