@@ -45,9 +45,10 @@
  * also localized, as the tracker localizes it, against a map of that stop and its
  * neighbours alone; a confident match within 250 mm and 4 degrees of the estimate ties
  * the two stops. Every remembered stop is then fitted to its steps and matches at once
- * (least squares), and the map's vectors move with the stops that drew them. On 24
- * simulated lab tours the mean tour error went 387 -> about 230 mm, and the kidnap
- * trials in the tours' maps 52.6 -> about 85 % found (docs/kidnap.md, "Tenth session").
+ * (least squares), and the map is drawn again at the fitted poses. On 24 simulated lab
+ * tours the mean tour error went 387 -> 237 mm, and the kidnap trials in the tours'
+ * maps 52.6 -> 85.2 % found (docs/kidnap.md, "Tenth session"); in a corridor, where a
+ * sonar cannot tell one stretch from the next, it does harm.
  * Stops forgotten (more than closure_stops ago) and vectors from a loaded map stay where
  * they are. A restore, a reset or a pose set from outside starts the record afresh.
  */
@@ -219,7 +220,8 @@ hl_pose_t hl_slam_pose(const hl_slam_t *s);
 
 /**
  * Everything besides the map's vectors that the next hl_slam_update depends on: with it
- * and the vectors, a restarted process continues exactly as this one would.
+ * and the vectors, a restarted process continues exactly as this one would (but for
+ * loop closure's record of stops, which a restore starts afresh).
  */
 typedef struct hl_slam_state {
     bool started;           /* a scan has been integrated since the last reset */

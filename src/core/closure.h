@@ -2,7 +2,7 @@
  * closure.h (private) - loop closure for the slam (slam.h, slam.close_loops): a record of
  * the last stops (pose and the scan as mapped), the earlier stops each new one should be
  * matched against, and the fit of every stop to its steps and matches (posegraph.h),
- * which moves each stop's map vectors with it (map.h, stamps).
+ * after which the map is drawn again at the fitted poses (map.h, stamps).
  *
  * Not in the paper. Its tracker matches each scan against a map drawn by the scans before
  * it, so every localization's error goes into the map the next one is matched against,
@@ -12,8 +12,9 @@
  * is matched against that stop and its neighbours alone, and all the stops are fitted to
  * all such matches at once (docs/kidnap.md, "Tenth session").
  *
- * The record holds `stops` stops; when full, the oldest is forgotten with its matches,
- * and the oldest left is held where it is. Its vectors stay in the map where they are.
+ * The record holds `stops` stops (each with its scan: about 12 KB a stop); when full, the
+ * oldest is forgotten with its matches, and the oldest left is held where it is. Vectors
+ * of forgotten stops stay in the map where they are.
  * Memory: create only.
  */
 #ifndef HOUGHLOC_CORE_CLOSURE_H
@@ -27,9 +28,9 @@
 #include "houghloc/rng.h"
 #include "houghloc/scan.h"
 
-/* Chosen on 24 simulated lab tours, the online mode of hl-tour-study (docs/kidnap.md,
- * "Tenth session"): none of them moved the mean tour error by more than the tours'
- * scatter within a factor of two around it. */
+/* Chosen on simulated lab tours with the study that preceded this code (docs/kidnap.md,
+ * "Tenth session"): over tours 1-24, halving or doubling any one of them left the mean
+ * tour error as good or worse. */
 #define HL_CLOSURE_GAP 5            /* stops between a stop and those it is matched with */
 #define HL_CLOSURE_RADIUS_MM 1500   /* ... whose poses lie this near */
 #define HL_CLOSURE_SIDE 1           /* the matched stop's neighbours drawn with it */
@@ -80,8 +81,9 @@ const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp);
 bool hl_closure_match(hl_closure_t *c, uint32_t stamp, hl_pose_t found);
 
 /**
- * Fits every recorded stop to its steps and matches, and moves the vectors of @p map
- * stamped with a stop by that stop's move. @return the matches dropped as outliers.
+ * Fits every recorded stop to its steps and matches, and draws @p map again: its vectors
+ * of stops no longer recorded (or of none) as they are, then each recorded stop's scan
+ * at its fitted pose. @return the matches dropped as outliers.
  */
 uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map);
 

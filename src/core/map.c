@@ -424,7 +424,6 @@ const uint32_t *hl_map_stamps(const hl_map_t *map)
     return map->stamps;
 }
 
-
 size_t hl_map_mem_bytes(const hl_map_t *map)
 {
     return sizeof *map + (size_t)map->capacity * (sizeof *map->vectors + sizeof *map->stamps) +

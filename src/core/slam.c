@@ -271,7 +271,8 @@ static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predi
 
 /* Loop closure after a committed stop (slam.h): the stop remembered, matched against the
  * earlier stops near it, and, when any match is taken, every stop fitted and the map
- * moved with them. @return the matches taken; *pose becomes the stop's fitted pose. */
+ * drawn again with them. @return the matches taken; *pose becomes the stop's fitted
+ * pose. */
 static uint32_t close_loops(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t *pose,
                             hl_rng_t rng_before)
 {
