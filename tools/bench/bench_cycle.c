@@ -3,14 +3,15 @@
  * localization, refinement, map integration) over the SONAR scans of a recorded tour,
  * and fingerprints every result so that a speed-up can be shown to change nothing.
  *
- *   hl-bench-cycle [--log FILE] [--reps N] [--start X_MM,Y_MM,DEG] [--paper] [--steps]
+ *   hl-bench-cycle [--log FILE] [--reps N] [--start X_MM,Y_MM,DEG] [--paper]
+ *                  [--close-loops] [--steps]
  *
  * Reads the SONAR events of FILE (default logs/tour.lcmlog; every other channel is
  * skipped, so a stale GROUND_TRUTH type does not matter), then runs the tour N times
  * (default 5), each with a new slam (hl_slam_create, hl_slam_reset) at the start pose
  * (default the origin) with hl_slam_params_default (improved mode; --paper: the
  * paper's cycle, unguarded, without echo bearings and refinement, the other parameters
- * as they are). Each hl_slam_update is timed with CLOCK_MONOTONIC. Prints one line per
+ * as they are; --close-loops: with loop closure, slam.close_loops). Each hl_slam_update is timed with CLOCK_MONOTONIC. Prints one line per
  * repetition and a summary:
  *
  *   cycle rep=<i> scans=<n> median_us=<n> p90_us=<n> p99_us=<n> max_us=<n> checksum=<hex>
@@ -139,7 +140,7 @@ static int read_tour(const char *path, recorded_t *out, int max)
 static void usage(FILE *f)
 {
     fprintf(f, "usage: hl-bench-cycle [--log FILE] [--reps N] [--start X_MM,Y_MM,DEG] "
-               "[--paper] [--steps]\n");
+               "[--paper] [--close-loops] [--steps]\n");
 }
 
 static int bad_usage(const char *what, const char *value)
@@ -187,7 +188,7 @@ int main(int argc, char **argv)
 {
     const char *path = "logs/tour.lcmlog";
     int reps = 5;
-    bool paper = false, steps = false;
+    bool paper = false, steps = false, close_loops = false;
     hl_pose_t start = { 0, 0, 0 };
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -209,6 +210,8 @@ int main(int argc, char **argv)
                                  "degrees), not", argv[i]);
         } else if (!strcmp(argv[i], "--paper")) {
             paper = true;
+        } else if (!strcmp(argv[i], "--close-loops")) {
+            close_loops = true;
         } else if (!strcmp(argv[i], "--steps")) {
             steps = true;
         } else {
@@ -231,6 +234,7 @@ int main(int argc, char **argv)
         p.echo_bearings = false;
         p.refine = false;
     }
+    p.close_loops = close_loops;
     double *t = malloc((size_t)n * sizeof *t), *meds = malloc((size_t)reps * sizeof *meds);
     double *all = malloc((size_t)n * reps * sizeof *all);
     if (!t || !meds || !all) {
