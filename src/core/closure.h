@@ -14,7 +14,8 @@
  *
  * The record holds `stops` stops (each with its scan: about 12 KB a stop); when full, the
  * oldest is forgotten with its matches, and the oldest left is held where it is. Vectors
- * of forgotten stops stay in the map where they are.
+ * of forgotten stops stay in the map where they are (a redraw starts their evidence
+ * counts again, map.h's hl_map_restore).
  * Memory: create only.
  */
 #ifndef HOUGHLOC_CORE_CLOSURE_H
