@@ -5,7 +5,8 @@
 #         compute_p99_us=<n> peak_rss_kib=<n>
 # for the tracking cycle alone (the defaults: issue 9's budget), then the same line named
 # daemon_replay_watch with daemon.search_every=1, where every scan also runs the global
-# search that notices a kidnapped robot (docs/kidnap.md; off by default).
+# search that notices a kidnapped robot (docs/kidnap.md; off by default), then
+# daemon_replay_loops with slam.close_loops=true (loop closure, slam.h; off by default).
 # wall_ms is the whole process (start, replay, map save, exit); the compute figures are
 # houghlocd's own STATUS (the cycle's latency per scan, SONAR handler entry to POSE out,
 # over all scans of the last run);
@@ -38,3 +39,4 @@ replay() {  # replay NAME [ARGS...]: RUNS replays, one line
 }
 replay daemon_replay
 replay daemon_replay_watch --set daemon.search_every=1
+replay daemon_replay_loops --set slam.close_loops=true
