@@ -8,6 +8,7 @@
 #include "houghloc/rng.h"
 #include "posegraph.h"
 
+#define PI 3.14159265358979323846
 #define MAX_EDGES_A_STOP (1 + HL_CLOSURE_MAX_MATCHES)   /* its step and its matches */
 
 struct hl_closure {
@@ -29,21 +30,6 @@ struct hl_closure {
     hl_map_t *sub;          /* the map a match is sought in */
     hl_rng_t sub_rng;       /* ... started afresh each time */
 };
-
-static hl_pg_pose_t to_pg(hl_pose_t p)
-{
-    return (hl_pg_pose_t){ p.x_mm, p.y_mm, hl_bam_to_rad(p.theta) };
-}
-
-static hl_mm_t clamp_mm(double v)
-{
-    return (hl_mm_t)lround(fmax(-HL_COORD_MAX_MM, fmin(HL_COORD_MAX_MM, v)));
-}
-
-static hl_pose_t from_pg(hl_pg_pose_t p)
-{
-    return (hl_pose_t){ clamp_mm(p.x), clamp_mm(p.y), hl_bam_from_rad(p.theta) };
-}
 
 hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t seed)
 {
@@ -143,7 +129,7 @@ void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
     memcpy(s->readings, placed->readings, placed->count * sizeof *placed->readings);
     uint32_t i = c->count++;
     c->next++;
-    c->poses[i] = to_pg(pose);
+    c->poses[i] = hl_pg_from_pose(pose);
     c->placed[i] = pose;
     c->rng_before[i] = rng_before;
     if (i > 0 && c->n_edges < c->max_edges)
@@ -190,9 +176,8 @@ bool hl_closure_match(hl_closure_t *c, uint32_t stamp, hl_pose_t found)
     if (i >= c->count || i + HL_CLOSURE_GAP > newest || c->n_edges >= c->max_edges)
         return false;
     hl_pg_pose_t now = hl_pg_between(c->poses[i], c->poses[newest]);
-    hl_pg_pose_t said = hl_pg_between(c->poses[i], to_pg(found));
-    double turn_deg = fabs(remainder(now.theta - said.theta, 2 * 3.14159265358979323846)) *
-                      (180 / 3.14159265358979323846);
+    hl_pg_pose_t said = hl_pg_between(c->poses[i], hl_pg_from_pose(found));
+    double turn_deg = fabs(remainder(now.theta - said.theta, 2 * PI)) * (180 / PI);
     if (hypot(now.x - said.x, now.y - said.y) > HL_CLOSURE_GATE_MM ||
         turn_deg > HL_CLOSURE_GATE_DEG)
         return false;
@@ -228,10 +213,10 @@ uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map)
 {
     uint32_t dropped = hl_posegraph_fit(c->graph, c->poses, c->count, c->edges, &c->n_edges,
                                         HL_CLOSURE_SIGMA_MM,
-                                        HL_CLOSURE_SIGMA_DEG * (3.14159265358979323846 / 180),
+                                        HL_CLOSURE_SIGMA_DEG * (PI / 180),
                                         HL_CLOSURE_OUTLIER);
     for (uint32_t i = 0; i < c->count; i++)
-        c->placed[i] = from_pg(c->poses[i]);
+        c->placed[i] = hl_pg_to_pose(c->poses[i]);
     redraw(c, map);
     return dropped;
 }

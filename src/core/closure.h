@@ -37,6 +37,10 @@
 #define HL_CLOSURE_RADIUS_MM 1500   /* ... whose poses lie this near */
 #define HL_CLOSURE_SIDE 1           /* the matched stop's neighbours drawn with it */
 #define HL_CLOSURE_MAX_MATCHES 16   /* matches sought a stop, oldest stops first */
+#define HL_CLOSURE_MIN_CONFIDENCE 0.3 /* a match's peak at least this distinct
+                                       (hl_loc_confidence), far above the guard's 0.05 as
+                                       a match moves every stop; 0.15 and 0.5 were within
+                                       the tours' scatter */
 #define HL_CLOSURE_GATE_MM 250      /* a match moving the stop farther is not taken ... */
 #define HL_CLOSURE_GATE_DEG 4.0     /* ... nor one turning it more */
 #define HL_CLOSURE_SIGMA_MM 50.0    /* every step and match: one localization's error */

@@ -76,6 +76,21 @@ static double wrap(double a)
     return atan2(sin(a), cos(a));
 }
 
+hl_pg_pose_t hl_pg_from_pose(hl_pose_t p)
+{
+    return (hl_pg_pose_t){ p.x_mm, p.y_mm, hl_bam_to_rad(p.theta) };
+}
+
+static hl_mm_t clamp_mm(double v)
+{
+    return (hl_mm_t)lround(fmax(-HL_COORD_MAX_MM, fmin(HL_COORD_MAX_MM, v)));
+}
+
+hl_pose_t hl_pg_to_pose(hl_pg_pose_t p)
+{
+    return (hl_pose_t){ clamp_mm(p.x), clamp_mm(p.y), hl_bam_from_rad(p.theta) };
+}
+
 hl_pg_pose_t hl_pg_between(hl_pg_pose_t a, hl_pg_pose_t b)
 {
     double c = cos(a.theta), s = sin(a.theta), dx = b.x - a.x, dy = b.y - a.y;

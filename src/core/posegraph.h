@@ -16,6 +16,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc/scan.h"
+
 typedef struct hl_pg_pose {
     double x, y, theta;     /* mm, mm, radians */
 } hl_pg_pose_t;
@@ -32,6 +34,11 @@ typedef struct hl_posegraph hl_posegraph_t;
 hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges);
 void hl_posegraph_destroy(hl_posegraph_t *g);     /* accepts NULL */
 size_t hl_posegraph_mem_bytes(uint32_t max_poses, uint32_t max_edges);
+
+/* A fixed-point pose as a graph's, and back (rounded, positions clamped to the
+ * coordinate range). */
+hl_pg_pose_t hl_pg_from_pose(hl_pose_t p);
+hl_pose_t hl_pg_to_pose(hl_pg_pose_t p);
 
 /* Pose @p b in the frame of @p a, and its inverse. */
 hl_pg_pose_t hl_pg_between(hl_pg_pose_t a, hl_pg_pose_t b);

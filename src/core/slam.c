@@ -7,12 +7,6 @@
 
 #include "closure.h"
 
-/* A loop-closure match counts when its peak is this distinct (hl_loc_confidence), has
- * the guard's votes and lies within its wild error of the estimate: 0.3 on the lab tours
- * (0.15 and 0.5 were within their scatter, docs/kidnap.md "Tenth session"); far above the
- * guard's 0.05, as a match moves every stop. */
-#define CLOSURE_MIN_CONFIDENCE 0.3
-
 struct hl_slam {
     hl_slam_params_t p;
     hl_map_t *map;
@@ -270,7 +264,8 @@ static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predi
 }
 
 /* Loop closure after a committed stop (slam.h): the stop remembered, matched against the
- * earlier stops near it, and, when any match is taken, every stop fitted and the map
+ * earlier stops near it (a match counts as distinct as HL_CLOSURE_MIN_CONFIDENCE, with
+ * the guard's votes, within its wild error), and, when any match is taken, every stop fitted and the map
  * drawn again with them. @return the matches taken; *pose becomes the stop's fitted
  * pose. */
 static uint32_t close_loops(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t *pose,
@@ -284,7 +279,7 @@ static uint32_t close_loops(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t *pose
         hl_loc_result_t loc;
         hl_pose_t found;
         if (sub && localize_in(s, sub, scan, *pose, &loc, &found) == HL_OK &&
-            hl_loc_confidence(&loc) >= CLOSURE_MIN_CONFIDENCE && loc.votes >= s->p.min_votes &&
+            hl_loc_confidence(&loc) >= HL_CLOSURE_MIN_CONFIDENCE && loc.votes >= s->p.min_votes &&
             dist2(found, *pose) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
             hl_closure_match(s->closure, stamps[k], found))
             taken++;

@@ -12,8 +12,18 @@ extern "C" {
 }
 
 #include "../experiments/dataset.hpp"
+#include "houghloc/map.h"
+#include "houghloc/slam.h"
 
 namespace hlkid {
+
+// For std::unique_ptr of the core's objects.
+struct SlamDeleter {
+    void operator()(hl_slam_t *s) const { hl_slam_destroy(s); }
+};
+struct MapDeleter {
+    void operator()(hl_map_t *m) const { hl_map_destroy(m); }
+};
 
 // houghlocd's configuration from @p file, then the K=V keys of @p sets in order (as
 // `houghlocd --config FILE --set K=V`). nullptr with the loader's one-line reason in

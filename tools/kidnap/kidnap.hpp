@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../experiments/dataset.hpp"
+#include "inputs.hpp"
 #include "houghloc/map.h"
 #include "houghloc/slam.h"
 
@@ -85,10 +86,6 @@ private:
 // box of @p map (as the localizer places it), for the progress lines and the error.
 uint64_t coarse_cells_needed(const hl_reloc_params_t &p, const hl_vector_t *map, uint32_t n,
                              double *width_m, double *height_m);
-
-struct SlamDeleter {
-    void operator()(hl_slam_t *s) const { hl_slam_destroy(s); }
-};
 
 // Puts @p n vectors into @p slam's map (hl_slam_restore, the state of a started slam).
 bool restore_map(hl_slam_t *slam, const hl_vector_t *v, uint32_t n, std::string *err);

@@ -38,11 +38,9 @@ constexpr double kFarMm = 500.0;
 // (slam.close_loops; src/core/closure.h), applied once to the tracked tour instead of at
 // every stop: each stop matched against each earlier stop at least HL_CLOSURE_GAP before
 // it and within HL_CLOSURE_RADIUS_MM, in a map of that stop and its neighbours, by the
-// tracker's local search from the stop's estimate; a match counts with a confidence of
-// kClosureConfidence, 20 votes, and within the paper's wild error of the estimate (no
-// gate on how far it moves the stop: nothing has been fitted yet).
-constexpr double kClosureConfidence = 0.3;
-constexpr uint32_t kClosureVotes = 20;
+// tracker's local search from the stop's estimate; a match counts as the daemon's does
+// (HL_CLOSURE_MIN_CONFIDENCE, the guard's votes and wild error) but with no gate on how
+// far it moves the stop: nothing has been fitted yet.
 
 void usage(FILE *to)
 {
@@ -138,12 +136,8 @@ int parse(int argc, char **argv, Options *o)
     return -1;
 }
 
-struct SlamDeleter {
-    void operator()(hl_slam_t *s) const { hl_slam_destroy(s); }
-};
-struct MapDeleter {
-    void operator()(hl_map_t *m) const { hl_map_destroy(m); }
-};
+using hlkid::MapDeleter;
+using hlkid::SlamDeleter;
 struct GraphDeleter {
     void operator()(hl_posegraph_t *g) const { hl_posegraph_destroy(g); }
 };
@@ -220,24 +214,9 @@ bool oracle(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracked *t,
     return true;
 }
 
-Pose2 to_pose2(hl_pose_t p)
-{
-    return Pose2{ static_cast<double>(p.x_mm), static_cast<double>(p.y_mm),
-                  hl_bam_to_rad(p.theta) };
-}
-
-hl_pose_t from_pose2(const Pose2 &p)
-{
-    hl_pose_t q;
-    q.x_mm = static_cast<hl_mm_t>(std::lround(p.x));
-    q.y_mm = static_cast<hl_mm_t>(std::lround(p.y));
-    q.theta = hl_bam_from_rad(p.theta);
-    return q;
-}
-
 // Stop @p k matched against stop @p j and its neighbours (those HL_CLOSURE_GAP before k);
 // false when the match does not count (above).
-bool match(const hlexp::Soundings &tour, const Tracked &t,
+bool match(const hl_slam_params_t &p, const hlexp::Soundings &tour, const Tracked &t,
            size_t j, size_t k, hl_map_t *sub, hl_slam_t *probe, Pose2 *found)
 {
     hl_slam_state_t state;
@@ -254,10 +233,10 @@ bool match(const hlexp::Soundings &tour, const Tracked &t,
     hl_pose_t pose;
     if (hl_slam_localize(probe, &tour[k]->msg.scan, t.est[k], &loc, &pose) != HL_OK)
         return false;
-    *found = to_pose2(pose);
-    Pose2 est = to_pose2(t.est[k]);
-    return hl_loc_confidence(&loc) >= kClosureConfidence && loc.votes >= kClosureVotes &&
-           std::hypot(found->x - est.x, found->y - est.y) <= kFarMm;
+    *found = hl_pg_from_pose(pose);
+    Pose2 est = hl_pg_from_pose(t.est[k]);
+    return hl_loc_confidence(&loc) >= HL_CLOSURE_MIN_CONFIDENCE && loc.votes >= p.min_votes &&
+           std::hypot(found->x - est.x, found->y - est.y) <= p.wild_mm;
 }
 
 // Loop closure: the tracked stops moved to the least-squares fit of their steps and of
@@ -268,10 +247,14 @@ bool close_loops(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracke
     const size_t n = t->est.size();
     std::unique_ptr<hl_slam_t, SlamDeleter> probe(hl_slam_create(&p));
     std::unique_ptr<hl_map_t, MapDeleter> sub(hl_map_create(p.map_capacity, p.seed));
+    if (!probe || !sub) {
+        *err = "cannot create the slam";
+        return false;
+    }
     std::vector<Pose2> poses;
     std::vector<Edge> edges;
     for (size_t i = 0; i < n; i++) {
-        poses.push_back(to_pose2(t->est[i]));
+        poses.push_back(hl_pg_from_pose(t->est[i]));
         if (i > 0)
             edges.push_back(Edge{ static_cast<uint32_t>(i - 1), static_cast<uint32_t>(i),
                                   hl_pg_between(poses[i - 1], poses[i]), false });
@@ -284,14 +267,14 @@ bool close_loops(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracke
                 continue;
             Pose2 found;
             tried++;
-            if (match(tour, *t, j, k, sub.get(), probe.get(), &found))
+            if (match(p, tour, *t, j, k, sub.get(), probe.get(), &found))
                 edges.push_back(Edge{ static_cast<uint32_t>(j), static_cast<uint32_t>(k),
                                       hl_pg_between(poses[j], found), true });
         }
     std::unique_ptr<hl_posegraph_t, GraphDeleter> graph(
         hl_posegraph_create(static_cast<uint32_t>(n), static_cast<uint32_t>(edges.size())));
-    if (!probe || !sub || !graph) {
-        *err = "cannot create the slam";
+    if (!graph) {
+        *err = "cannot create the pose graph";
         return false;
     }
     size_t proposed = edges.size() - (n - 1);
@@ -303,7 +286,7 @@ bool close_loops(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracke
     std::fprintf(stderr, "hl-tour-study: graph: %d matches tried, %zu counted, %zu kept\n", tried,
                  proposed, proposed - dropped);
     for (size_t i = 0; i < n; i++)
-        t->est[i] = from_pose2(poses[i]);
+        t->est[i] = hl_pg_to_pose(poses[i]);
     t->own.clear();     // the map is drawn again at the fitted poses (write_map)
     return true;
 }
