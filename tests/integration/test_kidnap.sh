@@ -59,6 +59,23 @@ check "the map-frame judgement: a line per tour, counts adding up to 10, aligned
 check "the map-frame summary on stderr" \
     grep -q "^kidnap: lab sonar: in the maps' own frames: found [0-9.]* % right" "$tmp/make.err"
 
+# rescore.sh: at the search's own bar it gives the row back; with no bar at all every
+# answer is found, so nothing is ambiguous and success can only grow.
+detail=$out/trials/lab_sonar.tsv
+row=$(awk -F'\t' 'NR == 2 { print $4, $5, $6 }' "$tsv")
+again=$(sh tools/kidnap/rescore.sh "$detail" |
+        sed -n 's/^rescore .* trials=20 success_pct=\([0-9.]*\) ambiguous_pct=\([0-9.]*\) wrong_pct=\([0-9.]*\)$/\1 \2 \3/p')
+check "rescore.sh at the search's bar gives the row ($row)" [ "${again:-none}" = "$row" ]
+check "rescore.sh with no bar: none ambiguous, success no lower" \
+    sh -c "sh tools/kidnap/rescore.sh --max-ratio 1 --min-explained 0 '$detail' |
+           awk -v s0='${row%% *}' '{ for (i = 1; i <= NF; i++) { split(\$i, kv, \"=\"); v[kv[1]] = kv[2] } }
+               END { exit !(v[\"ambiguous_pct\"] == 0 && v[\"success_pct\"] >= s0 &&
+                            v[\"success_pct\"] + v[\"wrong_pct\"] == 100) }'"
+exits "rescore.sh --max-ratio 2 is bad usage" 2 "--max-ratio 2 is outside" \
+    sh tools/kidnap/rescore.sh --max-ratio 2 "$detail"
+exits "rescore.sh on a file that is not a detail file" 1 "not a hl-kidnap detail file" \
+    sh tools/kidnap/rescore.sh "$tsv"
+
 # hl-tour-study replays tour 1 as the daemon did (the tours' settings, from make's stamp
 # file): the same RMSE and far poses as hl-eval score on the daemon's own output.
 tour_sets=$(for kv in $(cat "$out/sim/tour-set"); do printf -- '--set %s ' "$kv"; done)
