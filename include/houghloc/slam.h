@@ -43,12 +43,13 @@
  * accepted or mapped stop is remembered (its pose and its scan, closure_stops of them).
  * When the robot comes within 1.5 m of a stop made at least 5 stops before, the scan is
  * also localized, as the tracker localizes it, against a map of that stop and its
- * neighbours alone; a confident match within 250 mm and 4 degrees of the estimate ties
+ * neighbours alone; a confident match within 500 mm and 8 degrees of the estimate ties
  * the two stops. Every remembered stop is then fitted to its steps and matches at once
- * (least squares), and the map is drawn again at the fitted poses. On 24 simulated lab
- * tours the mean tour error went 387 -> 237 mm, and the kidnap trials in the tours'
- * maps 52.6 -> 85.2 % found (docs/kidnap.md, "Tenth session"); in a corridor, where a
- * sonar cannot tell one stretch from the next, it does harm.
+ * (least squares, each match under a robust kernel so that one at odds with the rest
+ * bends the fit little), and the map is drawn again at the fitted poses. On 24 simulated
+ * lab tours the mean tour error went 387 -> 228 mm (docs/kidnap.md, "Tenth session" and
+ * "Eleventh session"); in a corridor, where a sonar cannot tell one stretch from the
+ * next, it does harm.
  * Stops forgotten (more than closure_stops ago) and vectors from a loaded map stay where
  * they are. A restore, a reset or a pose set from outside starts the record afresh.
  */

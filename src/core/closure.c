@@ -213,7 +213,7 @@ uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map)
 {
     uint32_t dropped = hl_posegraph_fit(c->graph, c->poses, c->count, c->edges, &c->n_edges,
                                         HL_CLOSURE_SIGMA_MM,
-                                        HL_CLOSURE_SIGMA_DEG * (PI / 180),
+                                        HL_CLOSURE_SIGMA_DEG * (PI / 180), HL_CLOSURE_KERNEL,
                                         HL_CLOSURE_OUTLIER);
     for (uint32_t i = 0; i < c->count; i++)
         c->placed[i] = hl_pg_to_pose(c->poses[i]);

@@ -19,6 +19,7 @@ typedef struct { double v[9]; } mat3_t;     /* row-major */
 typedef struct edge_terms {
     double r[3];        /* the edge's error at the current poses */
     mat3_t a, b;        /* its Jacobians in the `from` and `to` poses */
+    double robust;      /* the kernel's weight at the current poses (1: none) */
 } edge_terms_t;
 
 struct hl_posegraph {
@@ -167,13 +168,14 @@ static void product(const hl_posegraph_t *g, const hl_pg_edge_t *edges, uint32_t
     for (uint32_t k = 0; k < n_edges; k++) {
         const edge_terms_t *t = &g->terms[k];
         uint32_t i = edges[k].from, j = edges[k].to;
+        const double wk[3] = { w[0] * t->robust, w[1] * t->robust, w[2] * t->robust };
         double ja[3], jb[3], jp[3];
         mul3(&t->a, &p[3 * i], ja);     /* p is zero at pose 0: it is held */
         mul3(&t->b, &p[3 * j], jb);
         for (int q = 0; q < 3; q++)
             jp[q] = ja[q] + jb[q];
-        add_jtw(&hp[3 * i], &t->a, w, jp);
-        add_jtw(&hp[3 * j], &t->b, w, jp);
+        add_jtw(&hp[3 * i], &t->a, wk, jp);
+        add_jtw(&hp[3 * j], &t->b, wk, jp);
     }
     hp[0] = hp[1] = hp[2] = 0;
 }
@@ -186,9 +188,17 @@ static double dot(const double *a, const double *b, uint32_t n)
     return s;
 }
 
-/* One Gauss-Newton step: g->dx solves H dx = -g, pose 0 held. */
+/* An edge's squared error in standard deviations, summed over its three terms. */
+static double squared_sigmas(const edge_terms_t *t, const double w[3])
+{
+    return t->r[0] * t->r[0] * w[0] + t->r[1] * t->r[1] * w[1] + t->r[2] * t->r[2] * w[2];
+}
+
+/* One Gauss-Newton step of iteratively reweighted least squares: g->dx solves H dx = -g,
+ * pose 0 held, each loop edge weighed by the Cauchy kernel at the current poses. */
 static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint32_t n,
-                              const hl_pg_edge_t *edges, uint32_t n_edges, const double w[3])
+                              const hl_pg_edge_t *edges, uint32_t n_edges, const double w[3],
+                              double kernel)
 {
     const uint32_t m = 3 * n;
     memset(g->g, 0, m * sizeof *g->g);
@@ -197,10 +207,13 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
     for (uint32_t k = 0; k < n_edges; k++) {
         edge_terms_t *t = &g->terms[k];
         linearize(poses, &edges[k], t);
-        add_jtw(&g->g[3 * edges[k].from], &t->a, w, t->r);
-        add_jtw(&g->g[3 * edges[k].to], &t->b, w, t->r);
-        add_jtwj(&blocks[edges[k].from], &t->a, w);
-        add_jtwj(&blocks[edges[k].to], &t->b, w);
+        t->robust = edges[k].loop && kernel > 0
+                        ? 1 / (1 + squared_sigmas(t, w) / (kernel * kernel)) : 1;
+        const double wk[3] = { w[0] * t->robust, w[1] * t->robust, w[2] * t->robust };
+        add_jtw(&g->g[3 * edges[k].from], &t->a, wk, t->r);
+        add_jtw(&g->g[3 * edges[k].to], &t->b, wk, t->r);
+        add_jtwj(&blocks[edges[k].from], &t->a, wk);
+        add_jtwj(&blocks[edges[k].to], &t->b, wk);
     }
     for (uint32_t i = 0; i < n; i++)
         blocks[i] = i ? inverse(&blocks[i]) : (mat3_t){ { 0 } };
@@ -232,10 +245,10 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
 }
 
 static void solve(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n, const hl_pg_edge_t *edges,
-                  uint32_t n_edges, const double w[3])
+                  uint32_t n_edges, const double w[3], double kernel)
 {
     for (int step = 0; step < GN_STEPS; step++) {
-        gauss_newton_step(g, poses, n, edges, n_edges, w);
+        gauss_newton_step(g, poses, n, edges, n_edges, w, kernel);
         double most_mm = 0, most_rad = 0;
         for (uint32_t i = 1; i < n; i++) {
             const double *d = &g->dx[3 * i];
@@ -255,15 +268,15 @@ static double chi2(const hl_pg_pose_t *poses, const hl_pg_edge_t *e, const doubl
 {
     edge_terms_t t;
     linearize(poses, e, &t);
-    return (t.r[0] * t.r[0] * w[0] + t.r[1] * t.r[1] * w[1] + t.r[2] * t.r[2] * w[2]) / 3;
+    return squared_sigmas(&t, w) / 3;
 }
 
 uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
                           hl_pg_edge_t *edges, uint32_t *n_edges, double sigma_mm,
-                          double sigma_rad, double gate)
+                          double sigma_rad, double kernel, double gate)
 {
     if (!g || !poses || !edges || !n_edges || n < 2 || n > g->max_poses ||
-        *n_edges > g->max_edges)
+        *n_edges > g->max_edges || !(kernel >= 0))
         return 0;
     const double w[3] = { 1 / (sigma_mm * sigma_mm), 1 / (sigma_mm * sigma_mm),
                           1 / (sigma_rad * sigma_rad) };
@@ -271,7 +284,7 @@ uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
      * drop only the worst match beyond the gate, fit again, and repeat. */
     uint32_t dropped = 0;
     for (;;) {
-        solve(g, poses, n, edges, *n_edges, w);
+        solve(g, poses, n, edges, *n_edges, w, kernel);
         uint32_t worst = UINT32_MAX;
         double worst_chi2 = gate * gate;
         for (uint32_t k = 0; k < *n_edges; k++) {

@@ -7,7 +7,10 @@
  * block-Jacobi preconditioner, matrix-free (one pass over the edges a product), so the
  * cost grows with the edges, not with the square of the poses: a chain of stops and its
  * matches is sparse. Every edge weighs the same (one localization's error, sigma_mm and
- * sigma_rad). Pose 0 is held where it is. Memory: the workspace, from create only.
+ * sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
+ * reweighted: each Gauss-Newton step weighs it by 1 / (1 + e / kernel^2), e its squared
+ * error in standard deviations at the poses the step starts from). Pose 0 is held where
+ * it is. Memory: the workspace, from create only.
  */
 #ifndef HOUGHLOC_CORE_POSEGRAPH_H
 #define HOUGHLOC_CORE_POSEGRAPH_H
@@ -45,7 +48,8 @@ hl_pg_pose_t hl_pg_between(hl_pg_pose_t a, hl_pg_pose_t b);
 hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
 
 /**
- * Moves @p poses[1 .. n - 1] to the least-squares fit of @p edges (pose 0 held). Then,
+ * Moves @p poses[1 .. n - 1] to the least-squares fit of @p edges (pose 0 held), each loop
+ * edge under a Cauchy kernel of @p kernel standard deviations (0: none). Then,
  * while the loop edge farthest from the fit is more than @p gate standard deviations off
  * (rms over its three terms), it is dropped from @p edges (*n_edges shrinks, the order
  * kept) and the fit made again, up to 8 times. n <= max_poses, *n_edges <= max_edges;
@@ -54,6 +58,6 @@ hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
  */
 uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
                           hl_pg_edge_t *edges, uint32_t *n_edges, double sigma_mm,
-                          double sigma_rad, double gate);
+                          double sigma_rad, double kernel, double gate);
 
 #endif

@@ -71,14 +71,16 @@ static void test_a_stop_back_near_an_old_one_is_matched_and_pulled_back(void **s
     assert_true(hl_map_count(sub) > 150);   /* stop 0 and stop 1, its neighbour */
     assert_null(hl_closure_submap(c, 99));
 
-    /* A match 300 mm from the estimate is beyond the gate; the truth (150 mm, 2 deg) is
-     * not. */
-    hl_pose_t far = { drifted.x_mm + 300, drifted.y_mm, drifted.theta };
+    /* A match 600 mm from the estimate is beyond the gate (500 mm); the truth (150 mm, 2
+     * deg) is not. */
+    hl_pose_t far = { drifted.x_mm + 600, drifted.y_mm, drifted.theta };
     assert_false(hl_closure_match(c, stamps[0], far));
     assert_true(hl_closure_match(c, stamps[0], l->truth[6]));
 
-    /* The step says "drifted", the match says "truth", every edge weighted alike: the
-     * 150 mm and 2 degrees are spread over the loop's seven edges, a seventh at each. */
+    /* The step says "drifted", the match says "truth": the 150 mm and 2 degrees are spread
+     * over the loop's seven edges, a seventh at each. The kernel weighs the match down
+     * while it disagrees, and less the more the fit agrees with it: it ends near the
+     * truth all the same (18 mm off, 0.3 degrees turned). */
     uint32_t before_count = hl_map_count(map);
     assert_int_equal(hl_closure_fit(c, map), 0);
     hl_pose_t fitted = hl_closure_newest(c);

@@ -1,5 +1,6 @@
 /* Tests for src/core/posegraph.c: a loop's drift taken back by one match, a wrong match
- * dropped, pose 0 held, a consistent graph left alone, bad calls refused. */
+ * dropped, a wrong match weighed down by the kernel, pose 0 held, a consistent graph left
+ * alone, bad calls refused. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -59,7 +60,7 @@ static void test_one_match_takes_back_a_loops_drift(void **state)
     edges[n++] = (hl_pg_edge_t){ 0, N - 1, hl_pg_between(t[0], t[N - 1]), true };
     hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
     assert_non_null(g);
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 0);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
     assert_int_equal(n, N);
     /* The 55 degrees of bias spread over the loop's 12 edges: every pose within a
      * fraction of what it was off, the last one's heading a twelfth of it. */
@@ -89,11 +90,11 @@ static void test_a_wrong_match_is_dropped(void **state)
     wrong.theta += 40 * PI / 180;
     edges[n++] = (hl_pg_edge_t){ 2, 8, wrong, true };
     hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 1);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 1);
     assert_int_equal(n, N);                       /* the wrong one gone, the order kept */
     assert_int_equal(edges[N - 1].from, 0);
     assert_int_equal(edges[N - 1].to, N - 1);
-    assert_int_equal(hl_posegraph_fit(g, clean, N, clean_edges, &n_clean, SIGMA_MM, SIGMA_RAD,
+    assert_int_equal(hl_posegraph_fit(g, clean, N, clean_edges, &n_clean, SIGMA_MM, SIGMA_RAD, 0.0,
                                       3.0), 0);
     assert_true(worst_mm(poses, clean) < 1.0);    /* as if it had never been there */
     hl_posegraph_destroy(g);
@@ -108,14 +109,54 @@ static void test_pose_zero_is_held_and_a_consistent_graph_stays(void **state)
     uint32_t n = drifting_chain(t, 0.0, poses, edges);
     edges[n++] = (hl_pg_edge_t){ 3, 9, hl_pg_between(t[3], t[9]), true };
     hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 0);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
     assert_true(worst_mm(poses, t) < 0.01);
     /* Moved away as a whole, the graph is fitted back to pose 0, which stays. */
     for (int i = 0; i < N; i++)
         poses[i].x += (i == 0) ? 0 : 500;
-    hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0);
+    hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0);
     assert_true(poses[0].x == t[0].x && poses[0].y == t[0].y && poses[0].theta == t[0].theta);
     assert_true(worst_mm(poses, t) < 0.01);
+    hl_posegraph_destroy(g);
+}
+
+static void copy(hl_pg_pose_t *to, const hl_pg_pose_t *from)
+{
+    for (int i = 0; i < N; i++)
+        to[i] = from[i];
+}
+
+static void test_a_kernel_weighs_a_wrong_match_down(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], start[N], clean[N], plain[N], robust[N];
+    hl_pg_edge_t edges[N + 2], kept[N + 2];
+    truth(t);
+    uint32_t n = drifting_chain(t, 0.5 * PI / 180, start, edges);
+    edges[n++] = (hl_pg_edge_t){ 0, N - 1, hl_pg_between(t[0], t[N - 1]), true };
+    hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
+    const double never = 1e9;    /* no edge dropped: the kernel alone */
+    copy(clean, start);
+    uint32_t m = n;
+    assert_int_equal(hl_posegraph_fit(g, clean, N, edges, &m, SIGMA_MM, SIGMA_RAD, 0.0, never), 0);
+    /* A match 400 mm and 6 degrees off what the others say. */
+    hl_pg_pose_t wrong = hl_pg_between(t[2], t[8]);
+    wrong.x += 400;
+    wrong.theta += 6 * PI / 180;
+    edges[n++] = (hl_pg_edge_t){ 2, 8, wrong, true };
+    for (uint32_t k = 0; k < n; k++)
+        kept[k] = edges[k];
+    copy(plain, start);
+    m = n;
+    assert_int_equal(hl_posegraph_fit(g, plain, N, kept, &m, SIGMA_MM, SIGMA_RAD, 0.0, never), 0);
+    copy(robust, start);
+    assert_int_equal(hl_posegraph_fit(g, robust, N, kept, &m, SIGMA_MM, SIGMA_RAD, 1.0, never), 0);
+    assert_int_equal(m, n);
+    /* Plain least squares bends every pose towards it; the kernel keeps the fit within a
+     * fraction of that of the fit without it. */
+    double bent = worst_mm(plain, clean);
+    assert_true(bent > 100);
+    assert_true(worst_mm(robust, clean) < bent / 4);
     hl_posegraph_destroy(g);
 }
 
@@ -127,10 +168,15 @@ static void test_bad_calls_change_nothing(void **state)
     truth(t);
     uint32_t n = drifting_chain(t, 0.1, poses, edges);
     hl_posegraph_t *g = hl_posegraph_create(4, N + 2);     /* too few poses */
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 0);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
     assert_int_equal(n, N - 1);
     assert_true(worst_mm(poses, t) > 1000);               /* not fitted */
-    assert_int_equal(hl_posegraph_fit(NULL, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 3.0), 0);
+    assert_int_equal(hl_posegraph_fit(NULL, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
+    hl_posegraph_destroy(g);
+    g = hl_posegraph_create(N, N + 2);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, -1.0, 3.0), 0);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, NAN, 3.0), 0);
+    assert_true(worst_mm(poses, t) > 1000);               /* a bad kernel: not fitted */
     hl_posegraph_destroy(g);
     hl_posegraph_destroy(NULL);
 }
@@ -140,6 +186,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_match_takes_back_a_loops_drift),
         cmocka_unit_test(test_a_wrong_match_is_dropped),
+        cmocka_unit_test(test_a_kernel_weighs_a_wrong_match_down),
         cmocka_unit_test(test_pose_zero_is_held_and_a_consistent_graph_stays),
         cmocka_unit_test(test_bad_calls_change_nothing),
     };

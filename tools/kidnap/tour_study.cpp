@@ -282,6 +282,7 @@ bool close_loops(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracke
     uint32_t dropped = hl_posegraph_fit(graph.get(), poses.data(), static_cast<uint32_t>(n),
                                         edges.data(), &n_edges, HL_CLOSURE_SIGMA_MM,
                                         hl_bam_to_rad(hl_bam_from_deg(HL_CLOSURE_SIGMA_DEG)),
+                                        HL_CLOSURE_KERNEL,
                                         HL_CLOSURE_OUTLIER);
     std::fprintf(stderr, "hl-tour-study: graph: %d matches tried, %zu counted, %zu kept\n", tried,
                  proposed, proposed - dropped);
