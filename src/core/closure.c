@@ -170,6 +170,14 @@ const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp)
     return c->sub;
 }
 
+bool hl_closure_counts(const hl_loc_result_t *loc, hl_pose_t found, hl_pose_t estimate,
+                       uint32_t min_votes, hl_mm_t wild_mm)
+{
+    int64_t dx = (int64_t)found.x_mm - estimate.x_mm, dy = (int64_t)found.y_mm - estimate.y_mm;
+    return hl_loc_confidence(loc) >= HL_CLOSURE_MIN_CONFIDENCE && loc->votes >= min_votes &&
+           dx * dx + dy * dy <= (int64_t)wild_mm * wild_mm;
+}
+
 bool hl_closure_match(hl_closure_t *c, uint32_t stamp, hl_pose_t found)
 {
     uint32_t i = stamp - c->first, newest = c->count - 1;

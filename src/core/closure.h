@@ -25,6 +25,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc/localize.h"
 #include "houghloc/map.h"
 #include "houghloc/rng.h"
 #include "houghloc/scan.h"
@@ -84,6 +85,13 @@ uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t *stamps, uint32_t
 /** A map of the stop stamped @p stamp and its neighbours at their fitted poses (those
  *  HL_CLOSURE_GAP before the newest), valid until the next call; NULL if not recorded. */
 const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp);
+
+/** Whether a localization against a submap (@p loc, its pose @p found) is a match at
+ *  all: as distinct as HL_CLOSURE_MIN_CONFIDENCE, with the guard's @p min_votes, within
+ *  its @p wild_mm of @p estimate (the stop's own pose). The gate comes after
+ *  (hl_closure_match). */
+bool hl_closure_counts(const hl_loc_result_t *loc, hl_pose_t found, hl_pose_t estimate,
+                       uint32_t min_votes, hl_mm_t wild_mm);
 
 /**
  * The newest stop found at @p found in stop @p stamp's submap. Taken as a match unless it

@@ -264,10 +264,9 @@ static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predi
 }
 
 /* Loop closure after a committed stop (slam.h): the stop remembered, matched against the
- * earlier stops near it (a match counts as distinct as HL_CLOSURE_MIN_CONFIDENCE, with
- * the guard's votes, within its wild error), and, when any match is taken, every stop fitted and the map
- * drawn again with them. @return the matches taken; *pose becomes the stop's fitted
- * pose. */
+ * earlier stops near it (hl_closure_counts, then the gate), and, when any match is taken,
+ * every stop fitted and the map drawn again with them. @return the matches taken; *pose
+ * becomes the stop's fitted pose. */
 static uint32_t close_loops(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t *pose,
                             hl_rng_t rng_before)
 {
@@ -279,8 +278,7 @@ static uint32_t close_loops(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t *pose
         hl_loc_result_t loc;
         hl_pose_t found;
         if (sub && localize_in(s, sub, scan, *pose, &loc, &found) == HL_OK &&
-            hl_loc_confidence(&loc) >= HL_CLOSURE_MIN_CONFIDENCE && loc.votes >= s->p.min_votes &&
-            dist2(found, *pose) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
+            hl_closure_counts(&loc, found, *pose, s->p.min_votes, s->p.wild_mm) &&
             hl_closure_match(s->closure, stamps[k], found))
             taken++;
     }

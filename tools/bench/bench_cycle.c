@@ -11,8 +11,8 @@
  * (default 5), each with a new slam (hl_slam_create, hl_slam_reset) at the start pose
  * (default the origin) with hl_slam_params_default (improved mode; --paper: the
  * paper's cycle, unguarded, without echo bearings and refinement, the other parameters
- * as they are; --close-loops: with loop closure, slam.close_loops). Each hl_slam_update is timed with CLOCK_MONOTONIC. Prints one line per
- * repetition and a summary:
+ * as they are; --close-loops: with loop closure, slam.close_loops). Each hl_slam_update
+ * is timed with CLOCK_MONOTONIC. Prints one line per repetition and a summary:
  *
  *   cycle rep=<i> scans=<n> median_us=<n> p90_us=<n> p99_us=<n> max_us=<n> checksum=<hex>
  *   cycle summary reps=<N> median_of_medians_us=<n> p90_us=<n> p99_us=<n> checksum=<hex>

@@ -39,7 +39,7 @@ constexpr double kFarMm = 500.0;
 // every stop: each stop matched against each earlier stop at least HL_CLOSURE_GAP before
 // it and within HL_CLOSURE_RADIUS_MM, in a map of that stop and its neighbours, by the
 // tracker's local search from the stop's estimate; a match counts as the daemon's does
-// (HL_CLOSURE_MIN_CONFIDENCE, the guard's votes and wild error) but with no gate on how
+// (hl_closure_counts: the confidence, the guard's votes and wild error) but with no gate on how
 // far it moves the stop: nothing has been fitted yet.
 
 void usage(FILE *to)
@@ -234,9 +234,7 @@ bool match(const hl_slam_params_t &p, const hlexp::Soundings &tour, const Tracke
     if (hl_slam_localize(probe, &tour[k]->msg.scan, t.est[k], &loc, &pose) != HL_OK)
         return false;
     *found = hl_pg_from_pose(pose);
-    Pose2 est = hl_pg_from_pose(t.est[k]);
-    return hl_loc_confidence(&loc) >= HL_CLOSURE_MIN_CONFIDENCE && loc.votes >= p.min_votes &&
-           std::hypot(found->x - est.x, found->y - est.y) <= p.wild_mm;
+    return hl_closure_counts(&loc, pose, t.est[k], p.min_votes, p.wild_mm);
 }
 
 // Loop closure: the tracked stops moved to the least-squares fit of their steps and of
