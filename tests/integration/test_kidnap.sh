@@ -75,6 +75,10 @@ exits "rescore.sh --max-ratio 2 is bad usage" 2 "--max-ratio 2 is outside" \
     sh tools/kidnap/rescore.sh --max-ratio 2 "$detail"
 exits "rescore.sh on a file that is not a detail file" 1 "not a hl-kidnap detail file" \
     sh tools/kidnap/rescore.sh "$tsv"
+# a detail file cut inside its trials: five whole lines, then ten fields of the sixth
+{ head -n 6 "$detail"; sed -n 7p "$detail" | cut -f 1-10; } >"$tmp/cut.tsv"
+exits "rescore.sh on a cut detail file names the cut line" 1 "is not a whole trial" \
+    sh tools/kidnap/rescore.sh "$tmp/cut.tsv"
 
 # hl-tour-study replays tour 1 as the daemon did (the tours' settings, from make's stamp
 # file): the same RMSE and far poses as hl-eval score on the daemon's own output.

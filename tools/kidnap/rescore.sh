@@ -16,7 +16,8 @@
 # 5.0 degrees counts as a success. Defaults: reloc.h's (0.6, 0 for off, 35). At them it
 # gives the row the file came from. Prints one line:
 #   rescore max_ratio=R max_edge_ratio=E min_explained_pct=P trials=N success_pct=S ambiguous_pct=A wrong_pct=W
-# Exit status 1 with one line on stderr on an unreadable or foreign file, 2 on bad usage.
+# Exit status 1 with one line on stderr on an unreadable or foreign file or a line that is
+# not a whole trial (a cut file), 2 on bad usage.
 set -u
 usage() {
     echo "usage: rescore.sh [--max-ratio R] [--max-edge-ratio E] [--min-explained P] DETAIL.tsv" >&2
@@ -40,7 +41,7 @@ done
 [ $# -eq 1 ] || usage
 case $1 in -*) usage ;; esac
 [ -r "$1" ] || { echo "rescore.sh: cannot read $1" >&2; exit 1; }
-awk -F'\t' -v mr="$ratio" -v er="$edge" -v me="$explained" -v file="$1" '
+awk -F'\t' -v num='^[0-9]+(\\.[0-9]+)?$' -v mr="$ratio" -v er="$edge" -v me="$explained" -v file="$1" '
 NR == 1 {
     # The columns this reads, by name, as hl-kidnap writes them.
     if ($2 != "outcome" || $10 != "error_mm" || $11 != "error_deg" || $12 != "explained_pct" ||
@@ -48,9 +49,16 @@ NR == 1 {
         print "rescore.sh: " file ": not a hl-kidnap detail file (its header differs)" > "/dev/stderr"
         bad = 1; exit 1
     }
+    fields = NF
     next
 }
 $2 == "success" || $2 == "ambiguous" || $2 == "wrong" {
+    # A cut or mangled line would count with wrong numbers: refuse it.
+    if (NF != fields || $10 !~ num || $11 !~ num || $12 !~ num || $13 !~ num ||
+        $14 !~ num || $22 !~ num || $23 !~ num) {
+        print "rescore.sh: " file ": line " NR " is not a whole trial (" NF " fields, want " fields ")" > "/dev/stderr"
+        bad = 1; exit 1
+    }
     n++
     # The readings a whole number: the explained share again, to more than its decimal.
     readings = $12 > 0 ? int($13 * 100 / $12 + 0.5) : 0
