@@ -6,13 +6,14 @@
 #include <string.h>
 
 #define GN_STEPS 10             /* Gauss-Newton steps at most ... */
+#define GN_STEPS_AFTER_DROP 3   /* ... and after matches are dropped, from the fit before */
 #define GN_DONE_MM 0.01         /* ... until no pose moves more than this */
 #define GN_DONE_RAD 1e-7
 #define CG_TOLERANCE 1e-12      /* residual / right-hand side, squared */
 #define CG_MAX_ITERATIONS 500   /* a bound on one step's time whatever the graph: the
                                    simulated corridor's 256 stops and their matches
                                    needed at most 218, mean 110; the lab's at most 79 */
-#define MAX_DROPS 8             /* outliers dropped a fit, one at a time, at most */
+#define MAX_DROPS 8             /* outliers dropped a fit at most */
 
 typedef struct { double v[9]; } mat3_t;     /* row-major */
 
@@ -22,17 +23,22 @@ typedef struct edge_terms {
     double robust;      /* the kernel's weight at the current poses (1: none) */
 } edge_terms_t;
 
+/* The preconditioner is the chain's part of H, factored exactly (block LDL^T): each
+ * pose's own block and the blocks between consecutive poses, which the steps fill. */
 struct hl_posegraph {
     uint32_t max_poses, max_edges;
     edge_terms_t *terms;            /* [max_edges] */
-    mat3_t *block_inv;              /* [max_poses] the preconditioner */
+    mat3_t *pivot_inv;              /* [max_poses] D's blocks, inverted (pose i's own block
+                                       until factored) */
+    mat3_t *upper;                  /* [max_poses] H's block between poses i and i + 1 */
+    mat3_t *lower;                  /* [max_poses] L's block between poses i and i - 1 */
     double *g, *dx, *res, *z, *p, *hp;  /* [3 * max_poses] each */
 };
 
 size_t hl_posegraph_mem_bytes(uint32_t max_poses, uint32_t max_edges)
 {
     return sizeof(hl_posegraph_t) + (size_t)max_edges * sizeof(edge_terms_t) +
-           (size_t)max_poses * (sizeof(mat3_t) + 6 * 3 * sizeof(double));
+           (size_t)max_poses * (3 * sizeof(mat3_t) + 6 * 3 * sizeof(double));
 }
 
 hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges)
@@ -43,9 +49,13 @@ hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges)
     g->max_poses = max_poses;
     g->max_edges = max_edges;
     g->terms = calloc(max_edges ? max_edges : 1, sizeof *g->terms);
-    g->block_inv = calloc(max_poses ? max_poses : 1, sizeof *g->block_inv);
+    mat3_t **blocks[] = { &g->pivot_inv, &g->upper, &g->lower };
     double **vecs[] = { &g->g, &g->dx, &g->res, &g->z, &g->p, &g->hp };
-    bool ok = g->terms && g->block_inv;
+    bool ok = g->terms;
+    for (size_t k = 0; k < sizeof blocks / sizeof blocks[0]; k++) {
+        *blocks[k] = calloc(max_poses ? max_poses : 1, sizeof(mat3_t));
+        ok = ok && *blocks[k];
+    }
     for (size_t k = 0; k < sizeof vecs / sizeof vecs[0]; k++) {
         *vecs[k] = calloc(3 * (size_t)(max_poses ? max_poses : 1), sizeof(double));
         ok = ok && *vecs[k];
@@ -62,7 +72,9 @@ void hl_posegraph_destroy(hl_posegraph_t *g)
     if (!g)
         return;
     free(g->terms);
-    free(g->block_inv);
+    free(g->pivot_inv);
+    free(g->upper);
+    free(g->lower);
     free(g->g);
     free(g->dx);
     free(g->res);
@@ -121,13 +133,13 @@ static void linearize(const hl_pg_pose_t *poses, const hl_pg_edge_t *e, edge_ter
                        0, 0, 1 } };
 }
 
-/* out += m^T diag(w) m, and the same for vectors below. */
-static void add_jtwj(mat3_t *out, const mat3_t *m, const double w[3])
+/* out += a^T diag(w) b, and the same for vectors below. */
+static void add_atwb(mat3_t *out, const mat3_t *a, const double w[3], const mat3_t *b)
 {
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
             for (int k = 0; k < 3; k++)
-                out->v[3 * i + j] += m->v[3 * k + i] * w[k] * m->v[3 * k + j];
+                out->v[3 * i + j] += a->v[3 * k + i] * w[k] * b->v[3 * k + j];
 }
 
 static void add_jtw(double *out, const mat3_t *m, const double w[3], const double r[3])
@@ -141,6 +153,15 @@ static void mul3(const mat3_t *m, const double *x, double *out)
 {
     for (int i = 0; i < 3; i++)
         out[i] = m->v[3 * i] * x[0] + m->v[3 * i + 1] * x[1] + m->v[3 * i + 2] * x[2];
+}
+
+/* a^T b */
+static mat3_t product_tn(const mat3_t *a, const mat3_t *b)
+{
+    mat3_t c = { { 0 } };
+    const double ones[3] = { 1, 1, 1 };
+    add_atwb(&c, a, ones, b);
+    return c;
 }
 
 /* The inverse of a symmetric positive definite 3 x 3 block; zero when it has none (a
@@ -194,6 +215,48 @@ static double squared_sigmas(const edge_terms_t *t, const double w[3])
     return t->r[0] * t->r[0] * w[0] + t->r[1] * t->r[1] * w[1] + t->r[2] * t->r[2] * w[2];
 }
 
+/* The preconditioner's factors from its blocks (pivot_inv holding each pose's own block,
+ * upper the chain's): the pivots D_i = H_ii - U_{i-1}^T D_{i-1}^-1 U_{i-1}, inverted, and
+ * L_i = U_{i-1}^T D_{i-1}^-1. Pose 0 is held, so the chain starts at pose 1. */
+static void factor_chain(hl_posegraph_t *g, uint32_t n)
+{
+    g->pivot_inv[0] = (mat3_t){ { 0 } };
+    for (uint32_t i = 1; i < n; i++) {
+        mat3_t pivot = g->pivot_inv[i];
+        if (i > 1) {
+            const mat3_t *u = &g->upper[i - 1], *before = &g->pivot_inv[i - 1];
+            mat3_t d_inv_u = product_tn(before, u);     /* D^-1 is symmetric */
+            mat3_t utdu = product_tn(u, &d_inv_u);
+            for (int q = 0; q < 9; q++)
+                pivot.v[q] -= utdu.v[q];
+            g->lower[i] = product_tn(u, before);
+        }
+        g->pivot_inv[i] = inverse(&pivot);
+    }
+}
+
+/* z = M^-1 r for the chain's M = L D L^T: forward through L, then back through D L^T. */
+static void precondition(const hl_posegraph_t *g, uint32_t n, const double *r, double *z)
+{
+    z[0] = z[1] = z[2] = 0;
+    for (uint32_t i = 1; i < n; i++) {
+        double ly[3] = { 0, 0, 0 };
+        if (i > 1)
+            mul3(&g->lower[i], &z[3 * (i - 1)], ly);
+        for (int q = 0; q < 3; q++)
+            z[3 * i + q] = r[3 * i + q] - ly[q];
+    }
+    for (uint32_t i = n - 1; i >= 1; i--) {
+        double y[3] = { z[3 * i], z[3 * i + 1], z[3 * i + 2] }, uz[3];
+        if (i + 1 < n) {
+            mul3(&g->upper[i], &z[3 * (i + 1)], uz);
+            for (int q = 0; q < 3; q++)
+                y[q] -= uz[q];
+        }
+        mul3(&g->pivot_inv[i], y, &z[3 * i]);
+    }
+}
+
 /* One Gauss-Newton step of iteratively reweighted least squares: g->dx solves H dx = -g,
  * pose 0 held, each loop edge weighed by the Cauchy kernel at the current poses. */
 static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint32_t n,
@@ -202,27 +265,30 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
 {
     const uint32_t m = 3 * n;
     memset(g->g, 0, m * sizeof *g->g);
-    mat3_t *blocks = g->block_inv;
-    memset(blocks, 0, n * sizeof *blocks);
+    memset(g->pivot_inv, 0, n * sizeof *g->pivot_inv);
+    memset(g->upper, 0, n * sizeof *g->upper);
     for (uint32_t k = 0; k < n_edges; k++) {
         edge_terms_t *t = &g->terms[k];
+        uint32_t i = edges[k].from, j = edges[k].to;
         linearize(poses, &edges[k], t);
         t->robust = edges[k].loop && kernel > 0
                         ? 1 / (1 + squared_sigmas(t, w) / (kernel * kernel)) : 1;
         const double wk[3] = { w[0] * t->robust, w[1] * t->robust, w[2] * t->robust };
-        add_jtw(&g->g[3 * edges[k].from], &t->a, wk, t->r);
-        add_jtw(&g->g[3 * edges[k].to], &t->b, wk, t->r);
-        add_jtwj(&blocks[edges[k].from], &t->a, wk);
-        add_jtwj(&blocks[edges[k].to], &t->b, wk);
+        add_jtw(&g->g[3 * i], &t->a, wk, t->r);
+        add_jtw(&g->g[3 * j], &t->b, wk, t->r);
+        add_atwb(&g->pivot_inv[i], &t->a, wk, &t->a);
+        add_atwb(&g->pivot_inv[j], &t->b, wk, &t->b);
+        if (j == i + 1)
+            add_atwb(&g->upper[i], &t->a, wk, &t->b);
+        else if (i == j + 1)
+            add_atwb(&g->upper[j], &t->b, wk, &t->a);
     }
-    for (uint32_t i = 0; i < n; i++)
-        blocks[i] = i ? inverse(&blocks[i]) : (mat3_t){ { 0 } };
+    factor_chain(g, n);
     /* Preconditioned conjugate gradients from dx = 0: res = -g. */
     memset(g->dx, 0, m * sizeof *g->dx);
     for (uint32_t i = 0; i < m; i++)
         g->res[i] = i < 3 ? 0 : -g->g[i];
-    for (uint32_t i = 0; i < n; i++)
-        mul3(&blocks[i], &g->res[3 * i], &g->z[3 * i]);
+    precondition(g, n, g->res, g->z);
     memcpy(g->p, g->z, m * sizeof *g->p);
     double rz = dot(g->res, g->z, m), rz0 = rz;
     for (uint32_t it = 0; it < CG_MAX_ITERATIONS && rz > CG_TOLERANCE * rz0 && rz > 0; it++) {
@@ -235,8 +301,7 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
             g->dx[i] += alpha * g->p[i];
             g->res[i] -= alpha * g->hp[i];
         }
-        for (uint32_t i = 0; i < n; i++)
-            mul3(&blocks[i], &g->res[3 * i], &g->z[3 * i]);
+        precondition(g, n, g->res, g->z);
         double rz_next = dot(g->res, g->z, m);
         for (uint32_t i = 0; i < m; i++)
             g->p[i] = g->z[i] + (rz_next / rz) * g->p[i];
@@ -245,9 +310,9 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
 }
 
 static void solve(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n, const hl_pg_edge_t *edges,
-                  uint32_t n_edges, const double w[3], double kernel)
+                  uint32_t n_edges, const double w[3], double kernel, int steps)
 {
-    for (int step = 0; step < GN_STEPS; step++) {
+    for (int step = 0; step < steps; step++) {
         gauss_newton_step(g, poses, n, edges, n_edges, w, kernel);
         double most_mm = 0, most_rad = 0;
         for (uint32_t i = 1; i < n; i++) {
@@ -271,6 +336,26 @@ static double chi2(const hl_pg_pose_t *poses, const hl_pg_edge_t *e, const doubl
     return squared_sigmas(&t, w) / 3;
 }
 
+/* Drops the loop edge farthest from the fit if it lies beyond the gate. */
+static bool drop_worst(const hl_pg_pose_t *poses, hl_pg_edge_t *edges, uint32_t *n_edges,
+                       const double w[3], double gate)
+{
+    uint32_t worst = UINT32_MAX;
+    double worst_chi2 = gate * gate;
+    for (uint32_t k = 0; k < *n_edges; k++) {
+        double c = edges[k].loop ? chi2(poses, &edges[k], w) : 0;
+        if (c > worst_chi2) {
+            worst_chi2 = c;
+            worst = k;
+        }
+    }
+    if (worst == UINT32_MAX)
+        return false;
+    memmove(&edges[worst], &edges[worst + 1], (*n_edges - worst - 1) * sizeof *edges);
+    (*n_edges)--;
+    return true;
+}
+
 uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
                           hl_pg_edge_t *edges, uint32_t *n_edges, double sigma_mm,
                           double sigma_rad, double kernel, double gate)
@@ -280,24 +365,27 @@ uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
         return 0;
     const double w[3] = { 1 / (sigma_mm * sigma_mm), 1 / (sigma_mm * sigma_mm),
                           1 / (sigma_rad * sigma_rad) };
-    /* One wrong match bends the whole fit, so right matches near it can look wrong too:
-     * drop only the worst match beyond the gate, fit again, and repeat. */
+    /* Without a kernel one wrong match bends the whole fit, so right matches near it can
+     * look wrong too: drop only the worst beyond the gate and fit again. Under the kernel
+     * a wrong match bends the fit little, so those beyond the gate are the wrong ones and
+     * go at once (worst first); the fit of the rest is near, a few steps away. On 72
+     * simulated lab tours that gave the same mean error as one at a time (206.7 mm
+     * against 206.6), in a quarter of the corridor's worst time a stop
+     * (docs/performance.md). */
+    const uint32_t batch = kernel > 0 ? MAX_DROPS : 1;
+    const int steps_after = kernel > 0 ? GN_STEPS_AFTER_DROP : GN_STEPS;
+    solve(g, poses, n, edges, *n_edges, w, kernel, GN_STEPS);
     uint32_t dropped = 0;
     for (;;) {
-        solve(g, poses, n, edges, *n_edges, w, kernel);
-        uint32_t worst = UINT32_MAX;
-        double worst_chi2 = gate * gate;
-        for (uint32_t k = 0; k < *n_edges; k++) {
-            double c = edges[k].loop ? chi2(poses, &edges[k], w) : 0;
-            if (c > worst_chi2) {
-                worst_chi2 = c;
-                worst = k;
-            }
-        }
-        if (worst == UINT32_MAX || dropped == MAX_DROPS)
+        uint32_t now = 0;
+        while (now < batch && dropped + now < MAX_DROPS &&
+               drop_worst(poses, edges, n_edges, w, gate))
+            now++;
+        if (now == 0)
             return dropped;
-        memmove(&edges[worst], &edges[worst + 1], (*n_edges - worst - 1) * sizeof *edges);
-        (*n_edges)--;
-        dropped++;
+        dropped += now;
+        solve(g, poses, n, edges, *n_edges, w, kernel, steps_after);
+        if (dropped == MAX_DROPS)
+            return dropped;
     }
 }

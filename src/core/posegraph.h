@@ -3,10 +3,11 @@
  * between them (a pose graph): what loop closure (closure.h) asks of the stops when a
  * new match says where one stop lies from another.
  *
- * Gauss-Newton; each step's normal equations are solved by conjugate gradients with a
- * block-Jacobi preconditioner, matrix-free (one pass over the edges a product), so the
- * cost grows with the edges, not with the square of the poses: a chain of stops and its
- * matches is sparse. Every edge weighs the same (one localization's error, sigma_mm and
+ * Gauss-Newton; each step's normal equations are solved by conjugate gradients,
+ * matrix-free (one pass over the edges a product), so the cost grows with the edges, not
+ * with the square of the poses: a chain of stops and its matches is sparse. The
+ * preconditioner is the chain's part of the system (each pose's block and the blocks
+ * between consecutive poses) factored exactly. Every edge weighs the same (one localization's error, sigma_mm and
  * sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
  * reweighted: each Gauss-Newton step weighs it by 1 / (1 + e / kernel^2), e its squared
  * error in standard deviations at the poses the step starts from). Pose 0 is held where
@@ -49,11 +50,12 @@ hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
 
 /**
  * Moves @p poses[1 .. n - 1] to the least-squares fit of @p edges (pose 0 held), each loop
- * edge under a Cauchy kernel of @p kernel standard deviations (0: none). Then,
- * while the loop edge farthest from the fit is more than @p gate standard deviations off
- * (rms over its three terms), it is dropped from @p edges (*n_edges shrinks, the order
- * kept) and the fit made again, up to 8 times. n <= max_poses, *n_edges <= max_edges;
- * edges must name poses below n.
+ * edge under a Cauchy kernel of @p kernel standard deviations (0: none). Then the loop
+ * edges more than @p gate standard deviations off the fit (rms over their three terms)
+ * are dropped from @p edges (*n_edges shrinks, the order kept), worst first, and the rest
+ * fitted again, until none is that far off or 8 are dropped: under a kernel all such
+ * edges at once, then a few steps from the fit before; without, one at a time, each time
+ * a whole fit. n <= max_poses, *n_edges <= max_edges; edges must name poses below n.
  * @return the number of loop edges dropped.
  */
 uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,

@@ -1,5 +1,6 @@
 /* Tests for src/core/posegraph.c: a loop's drift taken back by one match, a wrong match
- * dropped, a wrong match weighed down by the kernel, pose 0 held, a consistent graph left
+ * dropped, a wrong match weighed down by the kernel, wrong matches under the kernel
+ * dropped at once, steps given either way round, pose 0 held, a consistent graph left
  * alone, bad calls refused. */
 #include <stdarg.h>
 #include <stddef.h>
@@ -157,6 +158,76 @@ static void test_a_kernel_weighs_a_wrong_match_down(void **state)
     hl_posegraph_destroy(g);
 }
 
+static void test_wrong_matches_under_the_kernel_go_at_once(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], poses[N], clean[N];
+    hl_pg_edge_t edges[N + 8], clean_edges[N + 8];
+    truth(t);
+    uint32_t n = drifting_chain(t, 0.5 * PI / 180, poses, edges);
+    for (uint32_t i = 0; i + 6 < N; i++)     /* right matches across the loop */
+        edges[n++] = (hl_pg_edge_t){ i, i + 6, hl_pg_between(t[i], t[i + 6]), true };
+    copy(clean, poses);
+    uint32_t n_clean = n;
+    for (uint32_t k = 0; k < n; k++)
+        clean_edges[k] = edges[k];
+    /* Two matches 3 m and 40 degrees off what the others say, one before the right ones. */
+    hl_pg_pose_t wrong = hl_pg_between(t[2], t[9]);
+    wrong.x += 3000;
+    wrong.theta += 40 * PI / 180;
+    for (uint32_t k = n; k > N - 1; k--)
+        edges[k] = edges[k - 1];
+    edges[N - 1] = (hl_pg_edge_t){ 2, 9, wrong, true };
+    n++;
+    wrong = hl_pg_between(t[1], t[10]);
+    wrong.y -= 3000;
+    wrong.theta -= 40 * PI / 180;
+    edges[n++] = (hl_pg_edge_t){ 1, 10, wrong, true };
+    hl_posegraph_t *g = hl_posegraph_create(N, N + 8);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 1.0, 3.0), 2);
+    assert_int_equal(n, n_clean);              /* both gone, the right ones in order */
+    for (uint32_t k = 0; k < n; k++) {
+        assert_int_equal(edges[k].from, clean_edges[k].from);
+        assert_int_equal(edges[k].to, clean_edges[k].to);
+    }
+    assert_int_equal(hl_posegraph_fit(g, clean, N, clean_edges, &n_clean, SIGMA_MM, SIGMA_RAD,
+                                      1.0, 3.0), 0);
+    assert_true(worst_mm(poses, clean) < 5.0);  /* as if they had never been there */
+    assert_true(worst_mm(poses, t) < 50.0);
+    hl_posegraph_destroy(g);
+}
+
+/* A step may be measured from the later pose to the earlier one: the fit (and its
+ * preconditioner, built from the steps between consecutive poses) takes either way. */
+static void test_steps_either_way_round_fit_alike(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], drifted[N], forward[N], backward[N];
+    hl_pg_edge_t edges[N + 2], reversed[N + 2];
+    truth(t);
+    drifting_chain(t, 3.0 * PI / 180, drifted, edges);      /* a start far from the fit */
+    uint32_t n = drifting_chain(t, 0.0, forward, edges);     /* steps as they truly are */
+    edges[n++] = (hl_pg_edge_t){ 0, N - 1, hl_pg_between(t[0], t[N - 1]), true };
+    for (uint32_t k = 0; k < n; k++) {
+        hl_pg_pose_t a = { 0, 0, 0 }, b = hl_pg_compose(a, edges[k].rel);
+        reversed[k] = edges[k].loop ? edges[k]
+                                    : (hl_pg_edge_t){ edges[k].to, edges[k].from,
+                                                      hl_pg_between(b, a), false };
+    }
+    copy(forward, drifted);
+    copy(backward, drifted);
+    hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
+    uint32_t m = n;
+    assert_int_equal(hl_posegraph_fit(g, forward, N, edges, &m, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
+    m = n;
+    assert_int_equal(hl_posegraph_fit(g, backward, N, reversed, &m, SIGMA_MM, SIGMA_RAD, 0.0,
+                                      3.0), 0);
+    assert_true(worst_mm(drifted, t) > 1000);
+    assert_true(worst_mm(forward, t) < 0.01);
+    assert_true(worst_mm(backward, t) < 0.01);
+    hl_posegraph_destroy(g);
+}
+
 static void test_bad_calls_change_nothing(void **state)
 {
     (void)state;
@@ -185,6 +256,8 @@ int main(void)
         cmocka_unit_test(test_a_wrong_match_is_dropped),
         cmocka_unit_test(test_a_kernel_weighs_a_wrong_match_down),
         cmocka_unit_test(test_pose_zero_is_held_and_a_consistent_graph_stays),
+        cmocka_unit_test(test_wrong_matches_under_the_kernel_go_at_once),
+        cmocka_unit_test(test_steps_either_way_round_fit_alike),
         cmocka_unit_test(test_bad_calls_change_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
