@@ -47,8 +47,8 @@
  * the two stops. Every remembered stop is then fitted to its steps and matches at once
  * (least squares, each match under a robust kernel so that one at odds with the rest
  * bends the fit little), and the map is drawn again at the fitted poses. On 24 simulated
- * lab tours the mean tour error went 387 -> 228 mm (docs/kidnap.md, "Tenth session" and
- * "Eleventh session"); in a corridor, where a sonar cannot tell one stretch from the
+ * lab tours the mean tour error went 387 -> 235 mm (docs/kidnap.md, "Tenth session" to
+ * "Twelfth session"); in a corridor, where a sonar cannot tell one stretch from the
  * next, it does little good.
  * Stops forgotten (more than closure_stops ago) and vectors from a loaded map stay where
  * they are. A restore, a reset or a pose set from outside starts the record afresh.

@@ -100,9 +100,10 @@ check "hl-tour-study --mode track matches the daemon's tour (hl-eval score: $dae
 check "hl-tour-study --mode oracle: 127 stops scored, none far" \
     grep -q '^tour_study mode=oracle stops=127 rmse_mm=[0-9.]* heading_rms_deg=[0-9.]* heading_mean_deg=-*[0-9.]* far=0$' \
     "$tmp/oracle.out"
-# hl-tour-study's map of the tour is the daemon's own (the same picture). Loop closure, after the tour (--mode graph) or as it goes
-# (houghlocd's slam.close_loops, which the tours use), brings tour 1 nearer the truth than
-# tracking alone (337.8 mm: 140.1 and 151.4, docs/kidnap.md).
+# hl-tour-study's map of the tour is the daemon's own (the same picture). Loop closure,
+# after the tour (--mode graph) or as it goes (houghlocd's slam.close_loops, which the
+# tours use), brings tour 1 nearer the truth than tracking alone (337.8 mm: 131.2 and
+# 97.2 as of the twelfth session, docs/kidnap.md).
 # shellcheck disable=SC2086
 "$BIN/hl-tour-study" --config /dev/null $tour_sets --quiet --write-map "$tmp/redrawn.hlmap" \
     "$out/sim/lab/1/tour.lcmlog" >/dev/null 2>&1
