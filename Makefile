@@ -185,8 +185,11 @@ $(BUILD)/bin/hl-bench: $(call obj,tools/bench/bench_localize.c) $(TESTKIT_LIB) $
 	$(Q)$(CC) -o $@ $^ -lm
 
 bench: deps
-	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-bench $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval OPT="-O2 -g"
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-bench $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval \
+	    $(BUILD)/bin/hl-bench-posegraph OPT="-O2 -g"
 	$(Q)$(BUILD)/bin/hl-bench
+	$(Q)$(BUILD)/bin/hl-bench-posegraph --stops 256
+	$(Q)$(BUILD)/bin/hl-bench-posegraph --stops 4096
 	$(Q)BUILD=$(BUILD) sh tools/bench/bench_daemon.sh
 
 # The product on the built-in simulated robot: houghlocd drives houghloc-sim through a

@@ -71,6 +71,13 @@ check "hl-bench's dense workloads vote in 48 mm groups, the others alone" sh -c 
 "$BIN/hl-bench" 2 w2 >"$tmp/bench_one"
 check "hl-bench RUNS WORKLOAD runs that workload alone" sh -c '
     test "$(wc -l <"$1")" -eq 1 && grep -q "^bench w2_local_xyt " "$1"' - "$tmp/bench_one"
+# Loop closure's fit on its synthetic tour: the line parses, and the fit takes back the
+# steps' drift past 5 % wrong matches (the worst stop 68 mm from its truth at 256 stops).
+"$BIN/hl-bench-posegraph" --stops 256 >"$tmp/pg"
+check "hl-bench-posegraph prints its line" grep -qE \
+    '^bench posegraph_fit stops=256 edges=[0-9]+ dropped=[0-9]+ first_ms=[0-9.]+ refit_ms=[0-9.]+ worst_mm=[0-9]+$' "$tmp/pg"
+check "hl-bench-posegraph: the fit lands every stop within 200 mm of its truth" \
+    awk '{ split($NF, w, "="); exit !(w[2] + 0 < 200) }' "$tmp/pg"
 
 # Bad input: one line, non-zero exit.
 rejects "missing log folder" "cannot open" "$BIN/hl-experiments" --logs "$tmp/nowhere" --out "$tmp/x" --no-figures
@@ -168,7 +175,7 @@ rejects "decreasing scan seq in a log" "SONAR: seq 0 after seq " \
 
 # Every program answers --help on stdout with exit 0 (gen_trig_table, a build step, takes
 # no options).
-for p in hl-bench hl-bench-cycle hl-calibrate hl-eval hl-experiments hl-pose-bytes hl-sim-draw hl-sim-logs \
+for p in hl-bench hl-bench-cycle hl-bench-posegraph hl-calibrate hl-eval hl-experiments hl-pose-bytes hl-sim-draw hl-sim-logs \
          houghloc-ctl houghloc-eval houghloc-goto houghloc-import-carmen houghloc-map houghlocd; do
     "$BIN/$p" --help >"$tmp/out" 2>"$tmp/err"
     check "$p --help: exit 0, usage on stdout" sh -c '[ "$1" -eq 0 ] && [ ! -s "$3" ] &&
@@ -178,6 +185,10 @@ done
 # Bad numbers: exit 2 and one line naming the option and the value (letters, trailing
 # junk, out of range, leading spaces, hexadecimal), before anything runs.
 usage_error "hl-sim-draw --seed abc" "--seed 'abc'" "$BIN/hl-sim-draw" --seed abc --out "$tmp/w.png"
+usage_error "hl-bench-posegraph --stops 1" "--stops wants 2..4096, not '1'" "$BIN/hl-bench-posegraph" --stops 1
+usage_error "hl-bench-posegraph --wrong abc" "--wrong wants a per cent, 0..100, not 'abc'" \
+    "$BIN/hl-bench-posegraph" --wrong abc
+usage_error "hl-bench-posegraph --bogus" "not '--bogus'" "$BIN/hl-bench-posegraph" --bogus
 usage_error "hl-sim-draw --seed 2^64" "--seed '18446744073709551616'" \
     "$BIN/hl-sim-draw" --seed 18446744073709551616 --out "$tmp/w.png"
 usage_error "hl-sim-draw --px-per-m 50x" "--px-per-m '50x'" "$BIN/hl-sim-draw" --px-per-m 50x --out "$tmp/w.png"
