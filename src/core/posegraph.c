@@ -28,8 +28,11 @@ typedef struct edge_terms {
 struct hl_posegraph {
     uint32_t max_poses, max_edges;
     edge_terms_t *terms;            /* [max_edges] */
-    mat3_t *pivot_inv;              /* [max_poses] D's blocks, inverted (pose i's own block
-                                       until factored) */
+    mat3_t *between;                /* [max_edges] each edge's block of H between its two
+                                       poses, a^T W b (apart from the terms: the products
+                                       read nothing else) */
+    mat3_t *diag;                   /* [max_poses] H's own block of each pose */
+    mat3_t *pivot_inv;              /* [max_poses] D's blocks, inverted */
     mat3_t *upper;                  /* [max_poses] H's block between poses i and i + 1 */
     mat3_t *lower;                  /* [max_poses] L's block between poses i and i - 1 */
     double *g, *dx, *res, *z, *p, *hp;  /* [3 * max_poses] each */
@@ -37,8 +40,8 @@ struct hl_posegraph {
 
 size_t hl_posegraph_mem_bytes(uint32_t max_poses, uint32_t max_edges)
 {
-    return sizeof(hl_posegraph_t) + (size_t)max_edges * sizeof(edge_terms_t) +
-           (size_t)max_poses * (3 * sizeof(mat3_t) + 6 * 3 * sizeof(double));
+    return sizeof(hl_posegraph_t) + (size_t)max_edges * (sizeof(edge_terms_t) + sizeof(mat3_t)) +
+           (size_t)max_poses * (4 * sizeof(mat3_t) + 6 * 3 * sizeof(double));
 }
 
 hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges)
@@ -49,9 +52,10 @@ hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges)
     g->max_poses = max_poses;
     g->max_edges = max_edges;
     g->terms = calloc(max_edges ? max_edges : 1, sizeof *g->terms);
-    mat3_t **blocks[] = { &g->pivot_inv, &g->upper, &g->lower };
+    g->between = calloc(max_edges ? max_edges : 1, sizeof *g->between);
+    mat3_t **blocks[] = { &g->diag, &g->pivot_inv, &g->upper, &g->lower };
     double **vecs[] = { &g->g, &g->dx, &g->res, &g->z, &g->p, &g->hp };
-    bool ok = g->terms;
+    bool ok = g->terms && g->between;
     for (size_t k = 0; k < sizeof blocks / sizeof blocks[0]; k++) {
         *blocks[k] = calloc(max_poses ? max_poses : 1, sizeof(mat3_t));
         ok = ok && *blocks[k];
@@ -72,6 +76,8 @@ void hl_posegraph_destroy(hl_posegraph_t *g)
     if (!g)
         return;
     free(g->terms);
+    free(g->between);
+    free(g->diag);
     free(g->pivot_inv);
     free(g->upper);
     free(g->lower);
@@ -155,6 +161,13 @@ static void mul3(const mat3_t *m, const double *x, double *out)
         out[i] = m->v[3 * i] * x[0] + m->v[3 * i + 1] * x[1] + m->v[3 * i + 2] * x[2];
 }
 
+/* out = m^T x */
+static void mul3t(const mat3_t *m, const double *x, double *out)
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = m->v[i] * x[0] + m->v[3 + i] * x[1] + m->v[6 + i] * x[2];
+}
+
 /* a^T b */
 static mat3_t product_tn(const mat3_t *a, const mat3_t *b)
 {
@@ -180,23 +193,24 @@ static mat3_t inverse(const mat3_t *m)
     return inv;
 }
 
-/* hp = H p, matrix-free: the sum over the edges of J^T W J p; pose 0 held (its rows and
- * columns left out). */
+/* hp = H p from H's blocks: each pose's own, then each edge's between its two poses; pose
+ * 0 held (its rows and columns left out: p is zero there). */
 static void product(const hl_posegraph_t *g, const hl_pg_edge_t *edges, uint32_t n_edges,
-                    uint32_t n, const double w[3], const double *p, double *hp)
+                    uint32_t n, const double *p, double *hp)
 {
-    memset(hp, 0, 3 * (size_t)n * sizeof *hp);
+    hp[0] = hp[1] = hp[2] = 0;
+    for (uint32_t i = 1; i < n; i++)
+        mul3(&g->diag[i], &p[3 * i], &hp[3 * i]);
     for (uint32_t k = 0; k < n_edges; k++) {
-        const edge_terms_t *t = &g->terms[k];
+        const mat3_t *ab = &g->between[k];
         uint32_t i = edges[k].from, j = edges[k].to;
-        const double wk[3] = { w[0] * t->robust, w[1] * t->robust, w[2] * t->robust };
-        double ja[3], jb[3], jp[3];
-        mul3(&t->a, &p[3 * i], ja);     /* p is zero at pose 0: it is held */
-        mul3(&t->b, &p[3 * j], jb);
-        for (int q = 0; q < 3; q++)
-            jp[q] = ja[q] + jb[q];
-        add_jtw(&hp[3 * i], &t->a, wk, jp);
-        add_jtw(&hp[3 * j], &t->b, wk, jp);
+        double to_i[3], to_j[3];
+        mul3(ab, &p[3 * j], to_i);
+        mul3t(ab, &p[3 * i], to_j);
+        for (int q = 0; q < 3; q++) {
+            hp[3 * i + q] += to_i[q];
+            hp[3 * j + q] += to_j[q];
+        }
     }
     hp[0] = hp[1] = hp[2] = 0;
 }
@@ -215,14 +229,14 @@ static double squared_sigmas(const edge_terms_t *t, const double w[3])
     return t->r[0] * t->r[0] * w[0] + t->r[1] * t->r[1] * w[1] + t->r[2] * t->r[2] * w[2];
 }
 
-/* The preconditioner's factors from its blocks (pivot_inv holding each pose's own block,
- * upper the chain's): the pivots D_i = H_ii - U_{i-1}^T D_{i-1}^-1 U_{i-1}, inverted, and
+/* The preconditioner's factors from its blocks (each pose's own and the chain's): the
+ * pivots D_i = H_ii - U_{i-1}^T D_{i-1}^-1 U_{i-1}, inverted, and
  * L_i = U_{i-1}^T D_{i-1}^-1. Pose 0 is held, so the chain starts at pose 1. */
 static void factor_chain(hl_posegraph_t *g, uint32_t n)
 {
     g->pivot_inv[0] = (mat3_t){ { 0 } };
     for (uint32_t i = 1; i < n; i++) {
-        mat3_t pivot = g->pivot_inv[i];
+        mat3_t pivot = g->diag[i];
         if (i > 1) {
             const mat3_t *u = &g->upper[i - 1], *before = &g->pivot_inv[i - 1];
             mat3_t d_inv_u = product_tn(before, u);     /* D^-1 is symmetric */
@@ -265,7 +279,7 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
 {
     const uint32_t m = 3 * n;
     memset(g->g, 0, m * sizeof *g->g);
-    memset(g->pivot_inv, 0, n * sizeof *g->pivot_inv);
+    memset(g->diag, 0, n * sizeof *g->diag);
     memset(g->upper, 0, n * sizeof *g->upper);
     for (uint32_t k = 0; k < n_edges; k++) {
         edge_terms_t *t = &g->terms[k];
@@ -276,8 +290,10 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
         const double wk[3] = { w[0] * t->robust, w[1] * t->robust, w[2] * t->robust };
         add_jtw(&g->g[3 * i], &t->a, wk, t->r);
         add_jtw(&g->g[3 * j], &t->b, wk, t->r);
-        add_atwb(&g->pivot_inv[i], &t->a, wk, &t->a);
-        add_atwb(&g->pivot_inv[j], &t->b, wk, &t->b);
+        add_atwb(&g->diag[i], &t->a, wk, &t->a);
+        add_atwb(&g->diag[j], &t->b, wk, &t->b);
+        g->between[k] = (mat3_t){ { 0 } };
+        add_atwb(&g->between[k], &t->a, wk, &t->b);
         if (j == i + 1)
             add_atwb(&g->upper[i], &t->a, wk, &t->b);
         else if (i == j + 1)
@@ -292,7 +308,7 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
     memcpy(g->p, g->z, m * sizeof *g->p);
     double rz = dot(g->res, g->z, m), rz0 = rz;
     for (uint32_t it = 0; it < CG_MAX_ITERATIONS && rz > CG_TOLERANCE * rz0 && rz > 0; it++) {
-        product(g, edges, n_edges, n, w, g->p, g->hp);
+        product(g, edges, n_edges, n, g->p, g->hp);
         double php = dot(g->p, g->hp, m);
         if (!(php > 0))
             break;

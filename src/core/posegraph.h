@@ -3,12 +3,13 @@
  * between them (a pose graph): what loop closure (closure.h) asks of the stops when a
  * new match says where one stop lies from another.
  *
- * Gauss-Newton; each step's normal equations are solved by conjugate gradients,
- * matrix-free (one pass over the edges a product), so the cost grows with the edges, not
- * with the square of the poses: a chain of stops and its matches is sparse. The
- * preconditioner is the chain's part of the system (each pose's block and the blocks
- * between consecutive poses) factored exactly. Every edge weighs the same (one localization's error, sigma_mm and
- * sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
+ * Gauss-Newton; each step's normal equations are solved by conjugate gradients over the
+ * system's 3 x 3 blocks, each pose's own and each edge's between its two poses (one pass
+ * over the edges a product), so the cost grows with the edges, not with the square of
+ * the poses: a chain of stops and its matches is sparse. The preconditioner is the
+ * chain's part of the system (each pose's block and the blocks between consecutive
+ * poses) factored exactly. Every edge weighs the same (one localization's error, sigma_mm
+ * and sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
  * reweighted: each Gauss-Newton step weighs it by 1 / (1 + e / kernel^2), e its squared
  * error in standard deviations at the poses the step starts from). Pose 0 is held where
  * it is. Memory: the workspace, from create only.

@@ -94,7 +94,7 @@ const hl_config_key_t hl_config_keys[] = {
     { "slam.close_loops", HL_KEY_BOOL, S(close_loops), 0, 0,
       "loop closure: match each stop against the earlier stops near it and fit all stops to the matches, moving the map (not in the paper)" },
     { "slam.closure_stops", HL_KEY_U32, S(closure_stops), 2, 4096,
-      "... the stops it remembers (a fit takes up to 0.1 s at 256, 3 s at 4096: docs/performance.md)" },
+      "... the stops it remembers (a fit takes up to 0.05 s at 256, 1.5 s at 4096: docs/performance.md)" },
     { "localize.cell_mm", HL_KEY_I32, S(loc.cell_mm), 1, 1000, "xy raster cell" },
     { "localize.theta_step_deg", HL_KEY_DEG, S(loc.theta_step), 0.01, 45, "heading raster step" },
     { "localize.theta_half_steps", HL_KEY_U16, S(loc.theta_half_steps), 0, 256,
