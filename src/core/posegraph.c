@@ -20,17 +20,14 @@ typedef struct { double v[9]; } mat3_t;     /* row-major */
 typedef struct edge_terms {
     double r[3];        /* the edge's error at the current poses */
     mat3_t a, b;        /* its Jacobians in the `from` and `to` poses */
-    double robust;      /* the kernel's weight at the current poses (1: none) */
 } edge_terms_t;
 
 /* The preconditioner is the chain's part of H, factored exactly (block LDL^T): each
  * pose's own block and the blocks between consecutive poses, which the steps fill. */
 struct hl_posegraph {
     uint32_t max_poses, max_edges;
-    edge_terms_t *terms;            /* [max_edges] */
     mat3_t *between;                /* [max_edges] each edge's block of H between its two
-                                       poses, a^T W b (apart from the terms: the products
-                                       read nothing else) */
+                                       poses, a^T W b: all the products read of an edge */
     mat3_t *diag;                   /* [max_poses] H's own block of each pose */
     mat3_t *pivot_inv;              /* [max_poses] D's blocks, inverted */
     mat3_t *upper;                  /* [max_poses] H's block between poses i and i + 1 */
@@ -40,7 +37,7 @@ struct hl_posegraph {
 
 size_t hl_posegraph_mem_bytes(uint32_t max_poses, uint32_t max_edges)
 {
-    return sizeof(hl_posegraph_t) + (size_t)max_edges * (sizeof(edge_terms_t) + sizeof(mat3_t)) +
+    return sizeof(hl_posegraph_t) + (size_t)max_edges * sizeof(mat3_t) +
            (size_t)max_poses * (4 * sizeof(mat3_t) + 6 * 3 * sizeof(double));
 }
 
@@ -51,11 +48,10 @@ hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges)
         return NULL;
     g->max_poses = max_poses;
     g->max_edges = max_edges;
-    g->terms = calloc(max_edges ? max_edges : 1, sizeof *g->terms);
     g->between = calloc(max_edges ? max_edges : 1, sizeof *g->between);
     mat3_t **blocks[] = { &g->diag, &g->pivot_inv, &g->upper, &g->lower };
     double **vecs[] = { &g->g, &g->dx, &g->res, &g->z, &g->p, &g->hp };
-    bool ok = g->terms && g->between;
+    bool ok = g->between != NULL;
     for (size_t k = 0; k < sizeof blocks / sizeof blocks[0]; k++) {
         *blocks[k] = calloc(max_poses ? max_poses : 1, sizeof(mat3_t));
         ok = ok && *blocks[k];
@@ -75,7 +71,6 @@ void hl_posegraph_destroy(hl_posegraph_t *g)
 {
     if (!g)
         return;
-    free(g->terms);
     free(g->between);
     free(g->diag);
     free(g->pivot_inv);
@@ -166,6 +161,14 @@ static void mul3t(const mat3_t *m, const double *x, double *out)
 {
     for (int i = 0; i < 3; i++)
         out[i] = m->v[i] * x[0] + m->v[3 + i] * x[1] + m->v[6 + i] * x[2];
+}
+
+/* out += m, or its transpose */
+static void add_block(mat3_t *out, const mat3_t *m, bool transposed)
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            out->v[3 * i + j] += transposed ? m->v[3 * j + i] : m->v[3 * i + j];
 }
 
 /* a^T b */
@@ -282,22 +285,23 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
     memset(g->diag, 0, n * sizeof *g->diag);
     memset(g->upper, 0, n * sizeof *g->upper);
     for (uint32_t k = 0; k < n_edges; k++) {
-        edge_terms_t *t = &g->terms[k];
+        edge_terms_t t;
         uint32_t i = edges[k].from, j = edges[k].to;
-        linearize(poses, &edges[k], t);
-        t->robust = edges[k].loop && kernel > 0
-                        ? 1 / (1 + squared_sigmas(t, w) / (kernel * kernel)) : 1;
-        const double wk[3] = { w[0] * t->robust, w[1] * t->robust, w[2] * t->robust };
-        add_jtw(&g->g[3 * i], &t->a, wk, t->r);
-        add_jtw(&g->g[3 * j], &t->b, wk, t->r);
-        add_atwb(&g->diag[i], &t->a, wk, &t->a);
-        add_atwb(&g->diag[j], &t->b, wk, &t->b);
-        g->between[k] = (mat3_t){ { 0 } };
-        add_atwb(&g->between[k], &t->a, wk, &t->b);
-        if (j == i + 1)
-            add_atwb(&g->upper[i], &t->a, wk, &t->b);
+        linearize(poses, &edges[k], &t);
+        double robust = edges[k].loop && kernel > 0
+                            ? 1 / (1 + squared_sigmas(&t, w) / (kernel * kernel)) : 1;
+        const double wk[3] = { w[0] * robust, w[1] * robust, w[2] * robust };
+        add_jtw(&g->g[3 * i], &t.a, wk, t.r);
+        add_jtw(&g->g[3 * j], &t.b, wk, t.r);
+        add_atwb(&g->diag[i], &t.a, wk, &t.a);
+        add_atwb(&g->diag[j], &t.b, wk, &t.b);
+        mat3_t *ab = &g->between[k];
+        *ab = (mat3_t){ { 0 } };
+        add_atwb(ab, &t.a, wk, &t.b);
+        if (j == i + 1)                 /* the chain's blocks, for the preconditioner */
+            add_block(&g->upper[i], ab, false);
         else if (i == j + 1)
-            add_atwb(&g->upper[j], &t->b, wk, &t->a);
+            add_block(&g->upper[j], ab, true);
     }
     factor_chain(g, n);
     /* Preconditioned conjugate gradients from dx = 0: res = -g. */

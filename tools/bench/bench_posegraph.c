@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../testkit/synthroom.h"
 #include "timing.h"
 #include "houghloc/rng.h"
 #include "../../src/core/closure.h"
@@ -35,19 +36,12 @@
 #define NOISE_MM 30.0
 #define NOISE_RAD 0.02
 
-/* A standard normal draw (Box-Muller; two uniform draws in (0, 1)). */
-static double gauss(hl_rng_t *rng)
-{
-    double u = (hl_rng_next(rng) + 1.0) / 4294967297.0, v = (hl_rng_next(rng) + 1.0) / 4294967297.0;
-    return sqrt(-2 * log(u)) * cos(2 * PI * v);
-}
-
 static hl_pg_pose_t measured(hl_rng_t *rng, hl_pg_pose_t from, hl_pg_pose_t to)
 {
     hl_pg_pose_t rel = hl_pg_between(from, to);
-    rel.x += NOISE_MM * gauss(rng);
-    rel.y += NOISE_MM * gauss(rng);
-    rel.theta += NOISE_RAD * gauss(rng);
+    rel.x += NOISE_MM * sr_gauss_rng(rng);
+    rel.y += NOISE_MM * sr_gauss_rng(rng);
+    rel.theta += NOISE_RAD * sr_gauss_rng(rng);
     return rel;
 }
 

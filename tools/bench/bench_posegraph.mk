@@ -3,6 +3,6 @@
 
 BINS += $(BUILD)/bin/hl-bench-posegraph
 
-$(BUILD)/bin/hl-bench-posegraph: $(call obj,tools/bench/bench_posegraph.c) $(CORE_LIB)
+$(BUILD)/bin/hl-bench-posegraph: $(call obj,tools/bench/bench_posegraph.c) $(TESTKIT_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	$(Q)$(CC) -o $@ $^ -lm

@@ -11,12 +11,16 @@ static double uniform(sr_room_t *room)
     return hl_rng_next(&room->rng) / 4294967296.0;
 }
 
+double sr_gauss_rng(hl_rng_t *rng)
+{
+    double u1 = (hl_rng_next(rng) + 1.0) / 4294967297.0;    /* (0, 1]: log(u1) is finite */
+    double u2 = hl_rng_next(rng) / 4294967296.0;
+    return sqrt(-2.0 * log(u1)) * cos(2.0 * PI * u2);
+}
+
 double sr_gauss(sr_room_t *room)
 {
-    /* Box-Muller from the room's own generator, so results match across libcs. */
-    double u1 = (hl_rng_next(&room->rng) + 1.0) / 4294967297.0;
-    double u2 = uniform(room);
-    return sqrt(-2.0 * log(u1)) * cos(2.0 * PI * u2);
+    return sr_gauss_rng(&room->rng);
 }
 
 static void add_segment(sr_room_t *room, double x1, double y1, double x2, double y2)

@@ -70,4 +70,7 @@ uint32_t sr_make_map(sr_room_t *room, uint32_t count, int n, double max_range_mm
 /** Standard normal deviate from the room's generator. */
 double sr_gauss(sr_room_t *room);
 
+/** The same from any generator (Box-Muller, so results match across libcs). */
+double sr_gauss_rng(hl_rng_t *rng);
+
 #endif
