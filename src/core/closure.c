@@ -22,6 +22,11 @@ struct hl_closure {
     hl_pose_t *placed;      /* where the stop's vectors lie in the map (poses, rounded, as
                                of the last fit) */
     hl_rng_t *rng_before;   /* the map's culling generator before the stop was drawn */
+    double *wall_axis;      /* the walls' axis in the stop's frame, radians (square walls) */
+    double *wall_sigma;     /* ... its sigma, radians; 0: the stop says nothing of walls */
+    hl_pg_heading_t *headings;  /* [cap] scratch: the stops' headings for a fit */
+    bool square_walls;
+    double building_axis;   /* radians */
     hl_pg_edge_t *edges;    /* steps and matches, poses by stamp - first */
     uint32_t n_edges, max_edges;
     hl_posegraph_t *graph;
@@ -44,14 +49,17 @@ hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t 
     c->poses = malloc((size_t)stops * sizeof *c->poses);
     c->placed = malloc((size_t)stops * sizeof *c->placed);
     c->rng_before = malloc((size_t)stops * sizeof *c->rng_before);
+    c->wall_axis = malloc((size_t)stops * sizeof *c->wall_axis);
+    c->wall_sigma = malloc((size_t)stops * sizeof *c->wall_sigma);
+    c->headings = malloc((size_t)stops * sizeof *c->headings);
     c->edges = malloc((size_t)c->max_edges * sizeof *c->edges);
     c->graph = hl_posegraph_create(stops, c->max_edges);
     c->map_capacity = map_capacity;
     c->kept = malloc((size_t)map_capacity * sizeof *c->kept);
     c->sub = hl_map_create(map_capacity, seed);
     hl_rng_seed(&c->sub_rng, seed);
-    if (!c->scans || !c->poses || !c->placed || !c->rng_before || !c->edges || !c->graph ||
-        !c->kept || !c->sub) {
+    if (!c->scans || !c->poses || !c->placed || !c->rng_before || !c->wall_axis ||
+        !c->wall_sigma || !c->headings || !c->edges || !c->graph || !c->kept || !c->sub) {
         hl_closure_destroy(c);
         return NULL;
     }
@@ -67,6 +75,9 @@ void hl_closure_destroy(hl_closure_t *c)
     free(c->poses);
     free(c->placed);
     free(c->rng_before);
+    free(c->wall_axis);
+    free(c->wall_sigma);
+    free(c->headings);
     free(c->edges);
     free(c->kept);
     hl_posegraph_destroy(c->graph);
@@ -78,9 +89,16 @@ size_t hl_closure_mem_bytes(const hl_closure_t *c)
 {
     return sizeof *c +
            (size_t)c->cap * (sizeof *c->scans + sizeof *c->poses + sizeof *c->placed +
-                                 sizeof *c->rng_before) +
+                             sizeof *c->rng_before + sizeof *c->wall_axis +
+                             sizeof *c->wall_sigma + sizeof *c->headings) +
            (size_t)c->max_edges * sizeof *c->edges + (size_t)c->map_capacity * sizeof *c->kept +
            hl_posegraph_mem_bytes(c->cap, c->max_edges) + hl_map_mem_bytes(c->sub);
+}
+
+void hl_closure_square_walls(hl_closure_t *c, double axis_rad)
+{
+    c->square_walls = true;
+    c->building_axis = axis_rad;
 }
 
 void hl_closure_reset(hl_closure_t *c)
@@ -105,6 +123,8 @@ static void forget_oldest(hl_closure_t *c)
     memmove(c->poses, c->poses + 1, (c->count - 1) * sizeof *c->poses);
     memmove(c->placed, c->placed + 1, (c->count - 1) * sizeof *c->placed);
     memmove(c->rng_before, c->rng_before + 1, (c->count - 1) * sizeof *c->rng_before);
+    memmove(c->wall_axis, c->wall_axis + 1, (c->count - 1) * sizeof *c->wall_axis);
+    memmove(c->wall_sigma, c->wall_sigma + 1, (c->count - 1) * sizeof *c->wall_sigma);
     uint32_t kept = 0;
     for (uint32_t k = 0; k < c->n_edges; k++) {
         hl_pg_edge_t e = c->edges[k];
@@ -117,6 +137,31 @@ static void forget_oldest(hl_closure_t *c)
     c->n_edges = kept;
     c->first++;
     c->count--;
+}
+
+/* The axis of the walls in the frame of the scan @p placed (header, "Square walls"), and
+ * its sigma; 0 when the scan has too few readings to tell. */
+static double walls_seen(const hl_scan_t *placed, double *sigma)
+{
+    double c4 = 0, s4 = 0;
+    uint32_t n = 0;
+    for (uint32_t k = 0; k < placed->count; k++) {
+        const hl_reading_t *r = &placed->readings[k];
+        if (!r->valid)
+            continue;
+        double normal = hl_bam_to_rad(r->bearing) + r->tilt * (2 * PI / 65536);
+        c4 += cos(4 * normal);
+        s4 += sin(4 * normal);
+        n++;
+    }
+    *sigma = 0;
+    double r = n ? hypot(c4, s4) / n : 0;
+    if (n < HL_CLOSURE_WALL_MIN_READINGS || r < HL_CLOSURE_WALL_MIN_R)
+        return 0;
+    double deg = HL_CLOSURE_WALL_SIGMA_R / r;
+    *sigma = fmin(HL_CLOSURE_WALL_SIGMA_MAX_DEG, fmax(HL_CLOSURE_WALL_SIGMA_MIN_DEG, deg)) *
+             (PI / 180);
+    return atan2(s4, c4) / 4;
 }
 
 void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
@@ -132,6 +177,9 @@ void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
     c->poses[i] = hl_pg_from_pose(pose);
     c->placed[i] = pose;
     c->rng_before[i] = rng_before;
+    c->wall_sigma[i] = 0;
+    if (c->square_walls)
+        c->wall_axis[i] = walls_seen(placed, &c->wall_sigma[i]);
     if (i > 0 && c->n_edges < c->max_edges)
         c->edges[c->n_edges++] = (hl_pg_edge_t){ i - 1, i,
                                                  hl_pg_between(c->poses[i - 1], c->poses[i]),
@@ -217,10 +265,26 @@ static void redraw(hl_closure_t *c, hl_map_t *map)
     }
 }
 
+/* Each stop's heading against the world from the walls it saw: of the four that put the
+ * walls square to the building, the one nearest its heading now. @return how many. */
+static uint32_t wall_headings(hl_closure_t *c)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 1; c->square_walls && i < c->count; i++) {
+        if (c->wall_sigma[i] <= 0)
+            continue;
+        double theta = c->poses[i].theta;
+        double off = remainder(4 * (theta + c->wall_axis[i] - c->building_axis), 2 * PI) / 4;
+        c->headings[n++] = (hl_pg_heading_t){ i, theta - off, c->wall_sigma[i] };
+    }
+    return n;
+}
+
 uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map)
 {
+    uint32_t n_headings = wall_headings(c);
     uint32_t dropped = hl_posegraph_fit(c->graph, c->poses, c->count, c->edges, &c->n_edges,
-                                        HL_CLOSURE_SIGMA_MM,
+                                        c->headings, n_headings, HL_CLOSURE_SIGMA_MM,
                                         HL_CLOSURE_SIGMA_DEG * (PI / 180), HL_CLOSURE_KERNEL,
                                         HL_CLOSURE_OUTLIER);
     for (uint32_t i = 0; i < c->count; i++)

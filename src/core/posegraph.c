@@ -274,12 +274,24 @@ static void precondition(const hl_posegraph_t *g, uint32_t n, const double *r, d
     }
 }
 
+/* What a fit weighs its poses by, besides the edges. */
+typedef struct problem {
+    const hl_pg_heading_t *headings;
+    uint32_t n_headings;
+    double w[3];            /* steps' and matches' weights: 1 / sigma^2 */
+    double kernel;
+} problem_t;
+
 /* One Gauss-Newton step of iteratively reweighted least squares: g->dx solves H dx = -g,
- * pose 0 held, each loop edge weighed by the Cauchy kernel at the current poses. */
+ * pose 0 held, each loop edge and heading weighed by the Cauchy kernel at the current
+ * poses. A heading adds to its pose's own block alone, so the products need not know of
+ * it. */
 static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint32_t n,
-                              const hl_pg_edge_t *edges, uint32_t n_edges, const double w[3],
-                              double kernel)
+                              const hl_pg_edge_t *edges, uint32_t n_edges,
+                              const problem_t *pb)
 {
+    const double *w = pb->w;
+    const double kernel = pb->kernel;
     const uint32_t m = 3 * n;
     memset(g->g, 0, m * sizeof *g->g);
     memset(g->diag, 0, n * sizeof *g->diag);
@@ -302,6 +314,14 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
             add_block(&g->upper[i], ab, false);
         else if (i == j + 1)
             add_block(&g->upper[j], ab, true);
+    }
+    for (uint32_t k = 0; k < pb->n_headings; k++) {
+        const hl_pg_heading_t *h = &pb->headings[k];
+        double r = wrap(poses[h->pose].theta - h->theta), wh = 1 / (h->sigma_rad * h->sigma_rad);
+        if (kernel > 0)
+            wh /= 1 + r * r * wh / (kernel * kernel);
+        g->g[3 * h->pose + 2] += wh * r;
+        g->diag[h->pose].v[8] += wh;
     }
     factor_chain(g, n);
     /* Preconditioned conjugate gradients from dx = 0: res = -g. */
@@ -330,10 +350,10 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
 }
 
 static void solve(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n, const hl_pg_edge_t *edges,
-                  uint32_t n_edges, const double w[3], double kernel, int steps)
+                  uint32_t n_edges, const problem_t *pb, int steps)
 {
     for (int step = 0; step < steps; step++) {
-        gauss_newton_step(g, poses, n, edges, n_edges, w, kernel);
+        gauss_newton_step(g, poses, n, edges, n_edges, pb);
         double most_mm = 0, most_rad = 0;
         for (uint32_t i = 1; i < n; i++) {
             const double *d = &g->dx[3 * i];
@@ -376,15 +396,30 @@ static bool drop_worst(const hl_pg_pose_t *poses, hl_pg_edge_t *edges, uint32_t 
     return true;
 }
 
+/* Whether every heading names a pose below n and has a positive sigma. */
+static bool headings_fit(const hl_pg_heading_t *headings, uint32_t n_headings, uint32_t n)
+{
+    if (n_headings && !headings)
+        return false;
+    for (uint32_t k = 0; k < n_headings; k++)
+        if (headings[k].pose >= n || !(headings[k].sigma_rad > 0))
+            return false;
+    return true;
+}
+
 uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
-                          hl_pg_edge_t *edges, uint32_t *n_edges, double sigma_mm,
-                          double sigma_rad, double kernel, double gate)
+                          hl_pg_edge_t *edges, uint32_t *n_edges,
+                          const hl_pg_heading_t *headings, uint32_t n_headings,
+                          double sigma_mm, double sigma_rad, double kernel, double gate)
 {
     if (!g || !poses || !edges || !n_edges || n < 2 || n > g->max_poses ||
-        *n_edges > g->max_edges || !(kernel >= 0))
+        *n_edges > g->max_edges || !(kernel >= 0) || !headings_fit(headings, n_headings, n))
         return 0;
-    const double w[3] = { 1 / (sigma_mm * sigma_mm), 1 / (sigma_mm * sigma_mm),
-                          1 / (sigma_rad * sigma_rad) };
+    const problem_t pb = { headings, n_headings,
+                           { 1 / (sigma_mm * sigma_mm), 1 / (sigma_mm * sigma_mm),
+                             1 / (sigma_rad * sigma_rad) },
+                           kernel };
+    const double *w = pb.w;
     /* Without a kernel one wrong match bends the whole fit, so right matches near it can
      * look wrong too: drop only the worst beyond the gate and fit again. Under the kernel
      * a wrong match bends the fit little, so those beyond the gate are the wrong ones and
@@ -394,7 +429,7 @@ uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
      * (docs/performance.md). */
     const uint32_t batch = kernel > 0 ? MAX_DROPS : 1;
     const int steps_after = kernel > 0 ? GN_STEPS_AFTER_DROP : GN_STEPS;
-    solve(g, poses, n, edges, *n_edges, w, kernel, GN_STEPS);
+    solve(g, poses, n, edges, *n_edges, &pb, GN_STEPS);
     uint32_t dropped = 0;
     for (;;) {
         uint32_t now = 0;
@@ -404,7 +439,7 @@ uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
         if (now == 0)
             return dropped;
         dropped += now;
-        solve(g, poses, n, edges, *n_edges, w, kernel, steps_after);
+        solve(g, poses, n, edges, *n_edges, &pb, steps_after);
         if (dropped == MAX_DROPS)
             return dropped;
     }

@@ -11,8 +11,9 @@
  * poses) factored exactly. Every edge weighs the same (one localization's error, sigma_mm
  * and sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
  * reweighted: each Gauss-Newton step weighs it by 1 / (1 + e / kernel^2), e its squared
- * error in standard deviations at the poses the step starts from). Pose 0 is held where
- * it is. Memory: the workspace, from create only.
+ * error in standard deviations at the poses the step starts from). A pose may also carry
+ * a heading of its own (hl_pg_heading_t), weighed by its own sigma and the same kernel.
+ * Pose 0 is held where it is. Memory: the workspace, from create only.
  */
 #ifndef HOUGHLOC_CORE_POSEGRAPH_H
 #define HOUGHLOC_CORE_POSEGRAPH_H
@@ -33,6 +34,14 @@ typedef struct hl_pg_edge {
     bool loop;              /* a match (may be dropped as an outlier), not a step */
 } hl_pg_edge_t;
 
+/* A heading measured against the world rather than another pose (a building's walls seen
+ * square to its axes, closure.h): pose `pose` should have heading `theta`. */
+typedef struct hl_pg_heading {
+    uint32_t pose;
+    double theta;           /* radians */
+    double sigma_rad;       /* its standard deviation, > 0 */
+} hl_pg_heading_t;
+
 typedef struct hl_posegraph hl_posegraph_t;
 
 /** A workspace for up to @p max_poses poses and @p max_edges edges; NULL on no memory. */
@@ -50,8 +59,9 @@ hl_pg_pose_t hl_pg_between(hl_pg_pose_t a, hl_pg_pose_t b);
 hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
 
 /**
- * Moves @p poses[1 .. n - 1] to the least-squares fit of @p edges (pose 0 held), each loop
- * edge under a Cauchy kernel of @p kernel standard deviations (0: none). Then the loop
+ * Moves @p poses[1 .. n - 1] to the least-squares fit of @p edges and of the @p n_headings
+ * @p headings (pose 0 held: a heading of its own is ignored), each loop edge and each
+ * heading under a Cauchy kernel of @p kernel standard deviations (0: none). Then the loop
  * edges more than @p gate standard deviations off the fit (rms over their three terms)
  * are dropped from @p edges (*n_edges shrinks, the order kept), worst first, and the rest
  * fitted again, until none is that far off or 8 are dropped: under a kernel all such
@@ -60,7 +70,8 @@ hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
  * @return the number of loop edges dropped.
  */
 uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
-                          hl_pg_edge_t *edges, uint32_t *n_edges, double sigma_mm,
-                          double sigma_rad, double kernel, double gate);
+                          hl_pg_edge_t *edges, uint32_t *n_edges,
+                          const hl_pg_heading_t *headings, uint32_t n_headings,
+                          double sigma_mm, double sigma_rad, double kernel, double gate);
 
 #endif

@@ -53,6 +53,8 @@ void hl_slam_params_default(hl_slam_params_t *p)
     hl_refine_params_default(&p->refine_params);
     p->close_loops = false;
     p->closure_stops = 256;
+    p->square_walls = false;
+    p->wall_axis = 0;
     hl_reloc_params_default(&p->reloc);
 }
 
@@ -103,6 +105,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return hl_refine_params_error(&p->refine_params);
     if (p->closure_stops < 2 || p->closure_stops > HL_CLOSURE_MAX_STOPS)
         return "closure_stops must be in 2..4096";
+    if (p->square_walls && !p->close_loops)
+        return "square_walls needs close_loops";
     return hl_reloc_params_error(&p->reloc);
 }
 
@@ -142,6 +146,8 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
         hl_slam_destroy(s);
         return NULL;
     }
+    if (p->square_walls)
+        hl_closure_square_walls(s->closure, hl_bam_to_rad(p->wall_axis));
     return s;
 }
 

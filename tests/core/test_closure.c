@@ -1,7 +1,8 @@
 /* Tests for src/core/closure.c and loop closure in the slam (slam.close_loops): a stop
  * back near an old one is matched with it, a match beyond the gate is refused, the fit
  * pulls a drifted stop back and the map is drawn again with it, forgotten stops are not
- * offered, and the slam starts its record afresh when its pose is set from outside. */
+ * offered, square walls turn a turned map back, and the slam starts its record afresh
+ * when its pose is set from outside. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -139,6 +140,81 @@ static void test_forgotten_stops_are_not_offered(void **state)
     free(l);
 }
 
+/* Stop @p i of the loop on a map turned @p deg about stop 0 (its first stop is where it
+ * truly is, the rest consistent with one another). */
+static hl_pose_t turned_about_first(const loop_t *l, int i, double deg)
+{
+    if (i == 0)
+        return l->truth[0];
+    double a = deg * (3.14159265358979323846 / 180), c = cos(a), s = sin(a);
+    double dx = l->truth[i].x_mm - l->truth[0].x_mm, dy = l->truth[i].y_mm - l->truth[0].y_mm;
+    return (hl_pose_t){ l->truth[0].x_mm + (hl_mm_t)lround(c * dx - s * dy),
+                        l->truth[0].y_mm + (hl_mm_t)lround(s * dx + c * dy),
+                        hl_bam_from_deg(deg) };
+}
+
+/* As a sonar hears a room: the test kit's ring echoes from every surface, a sonar's only
+ * from those nearly square to its beam. The stops all face along x, so those are the
+ * readings within 12 degrees of a quarter turn. */
+static void sound_specular(loop_t *l, int i, hl_scan_t *scan)
+{
+    sr_sound(&l->room, l->truth[i], 128, 8000, 5, scan);
+    for (uint32_t k = 0; k < scan->count; k++) {
+        int32_t off = hl_bam_diff(scan->readings[k].bearing, 0) % 16384;
+        int32_t from_quarter = abs(off) > 8192 ? 16384 - abs(off) : abs(off);
+        if (from_quarter > hl_bam_from_deg(12.0))
+            scan->readings[k].valid = false;
+    }
+}
+
+/* Stop 6's heading, in degrees, after the loop is recorded on a map turned 4 degrees
+ * about stop 0 and its match with stop 0 fitted, with the room's walls (along x and y)
+ * told to the fit or not. */
+static double heading_after_fit(loop_t *l, bool square_walls, hl_scan_t *scan)
+{
+    hl_closure_t *c = hl_closure_create(16, CAP, 1);
+    hl_map_t *map = hl_map_create(CAP, 1);
+    assert_non_null(c);
+    if (square_walls)
+        hl_closure_square_walls(c, 0.0);
+    for (int i = 0; i < 7; i++) {
+        sound_specular(l, i, scan);
+        hl_rng_t before = hl_map_rng(map);
+        hl_map_set_stamp(map, hl_closure_next_stamp(c));
+        assert_int_equal(hl_map_add_scan(map, scan, turned_about_first(l, i, 4.0), NULL), HL_OK);
+        hl_closure_record(c, scan, turned_about_first(l, i, 4.0), before);
+    }
+    assert_true(hl_closure_match(c, 1, turned_about_first(l, 6, 4.0)));
+    assert_int_equal(hl_closure_fit(c, map), 0);
+    double deg = hl_bam_diff(hl_closure_newest(c).theta, 0) * (360.0 / 65536.0);
+    hl_map_destroy(map);
+    hl_closure_destroy(c);
+    return deg;
+}
+
+/* A map turned as a whole about its first stop: the steps and the match agree with one
+ * another, so the fit alone leaves it turned; told that the walls run along x and y, each
+ * stop's readings turn it back. */
+static void test_square_walls_turn_a_turned_map_back(void **state)
+{
+    (void)state;
+    loop_t *l = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    double plain = heading_after_fit(l, false, scan);
+    double square = heading_after_fit(l, true, scan);
+    assert_true(plain > 3.9 && plain < 4.1);
+    assert_true(fabs(square) < 1.5);
+    /* The slam refuses square walls without loop closure, whose fit they are part of. */
+    hl_slam_params_t p;
+    hl_slam_params_default(&p);
+    p.square_walls = true;
+    assert_non_null(hl_slam_params_error(&p));
+    p.close_loops = true;
+    assert_null(hl_slam_params_error(&p));
+    free(scan);
+    free(l);
+}
+
 /* The slam with close_loops on the noisy walk of slam_walk.h. */
 static void test_the_slam_closes_loops_and_starts_afresh_when_placed(void **state)
 {
@@ -198,6 +274,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_a_stop_back_near_an_old_one_is_matched_and_pulled_back),
         cmocka_unit_test(test_forgotten_stops_are_not_offered),
+        cmocka_unit_test(test_square_walls_turn_a_turned_map_back),
         cmocka_unit_test(test_the_slam_closes_loops_and_starts_afresh_when_placed),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,7 +1,7 @@
 /* Tests for src/core/posegraph.c: a loop's drift taken back by one match, a wrong match
  * dropped, a wrong match weighed down by the kernel, wrong matches under the kernel
  * dropped at once, steps given either way round, pose 0 held, a consistent graph left
- * alone, bad calls refused. */
+ * alone, headings of the poses' own, bad calls refused. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -40,6 +40,13 @@ static uint32_t drifting_chain(const hl_pg_pose_t *t, double bias_rad, hl_pg_pos
     return N - 1;
 }
 
+/* The fit of the loop's N poses, no heading of their own. */
+static uint32_t fit(hl_posegraph_t *g, hl_pg_pose_t *poses, hl_pg_edge_t *edges, uint32_t *n,
+                    double kernel, double gate)
+{
+    return hl_posegraph_fit(g, poses, N, edges, n, NULL, 0, SIGMA_MM, SIGMA_RAD, kernel, gate);
+}
+
 static double worst_mm(const hl_pg_pose_t *a, const hl_pg_pose_t *b)
 {
     double w = 0;
@@ -67,7 +74,7 @@ static void test_one_match_takes_back_a_loops_drift(void **state)
     edges[n++] = (hl_pg_edge_t){ 0, N - 1, hl_pg_between(t[0], t[N - 1]), true };
     hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
     assert_non_null(g);
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
+    assert_int_equal(fit(g, poses, edges, &n, 0.0, 3.0), 0);
     assert_int_equal(n, N);
     /* The 55 degrees of bias spread over the loop's 12 edges: every pose within a
      * fraction of what it was off, the last one's heading a twelfth of it. */
@@ -96,12 +103,11 @@ static void test_a_wrong_match_is_dropped(void **state)
     wrong.theta += 40 * PI / 180;
     edges[n++] = (hl_pg_edge_t){ 2, 8, wrong, true };
     hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 1);
+    assert_int_equal(fit(g, poses, edges, &n, 0.0, 3.0), 1);
     assert_int_equal(n, N);                       /* the wrong one gone, the order kept */
     assert_int_equal(edges[N - 1].from, 0);
     assert_int_equal(edges[N - 1].to, N - 1);
-    assert_int_equal(hl_posegraph_fit(g, clean, N, clean_edges, &n_clean, SIGMA_MM, SIGMA_RAD, 0.0,
-                                      3.0), 0);
+    assert_int_equal(fit(g, clean, clean_edges, &n_clean, 0.0, 3.0), 0);
     assert_true(worst_mm(poses, clean) < 1.0);    /* as if it had never been there */
     hl_posegraph_destroy(g);
 }
@@ -115,12 +121,12 @@ static void test_pose_zero_is_held_and_a_consistent_graph_stays(void **state)
     uint32_t n = drifting_chain(t, 0.0, poses, edges);
     edges[n++] = (hl_pg_edge_t){ 3, 9, hl_pg_between(t[3], t[9]), true };
     hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
+    assert_int_equal(fit(g, poses, edges, &n, 0.0, 3.0), 0);
     assert_true(worst_mm(poses, t) < 0.01);
     /* Moved away as a whole, the graph is fitted back to pose 0, which stays. */
     for (int i = 0; i < N; i++)
         poses[i].x += (i == 0) ? 0 : 500;
-    hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0);
+    fit(g, poses, edges, &n, 0.0, 3.0);
     assert_true(poses[0].x == t[0].x && poses[0].y == t[0].y && poses[0].theta == t[0].theta);
     assert_true(worst_mm(poses, t) < 0.01);
     hl_posegraph_destroy(g);
@@ -138,7 +144,7 @@ static void test_a_kernel_weighs_a_wrong_match_down(void **state)
     const double never = 1e9;    /* no edge dropped: the kernel alone */
     copy(clean, start);
     uint32_t m = n;
-    assert_int_equal(hl_posegraph_fit(g, clean, N, edges, &m, SIGMA_MM, SIGMA_RAD, 0.0, never), 0);
+    assert_int_equal(fit(g, clean, edges, &m, 0.0, never), 0);
     /* A match 400 mm and 6 degrees off what the others say. */
     hl_pg_pose_t wrong = hl_pg_between(t[2], t[8]);
     wrong.x += 400;
@@ -146,9 +152,9 @@ static void test_a_kernel_weighs_a_wrong_match_down(void **state)
     edges[n++] = (hl_pg_edge_t){ 2, 8, wrong, true };
     copy(plain, start);
     m = n;
-    assert_int_equal(hl_posegraph_fit(g, plain, N, edges, &m, SIGMA_MM, SIGMA_RAD, 0.0, never), 0);
+    assert_int_equal(fit(g, plain, edges, &m, 0.0, never), 0);
     copy(robust, start);
-    assert_int_equal(hl_posegraph_fit(g, robust, N, edges, &m, SIGMA_MM, SIGMA_RAD, 1.0, never), 0);
+    assert_int_equal(fit(g, robust, edges, &m, 1.0, never), 0);
     assert_int_equal(m, n);
     /* Plain least squares bends every pose towards it; the kernel keeps the fit within a
      * fraction of that of the fit without it. */
@@ -184,14 +190,13 @@ static void test_wrong_matches_under_the_kernel_go_at_once(void **state)
     wrong.theta -= 40 * PI / 180;
     edges[n++] = (hl_pg_edge_t){ 1, 10, wrong, true };
     hl_posegraph_t *g = hl_posegraph_create(N, N + 8);
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 1.0, 3.0), 2);
+    assert_int_equal(fit(g, poses, edges, &n, 1.0, 3.0), 2);
     assert_int_equal(n, n_clean);              /* both gone, the right ones in order */
     for (uint32_t k = 0; k < n; k++) {
         assert_int_equal(edges[k].from, clean_edges[k].from);
         assert_int_equal(edges[k].to, clean_edges[k].to);
     }
-    assert_int_equal(hl_posegraph_fit(g, clean, N, clean_edges, &n_clean, SIGMA_MM, SIGMA_RAD,
-                                      1.0, 3.0), 0);
+    assert_int_equal(fit(g, clean, clean_edges, &n_clean, 1.0, 3.0), 0);
     assert_true(worst_mm(poses, clean) < 5.0);  /* as if they had never been there */
     assert_true(worst_mm(poses, t) < 50.0);
     hl_posegraph_destroy(g);
@@ -218,13 +223,52 @@ static void test_steps_either_way_round_fit_alike(void **state)
     copy(backward, drifted);
     hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
     uint32_t m = n;
-    assert_int_equal(hl_posegraph_fit(g, forward, N, edges, &m, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
+    assert_int_equal(fit(g, forward, edges, &m, 0.0, 3.0), 0);
     m = n;
-    assert_int_equal(hl_posegraph_fit(g, backward, N, reversed, &m, SIGMA_MM, SIGMA_RAD, 0.0,
-                                      3.0), 0);
+    assert_int_equal(fit(g, backward, reversed, &m, 0.0, 3.0), 0);
     assert_true(worst_mm(drifted, t) > 1000);
     assert_true(worst_mm(forward, t) < 0.01);
     assert_true(worst_mm(backward, t) < 0.01);
+    hl_posegraph_destroy(g);
+}
+
+/* A chain whose every step turns a little too far, as a map turns about its first pose:
+ * headings of its own, measured against the world, turn it back (closure.h, "Square
+ * walls"); one of them wrong by a quarter turn's worth weighs little under the kernel. */
+static void test_headings_of_their_own_turn_a_chain_back(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], poses[N], plain[N];
+    hl_pg_edge_t edges[N + 2];
+    hl_pg_heading_t headings[N];
+    truth(t);
+    uint32_t n = drifting_chain(t, 1.0 * PI / 180, poses, edges), m = n;
+    copy(plain, poses);
+    hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
+    assert_non_null(g);
+    assert_int_equal(fit(g, plain, edges, &m, 1.0, 3.0), 0);
+    /* Steps alone: nothing to take the drift back, the last pose 11 degrees turned. */
+    assert_true(fabs(remainder(plain[N - 1].theta - t[N - 1].theta, 2 * PI)) > 10.5 * PI / 180);
+    for (uint32_t i = 1; i < N; i++)
+        headings[i - 1] = (hl_pg_heading_t){ i, t[i].theta, 1.0 * PI / 180 };
+    headings[4].theta += PI / 4;    /* a stop that saw mostly clutter */
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, headings, N - 1, SIGMA_MM,
+                                      SIGMA_RAD, 1.0, 3.0), 0);
+    double worst_turn = 0;
+    for (int i = 0; i < N; i++)
+        worst_turn = fmax(worst_turn, fabs(remainder(poses[i].theta - t[i].theta, 2 * PI)));
+    assert_true(worst_turn < 1.5 * PI / 180);
+    assert_true(worst_mm(poses, t) < worst_mm(plain, t) / 4);
+    /* A heading naming no pose, or with no spread, is refused: nothing moves. */
+    copy(plain, poses);
+    headings[0].pose = N;
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, headings, N - 1, SIGMA_MM,
+                                      SIGMA_RAD, 1.0, 3.0), 0);
+    headings[0].pose = 1;
+    headings[1].sigma_rad = 0;
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, headings, N - 1, SIGMA_MM,
+                                      SIGMA_RAD, 1.0, 3.0), 0);
+    assert_true(worst_mm(poses, plain) == 0);
     hl_posegraph_destroy(g);
 }
 
@@ -236,14 +280,14 @@ static void test_bad_calls_change_nothing(void **state)
     truth(t);
     uint32_t n = drifting_chain(t, 0.1, poses, edges);
     hl_posegraph_t *g = hl_posegraph_create(4, N + 2);     /* too few poses */
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
+    assert_int_equal(fit(g, poses, edges, &n, 0.0, 3.0), 0);
     assert_int_equal(n, N - 1);
     assert_true(worst_mm(poses, t) > 1000);               /* not fitted */
-    assert_int_equal(hl_posegraph_fit(NULL, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, 0.0, 3.0), 0);
+    assert_int_equal(fit(NULL, poses, edges, &n, 0.0, 3.0), 0);
     hl_posegraph_destroy(g);
     g = hl_posegraph_create(N, N + 2);
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, -1.0, 3.0), 0);
-    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, SIGMA_MM, SIGMA_RAD, NAN, 3.0), 0);
+    assert_int_equal(fit(g, poses, edges, &n, -1.0, 3.0), 0);
+    assert_int_equal(fit(g, poses, edges, &n, NAN, 3.0), 0);
     assert_true(worst_mm(poses, t) > 1000);               /* a bad kernel: not fitted */
     hl_posegraph_destroy(g);
     hl_posegraph_destroy(NULL);
@@ -258,6 +302,7 @@ int main(void)
         cmocka_unit_test(test_pose_zero_is_held_and_a_consistent_graph_stays),
         cmocka_unit_test(test_wrong_matches_under_the_kernel_go_at_once),
         cmocka_unit_test(test_steps_either_way_round_fit_alike),
+        cmocka_unit_test(test_headings_of_their_own_turn_a_chain_back),
         cmocka_unit_test(test_bad_calls_change_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

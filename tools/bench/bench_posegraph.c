@@ -66,7 +66,7 @@ static double fit_ms(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n, hl_pg_e
                      uint32_t *n_edges, uint32_t *dropped)
 {
     double t0 = now_us();
-    *dropped = hl_posegraph_fit(g, poses, n, edges, n_edges, HL_CLOSURE_SIGMA_MM,
+    *dropped = hl_posegraph_fit(g, poses, n, edges, n_edges, NULL, 0, HL_CLOSURE_SIGMA_MM,
                                 HL_CLOSURE_SIGMA_DEG * (PI / 180), HL_CLOSURE_KERNEL,
                                 HL_CLOSURE_OUTLIER);
     return (now_us() - t0) / 1e3;

@@ -278,7 +278,7 @@ bool close_loops(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracke
     size_t proposed = edges.size() - (n - 1);
     uint32_t n_edges = static_cast<uint32_t>(edges.size());
     uint32_t dropped = hl_posegraph_fit(graph.get(), poses.data(), static_cast<uint32_t>(n),
-                                        edges.data(), &n_edges, HL_CLOSURE_SIGMA_MM,
+                                        edges.data(), &n_edges, nullptr, 0, HL_CLOSURE_SIGMA_MM,
                                         hl_bam_to_rad(hl_bam_from_deg(HL_CLOSURE_SIGMA_DEG)),
                                         HL_CLOSURE_KERNEL,
                                         HL_CLOSURE_OUTLIER);
