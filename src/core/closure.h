@@ -62,8 +62,8 @@
  * pose, this errs 3.0-3.9 degrees rms when the folded normals' mean resultant length R is
  * 0.2 or more and 9.5 below (its share of corners and clutter): about 1 / R degrees. Each
  * stop's heading is weighed with a sigma of HL_CLOSURE_WALL_SIGMA_R / R degrees, within
- * the bounds below, under the matches' kernel; over 72 lab tours 1 / R gave 152.5 mm mean
- * RMSE, 0.5 / R 144.4 and 0.25 / R 143.1, against 206.7 without (docs/kidnap.md,
+ * the bounds below (no kernel, posegraph.h); over 72 lab tours 1 / R gave 126.0 mm mean
+ * RMSE, 0.5 / R 118.5 and 0.25 / R 134.2, against 206.7 without (docs/kidnap.md,
  * "Thirteenth session"). */
 #define HL_CLOSURE_WALL_SIGMA_R 0.5
 #define HL_CLOSURE_WALL_SIGMA_MIN_DEG 1.5

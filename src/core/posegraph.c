@@ -283,9 +283,8 @@ typedef struct problem {
 } problem_t;
 
 /* One Gauss-Newton step of iteratively reweighted least squares: g->dx solves H dx = -g,
- * pose 0 held, each loop edge and heading weighed by the Cauchy kernel at the current
- * poses. A heading adds to its pose's own block alone, so the products need not know of
- * it. */
+ * pose 0 held, each loop edge weighed by the Cauchy kernel at the current poses. A
+ * heading adds to its pose's own block alone, so the products need not know of it. */
 static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint32_t n,
                               const hl_pg_edge_t *edges, uint32_t n_edges,
                               const problem_t *pb)
@@ -318,8 +317,6 @@ static void gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
     for (uint32_t k = 0; k < pb->n_headings; k++) {
         const hl_pg_heading_t *h = &pb->headings[k];
         double r = wrap(poses[h->pose].theta - h->theta), wh = 1 / (h->sigma_rad * h->sigma_rad);
-        if (kernel > 0)
-            wh /= 1 + r * r * wh / (kernel * kernel);
         g->g[3 * h->pose + 2] += wh * r;
         g->diag[h->pose].v[8] += wh;
     }

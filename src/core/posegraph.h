@@ -12,8 +12,10 @@
  * and sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
  * reweighted: each Gauss-Newton step weighs it by 1 / (1 + e / kernel^2), e its squared
  * error in standard deviations at the poses the step starts from). A pose may also carry
- * a heading of its own (hl_pg_heading_t), weighed by its own sigma and the same kernel.
- * Pose 0 is held where it is. Memory: the workspace, from create only.
+ * a heading of its own (hl_pg_heading_t), weighed by its own sigma alone: the walls'
+ * headings (closure.h) are many and each weak, and under the kernel a stretch of stops
+ * turned as a whole could not be turned back (72 lab tours: 142.3 mm mean RMSE with it,
+ * 118.5 without). Pose 0 is held where it is. Memory: the workspace, from create only.
  */
 #ifndef HOUGHLOC_CORE_POSEGRAPH_H
 #define HOUGHLOC_CORE_POSEGRAPH_H
@@ -60,8 +62,8 @@ hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
 
 /**
  * Moves @p poses[1 .. n - 1] to the least-squares fit of @p edges and of the @p n_headings
- * @p headings (pose 0 held: a heading of its own is ignored), each loop edge and each
- * heading under a Cauchy kernel of @p kernel standard deviations (0: none). Then the loop
+ * @p headings (pose 0 held: a heading of its own is ignored), each loop edge under a
+ * Cauchy kernel of @p kernel standard deviations (0: none). Then the loop
  * edges more than @p gate standard deviations off the fit (rms over their three terms)
  * are dropped from @p edges (*n_edges shrinks, the order kept), worst first, and the rest
  * fitted again, until none is that far off or 8 are dropped: under a kernel all such
