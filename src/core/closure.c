@@ -178,8 +178,7 @@ void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
     c->placed[i] = pose;
     c->rng_before[i] = rng_before;
     c->wall_sigma[i] = 0;
-    if (c->square_walls)
-        c->wall_axis[i] = walls_seen(placed, &c->wall_sigma[i]);
+    c->wall_axis[i] = c->square_walls ? walls_seen(placed, &c->wall_sigma[i]) : 0;
     if (i > 0 && c->n_edges < c->max_edges)
         c->edges[c->n_edges++] = (hl_pg_edge_t){ i - 1, i,
                                                  hl_pg_between(c->poses[i - 1], c->poses[i]),
