@@ -78,6 +78,18 @@ check "hl-bench-posegraph prints its line" grep -qE \
     '^bench posegraph_fit stops=256 edges=[0-9]+ dropped=[0-9]+ first_ms=[0-9.]+ refit_ms=[0-9.]+ worst_mm=[0-9]+$' "$tmp/pg"
 check "hl-bench-posegraph: the fit lands every stop within 200 mm of its truth" \
     awk '{ split($NF, w, "="); exit !(w[2] + 0 < 200) }' "$tmp/pg"
+# hl-bench-cycle's loop closure, with and without square walls: each run repeatable (exit
+# 0), and the walls change the tour (another checksum).
+"$BIN/hl-bench-cycle" --reps 2 --close-loops >"$tmp/cyc_loops"
+loops_rc=$?
+"$BIN/hl-bench-cycle" --reps 2 --square-walls >"$tmp/cyc_walls"
+walls_rc=$?
+check "hl-bench-cycle --close-loops and --square-walls: repeatable, different tours" sh -c '
+    [ "$1" -eq 0 ] && [ "$2" -eq 0 ] &&
+    a=$(sed -n "s/^cycle summary .* checksum=\([0-9a-f]*\)$/\1/p" "$3") &&
+    b=$(sed -n "s/^cycle summary .* checksum=\([0-9a-f]*\)$/\1/p" "$4") &&
+    [ -n "$a" ] && [ -n "$b" ] && [ "$a" != "$b" ]' - "$loops_rc" "$walls_rc" \
+    "$tmp/cyc_loops" "$tmp/cyc_walls"
 
 # Bad input: one line, non-zero exit.
 rejects "missing log folder" "cannot open" "$BIN/hl-experiments" --logs "$tmp/nowhere" --out "$tmp/x" --no-figures
