@@ -103,7 +103,7 @@ check "hl-tour-study --mode oracle: 127 stops scored, none far" \
 # hl-tour-study's map of the tour is the daemon's own (the same picture). Loop closure,
 # after the tour (--mode graph) or as it goes (houghlocd's slam.close_loops, which the
 # tours use), brings tour 1 nearer the truth than tracking alone (337.8 mm: 131.2 and,
-# with square walls, 87.6 as of the thirteenth session, docs/kidnap.md).
+# with square walls, 80.7 as of the thirteenth session, docs/kidnap.md).
 # shellcheck disable=SC2086
 "$BIN/hl-tour-study" --config /dev/null $tour_sets --quiet --write-map "$tmp/redrawn.hlmap" \
     "$out/sim/lab/1/tour.lcmlog" >/dev/null 2>&1
@@ -133,7 +133,7 @@ for how in "--set slam.close_loops=false --set slam.square_walls=false --mode gr
 done
 # Square walls (slam.square_walls, which the tours use): each stop's readings tie its
 # heading to the world, so tour 1 ends nearer the truth than with loop closure alone
-# (87.6 mm against 97.2 as of the thirteenth session).
+# (80.7 mm against 97.2 as of the thirteenth session).
 # shellcheck disable=SC2086
 loops_only=$("$BIN/hl-tour-study" --config /dev/null $tour_sets --set slam.square_walls=false \
              --quiet "$out/sim/lab/1/tour.lcmlog" 2>/dev/null |
