@@ -274,7 +274,8 @@ static void precondition(const hl_posegraph_t *g, uint32_t n, const double *r, d
     }
 }
 
-/* What a fit weighs its poses by, besides the edges. */
+/* A fit's fixed inputs besides the poses and edges: the headings of the poses' own, the
+ * edges' weights and the kernel. */
 typedef struct problem {
     const hl_pg_heading_t *headings;
     uint32_t n_headings;
@@ -393,13 +394,15 @@ static bool drop_worst(const hl_pg_pose_t *poses, hl_pg_edge_t *edges, uint32_t 
     return true;
 }
 
-/* Whether every heading names a pose below n and has a positive sigma. */
+/* Whether every heading names a pose below n, is a number and has a positive, finite
+ * sigma. */
 static bool headings_fit(const hl_pg_heading_t *headings, uint32_t n_headings, uint32_t n)
 {
     if (n_headings && !headings)
         return false;
     for (uint32_t k = 0; k < n_headings; k++)
-        if (headings[k].pose >= n || !(headings[k].sigma_rad > 0))
+        if (headings[k].pose >= n || !isfinite(headings[k].theta) ||
+            !(headings[k].sigma_rad > 0) || !isfinite(headings[k].sigma_rad))
             return false;
     return true;
 }

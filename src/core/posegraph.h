@@ -62,8 +62,9 @@ hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
 
 /**
  * Moves @p poses[1 .. n - 1] to the least-squares fit of @p edges and of the @p n_headings
- * @p headings (pose 0 held: a heading of its own is ignored), each loop edge under a
- * Cauchy kernel of @p kernel standard deviations (0: none). Then the loop
+ * @p headings (pose 0 held: a heading of its own is ignored; a heading naming no pose,
+ * not a number or with no positive finite sigma refuses the call), each loop edge under
+ * a Cauchy kernel of @p kernel standard deviations (0: none). Then the loop
  * edges more than @p gate standard deviations off the fit (rms over their three terms)
  * are dropped from @p edges (*n_edges shrinks, the order kept), worst first, and the rest
  * fitted again, until none is that far off or 8 are dropped: under a kernel all such

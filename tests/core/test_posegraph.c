@@ -260,7 +260,8 @@ static void test_headings_of_their_own_turn_a_chain_back(void **state)
         worst_turn = fmax(worst_turn, fabs(remainder(poses[i].theta - t[i].theta, 2 * PI)));
     assert_true(worst_turn < 1.5 * PI / 180);
     assert_true(worst_mm(poses, t) < worst_mm(plain, t) / 4);
-    /* A heading naming no pose, or with no spread, is refused: nothing moves. */
+    /* A heading naming no pose, with no spread or no number, or none at all, is refused:
+     * nothing moves. */
     copy(plain, poses);
     headings[0].pose = N;
     assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, headings, N - 1, SIGMA_MM,
@@ -269,6 +270,12 @@ static void test_headings_of_their_own_turn_a_chain_back(void **state)
     headings[1].sigma_rad = 0;
     assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, headings, N - 1, SIGMA_MM,
                                       SIGMA_RAD, 1.0, 3.0), 0);
+    headings[1].sigma_rad = 1.0 * PI / 180;
+    headings[2].theta = NAN;
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, headings, N - 1, SIGMA_MM,
+                                      SIGMA_RAD, 1.0, 3.0), 0);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, NULL, 1, SIGMA_MM, SIGMA_RAD,
+                                      1.0, 3.0), 0);
     assert_true(worst_mm(poses, plain) == 0);
     hl_posegraph_destroy(g);
 }
