@@ -22,7 +22,9 @@ struct hl_closure {
     hl_pose_t *placed;      /* where the stop's vectors lie in the map (poses, rounded, as
                                of the last fit) */
     hl_rng_t *rng_before;   /* the map's culling generator before the stop was drawn */
-    double *wall_axis;      /* the walls' axis in the stop's frame, radians (square walls) */
+    double *wall_axis;      /* the walls' axis in the stop's frame, radians (square walls;
+                               its scan's, worked out once when recorded rather than a
+                               sine and a cosine a reading of every stop at every fit) */
     double *wall_sigma;     /* ... its sigma, radians; 0: the stop says nothing of walls */
     hl_pg_heading_t *headings;  /* [cap] scratch: the stops' headings for a fit */
     bool square_walls;
@@ -149,7 +151,7 @@ static double walls_seen(const hl_scan_t *placed, double *sigma)
         const hl_reading_t *r = &placed->readings[k];
         if (!r->valid)
             continue;
-        double normal = hl_bam_to_rad(r->bearing) + r->tilt * (2 * PI / 65536);
+        double normal = hl_bam_to_rad(hl_reading_normal(r, 0));   /* the robot's frame */
         c4 += cos(4 * normal);
         s4 += sin(4 * normal);
         n++;
