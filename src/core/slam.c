@@ -55,6 +55,9 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->closure_stops = 256;
     p->square_walls = false;
     p->wall_axis = 0;
+    p->long_drive_mm = 0;
+    p->long_drive_turn = hl_bam_from_deg(6.0);
+    p->long_drive_turns = 2;
     hl_reloc_params_default(&p->reloc);
 }
 
@@ -107,6 +110,14 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "closure_stops must be in 2..4096";
     if (p->square_walls && !p->close_loops)
         return "square_walls needs close_loops";
+    if (p->long_drive_mm < 0 || p->long_drive_mm > 1000000)
+        return "long_drive_mm must be in 0..1000000";
+    if (p->long_drive_mm > 0 &&
+        (p->long_drive_turns < 1 || p->long_drive_turns > HL_SLAM_MAX_DRIVE_TURNS ||
+         p->long_drive_turn == 0 ||
+         (uint32_t)p->long_drive_turn * p->long_drive_turns > HL_BAM_QUARTER_TURN))
+        return "long drives need long_drive_turns in 1..4 and long_drive_turn above 0, "
+               "turning at most 90 degrees in all";
     return hl_reloc_params_error(&p->reloc);
 }
 
@@ -269,6 +280,49 @@ static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predi
     return localize_in(s, s->map, scan, predicted, loc, pose);
 }
 
+/* A turned drive is taken only when the judge (reloc.h) explains this many times as many
+ * readings there, and a few more, as at the tracker's own pose: its score is the evidence
+ * against the odometry, and at an unmapped place both scores are small. */
+#define TURN_MARGIN 1.2
+#define TURN_MIN_GAIN 3u
+
+/* Long drives (slam.h): after a drive of long_drive_mm or more since the last scan, the
+ * scan is localized again with the drive turned about where it started, by each multiple
+ * of long_drive_turn up to long_drive_turns each way (odometry's heading error swings the
+ * whole drive, so the position moves with the heading), and the judge picks. When a
+ * turned drive wins, *found and *loc become its. @return whether one did. */
+static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
+                       hl_loc_result_t *loc, hl_pose_t *found)
+{
+    if (s->p.long_drive_mm == 0 || !s->started ||
+        hypot(drive.x_mm, drive.y_mm) < (double)s->p.long_drive_mm)
+        return false;
+    enum { MAX = 1 + 2 * HL_SLAM_MAX_DRIVE_TURNS };
+    hl_pose_t pose[MAX] = { *found }, pred;
+    hl_loc_result_t res[MAX];
+    uint32_t score[MAX], n = 1;
+    res[0] = *loc;
+    for (int k = -(int)s->p.long_drive_turns; k <= (int)s->p.long_drive_turns; k++) {
+        hl_pose_t from = s->pose;
+        from.theta = (hl_bam_t)(from.theta + k * (int32_t)s->p.long_drive_turn);
+        pred = hl_pose_compose(from, drive);
+        if (k != 0 && hl_pose_in_range(pred) &&
+            localize(s, scan, pred, &res[n], &pose[n]) == HL_OK)
+            n++;
+    }
+    hl_reloc_judge_poses(s->reloc, hl_map_vectors(s->map), hl_map_count(s->map), scan, pose, n,
+                         score);
+    uint32_t best = 0;
+    for (uint32_t i = 1; i < n; i++)
+        if (score[i] > score[best])
+            best = i;
+    if (best == 0 || score[best] < TURN_MARGIN * score[0] + TURN_MIN_GAIN)
+        return false;
+    *found = pose[best];
+    *loc = res[best];
+    return true;
+}
+
 /* Loop closure after a committed stop (slam.h): the stop remembered, matched against the
  * earlier stops near it (hl_closure_counts, then the gate), and, when any match is taken,
  * every stop fitted and the map drawn again with them. @return the matches taken; *pose
@@ -363,7 +417,12 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
     hl_status_t st = localize(s, scan, predicted, &step.loc, &found);
     bool extend = true;
     if (st == HL_OK) {
-        bool accept = !s->p.guarded || plausible(s, found, predicted, &step.loc);
+        /* A turned drive's pose has passed the judge, which weighs more than the guard's
+         * rules of thumb (its peak may be low against recent ones: the robot has driven
+         * into a place it has mapped less). */
+        step.turned = turn_drive(s, scan, hl_pose_between(s->odom, odometry), &step.loc,
+                                 &found);
+        bool accept = !s->p.guarded || step.turned || plausible(s, found, predicted, &step.loc);
         peak_avg = tracked_peak(s->peak_avg, step.loc.peak, accept);
         if (accept) {
             step.status = HL_SLAM_ACCEPTED;

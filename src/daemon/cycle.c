@@ -1,6 +1,7 @@
 /* cycle.c - scans in, poses and maps out (see cycle.h). */
 #include "cycle_internal.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -264,6 +265,13 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     publish_pose(c, in, &step, status, &found);
     hl_cycle_record_compute(c, c->io.now_us(c->io.ctx) - t0);
     bool changed = hl_map_version(hl_slam_map(c->slam)) != version;
+    if (step.turned)    /* slam.long_drive_mm: the odometry's heading had drifted */
+        hl_log(HL_LOG_INFO, "scan %llu (seq %d): after a long drive, the drive turned about "
+               "its start fits better: (%.3f, %.3f) m, %.1f deg, %.0f mm from the odometry's",
+               (unsigned long long)c->scans_total, in->seq, step.pose.x_mm / 1000.0,
+               step.pose.y_mm / 1000.0, hl_bam_to_sdeg(step.pose.theta),
+               hypot((double)step.pose.x_mm - step.predicted.x_mm,
+                     (double)step.pose.y_mm - step.predicted.y_mm));
     if (hl_log_enabled(HL_LOG_DEBUG)) {
         static const char *const names[] = { "ACCEPTED", "REJECTED_WILD", "ODOMETRY_ONLY",
                                              "RELOCALIZED", "LOST" };
