@@ -57,7 +57,7 @@ void hl_reloc_params_default(hl_reloc_params_t *p)
     p->verify_mm = 60;
     p->verify_along_mm = 60;
     p->judge_gate = hl_bam_from_deg(90.0);
-    p->max_ratio = 0.6;
+    p->max_ratio = 0.7;
     p->min_explained_pct = 35.0;
 }
 
