@@ -4,7 +4,7 @@
  * and fingerprints every result so that a speed-up can be shown to change nothing.
  *
  *   hl-bench-cycle [--log FILE] [--reps N] [--start X_MM,Y_MM,DEG] [--paper]
- *                  [--close-loops] [--square-walls] [--steps]
+ *                  [--close-loops] [--square-walls] [--long-drives] [--steps]
  *
  * Reads the SONAR events of FILE (default logs/tour.lcmlog; every other channel is
  * skipped, so a stale GROUND_TRUTH type does not matter), then runs the tour N times
@@ -12,7 +12,8 @@
  * (default the origin) with hl_slam_params_default (improved mode; --paper: the
  * paper's cycle, unguarded, without echo bearings and refinement, the other parameters
  * as they are; --close-loops: with loop closure, slam.close_loops; --square-walls: and
- * square walls along x and y, slam.square_walls). Each hl_slam_update
+ * square walls along x and y, slam.square_walls; --long-drives: a drive of 2 m or more also
+ * tried turned about its start, slam.long_drive_mm = 2000). Each hl_slam_update
  * is timed with CLOCK_MONOTONIC. Prints one line per repetition and a summary:
  *
  *   cycle rep=<i> scans=<n> median_us=<n> p90_us=<n> p99_us=<n> max_us=<n> checksum=<hex>
@@ -141,7 +142,7 @@ static int read_tour(const char *path, recorded_t *out, int max)
 static void usage(FILE *f)
 {
     fprintf(f, "usage: hl-bench-cycle [--log FILE] [--reps N] [--start X_MM,Y_MM,DEG] "
-               "[--paper] [--close-loops] [--square-walls] [--steps]\n");
+               "[--paper] [--close-loops] [--square-walls] [--long-drives] [--steps]\n");
 }
 
 static int bad_usage(const char *what, const char *value)
@@ -190,6 +191,7 @@ int main(int argc, char **argv)
     const char *path = "logs/tour.lcmlog";
     int reps = 5;
     bool paper = false, steps = false, close_loops = false, square_walls = false;
+    bool long_drives = false;
     hl_pose_t start = { 0, 0, 0 };
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -215,6 +217,8 @@ int main(int argc, char **argv)
             close_loops = true;
         } else if (!strcmp(argv[i], "--square-walls")) {
             close_loops = square_walls = true;
+        } else if (!strcmp(argv[i], "--long-drives")) {
+            long_drives = true;
         } else if (!strcmp(argv[i], "--steps")) {
             steps = true;
         } else {
@@ -239,6 +243,8 @@ int main(int argc, char **argv)
     }
     p.close_loops = close_loops;
     p.square_walls = square_walls;
+    if (long_drives)
+        p.long_drive_mm = 2000;
     double *t = malloc((size_t)n * sizeof *t), *meds = malloc((size_t)reps * sizeof *meds);
     double *all = malloc((size_t)n * reps * sizeof *all);
     if (!t || !meds || !all) {
