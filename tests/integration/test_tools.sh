@@ -90,6 +90,16 @@ check "hl-bench-cycle --close-loops and --square-walls: repeatable, different to
     b=$(sed -n "s/^cycle summary .* checksum=\([0-9a-f]*\)$/\1/p" "$4") &&
     [ -n "$a" ] && [ -n "$b" ] && [ "$a" != "$b" ]' - "$loops_rc" "$walls_rc" \
     "$tmp/cyc_loops" "$tmp/cyc_walls"
+# ... and with long drives (logs/tour.lcmlog has drives of 2 m or more; a turned one is
+# taken there, so the tour differs again).
+"$BIN/hl-bench-cycle" --reps 2 --square-walls --long-drives >"$tmp/cyc_drives"
+drives_rc=$?
+check "hl-bench-cycle --long-drives: repeatable, another tour" sh -c '
+    [ "$1" -eq 0 ] &&
+    a=$(sed -n "s/^cycle summary .* checksum=\([0-9a-f]*\)$/\1/p" "$2") &&
+    b=$(sed -n "s/^cycle summary .* checksum=\([0-9a-f]*\)$/\1/p" "$3") &&
+    [ -n "$a" ] && [ -n "$b" ] && [ "$a" != "$b" ]' - "$drives_rc" \
+    "$tmp/cyc_walls" "$tmp/cyc_drives"
 
 # Bad input: one line, non-zero exit.
 rejects "missing log folder" "cannot open" "$BIN/hl-experiments" --logs "$tmp/nowhere" --out "$tmp/x" --no-figures
