@@ -187,8 +187,9 @@ static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predi
 static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
                        hl_loc_result_t *loc, hl_pose_t *found)
 {
+    const hl_pose_t origin = { 0, 0, 0 };
     if (s->p.long_drive_mm == 0 || !s->started ||
-        hypot(drive.x_mm, drive.y_mm) < (double)s->p.long_drive_mm)
+        dist2(drive, origin) < (int64_t)s->p.long_drive_mm * s->p.long_drive_mm)
         return false;
     enum { MAX = 1 + 2 * HL_SLAM_MAX_DRIVE_TURNS };
     hl_pose_t pose[MAX] = { *found }, pred;
