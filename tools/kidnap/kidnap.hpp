@@ -41,6 +41,8 @@ struct Trial {
     double ms = 0.0;            // the hl_slam_relocalize call alone (CLOCK_MONOTONIC)
     uint32_t truth_score = 0;   // hl_slam_judge's best within kTruthNearMm, kTruthNearDeg
                                 // of the truth: what the map lets the search find there
+    uint32_t answer_climbed = 0;    // ... and near the answer (both climbed alike), so
+                                    // that the two compare as places, not as poses
     double error_mm = 0.0, error_deg = 0.0;     // of result.pose, when it has one
     Outcome outcome = Outcome::Ambiguous;
     int map = 1;                // which of the row's maps (1..), for the detail file
