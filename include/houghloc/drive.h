@@ -64,8 +64,6 @@ typedef enum hl_drive_cmd {
     HL_DRIVE_CMD_HEAD,          /* turn to absolute heading arg (whole degrees, 0..359) */
     HL_DRIVE_CMD_MOVE,          /* drive arg mm straight ahead */
     HL_DRIVE_CMD_SOUND,         /* sound and localize, then call hl_drive_localized */
-    HL_DRIVE_CMD_STOP_SOUND,    /* the base stalled: stop it, then as HL_DRIVE_CMD_SOUND;
-                                   the drive fails once localized (hl_drive_why says why) */
 } hl_drive_cmd_t;
 
 typedef struct hl_drive_out {
@@ -84,7 +82,6 @@ typedef struct hl_drive {
     bool seen_moving;           /* the base has reported motion since the command */
     bool turned_final;          /* the final heading was commanded once (then sounded) */
     bool last_turn;             /* this final turn ends the destination */
-    bool stalled;               /* the sounding asked for follows a stall: then fail */
     hl_bam_t aim;               /* odometry heading commanded (TURN, FINAL_TURN) */
     int32_t leg_mm;             /* distance commanded (MOVE) */
     char why[96];

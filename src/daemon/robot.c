@@ -106,12 +106,6 @@ static void drive_do(hl_robot_t *r, const hl_drive_out_t *out, int64_t now_ms)
     case HL_DRIVE_CMD_HEAD: robot_command(r, HL_ARCOS_HEAD, true, out->arg, now_ms); break;
     case HL_DRIVE_CMD_MOVE: robot_command(r, HL_ARCOS_MOVE, true, out->arg, now_ms); break;
     case HL_DRIVE_CMD_SOUND: start_sounding(r, now_ms); break;
-    case HL_DRIVE_CMD_STOP_SOUND:
-        hl_log(HL_LOG_WARNING, "destination %lld: %s: sounding where it stands",
-               (long long)r->dest_seq, hl_drive_why(&r->drive));
-        robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
-        start_sounding(r, now_ms);
-        break;
     case HL_DRIVE_CMD_NONE: break;
     }
     if (out->cmd == HL_DRIVE_CMD_HEAD || out->cmd == HL_DRIVE_CMD_MOVE)

@@ -103,7 +103,7 @@ void hl_drive_start(hl_drive_t *d, int32_t x_mm, int32_t y_mm, bool has_heading,
     d->has_heading = has_heading;
     d->heading = heading;
     d->legs = 0;
-    d->turned_final = d->last_turn = d->stalled = false;
+    d->turned_final = d->last_turn = false;
     d->why[0] = '\0';
     hl_drive_localized(d, in, out);
 }
@@ -117,9 +117,7 @@ static bool heading_off(const hl_drive_t *d, const hl_drive_in_t *in)
 void hl_drive_localized(hl_drive_t *d, const hl_drive_in_t *in, hl_drive_out_t *out)
 {
     *out = (hl_drive_out_t){ HL_DRIVE_CMD_NONE, 0 };
-    if (d->stalled) {
-        d->phase = HL_DRIVE_FAILED;     /* why: the stall; the base is stopped */
-    } else if (hl_drive_remaining(d, in->estimate) > d->p.arrive_mm) {
+    if (hl_drive_remaining(d, in->estimate) > d->p.arrive_mm) {
         d->turned_final = false;
         next_leg(d, in, out);
     } else if (heading_off(d, in)) {
@@ -165,14 +163,9 @@ void hl_drive_on_sip(hl_drive_t *d, const hl_drive_in_t *in, hl_drive_out_t *out
                                          [HL_DRIVE_FINAL_TURN] = "turning to the heading" };
     char why[96];
     if (in->stalled) {
-        /* Something stands where the map has free space, or the robot is not where the
-         * estimate puts it (carried away): a sounding tells which, and a daemon that
-         * watches for a kidnap becomes lost on it, before the destination fails. */
-        snprintf(d->why, sizeof d->why, "the base stalled while %s (leg %d)",
-                 doing[d->phase], d->legs);
-        d->stalled = true;
-        d->phase = HL_DRIVE_SOUND;
-        *out = (hl_drive_out_t){ HL_DRIVE_CMD_STOP_SOUND, 0 };
+        snprintf(why, sizeof why, "the base stalled while %s (leg %d)", doing[d->phase], d->legs);
+        hl_drive_fail(d, why);
+        *out = (hl_drive_out_t){ HL_DRIVE_CMD_STOP, 0 };
         return;
     }
     if (in->robot_ms > d->deadline_ms) {

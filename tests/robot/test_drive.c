@@ -30,7 +30,7 @@ static void obey(base_t *b, const hl_drive_out_t *o)
         b->turning = true;
     } else if (o->cmd == HL_DRIVE_CMD_MOVE) {
         b->move_left = o->arg;
-    } else if (o->cmd == HL_DRIVE_CMD_STOP || o->cmd == HL_DRIVE_CMD_STOP_SOUND) {
+    } else if (o->cmd == HL_DRIVE_CMD_STOP) {
         b->turning = false;
         b->move_left = 0;
     }
@@ -121,46 +121,27 @@ static void test_final_heading_is_restored_after_the_sounding(void **state)
     assert_int_equal(b.soundings, 2);   /* after the leg, after the first final turn */
 }
 
-/* A stall stops the base and sounds where it stands (a robot carried away drives into
- * walls the estimate does not have: the sounding shows it lost), then fails. */
-static void test_a_stall_stops_sounds_and_fails(void **state)
+static void test_a_stall_fails_at_once_and_stops(void **state)
 {
     (void)state;
     hl_drive_t d;
     setup(&d);
-    base_t b = { 0 };
+    base_t b = { .stall = true };
     hl_pose_t start = hl_pose_compose(MAP_FROM_ODOM, b.odo);
+    b.stall = false;
     hl_drive_in_t in = advance(&b);
     hl_drive_out_t out;
     hl_drive_start(&d, start.x_mm, start.y_mm + 1000, false, 0, &in, &out);
     obey(&b, &out);
     b.stall = true;         /* the wheels are blocked: the turn never starts */
-    int sips = 0;
-    for (; sips < 200 && hl_drive_phase(&d) != HL_DRIVE_SOUND; sips++) {
+    for (int i = 0; i < 200 && hl_drive_phase(&d) != HL_DRIVE_FAILED; i++) {
         in = advance(&b);
         in.stalled = true;
         hl_drive_on_sip(&d, &in, &out);
     }
-    assert_true(sips < 200);
-    assert_int_equal(hl_drive_phase(&d), HL_DRIVE_SOUND);
-    assert_int_equal(out.cmd, HL_DRIVE_CMD_STOP_SOUND);
-    obey(&b, &out);
-    assert_int_equal(b.move_left, 0);
-    assert_false(b.turning);
-    /* packets while it sounds change nothing */
-    in = advance(&b);
-    hl_drive_on_sip(&d, &in, &out);
-    assert_int_equal(out.cmd, HL_DRIVE_CMD_NONE);
-    assert_int_equal(hl_drive_phase(&d), HL_DRIVE_SOUND);
-    /* localized, still 1 m from the goal: it fails on the stall, not with another leg */
-    hl_drive_localized(&d, &in, &out);
     assert_int_equal(hl_drive_phase(&d), HL_DRIVE_FAILED);
-    assert_int_equal(out.cmd, HL_DRIVE_CMD_NONE);
-    assert_non_null(strstr(hl_drive_why(&d), "stalled while turning (leg 1)"));
-    /* the next destination starts afresh */
-    b.stall = false;
-    assert_int_equal(go(&d, &b, start.x_mm + 600, start.y_mm, false, 0, 5000),
-                     HL_DRIVE_ARRIVED);
+    assert_int_equal(out.cmd, HL_DRIVE_CMD_STOP);
+    assert_non_null(strstr(hl_drive_why(&d), "stalled"));
 }
 
 static void test_a_base_that_never_stops_times_out(void **state)
@@ -207,7 +188,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_arrives_in_legs_no_longer_than_the_limit),
         cmocka_unit_test(test_final_heading_is_restored_after_the_sounding),
-        cmocka_unit_test(test_a_stall_stops_sounds_and_fails),
+        cmocka_unit_test(test_a_stall_fails_at_once_and_stops),
         cmocka_unit_test(test_a_base_that_never_stops_times_out),
         cmocka_unit_test(test_gives_up_after_max_legs),
     };
