@@ -192,14 +192,14 @@ static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
         dist2(drive, origin) < (int64_t)s->p.long_drive_mm * s->p.long_drive_mm)
         return false;
     enum { MAX = 1 + 2 * HL_SLAM_MAX_DRIVE_TURNS };
-    hl_pose_t pose[MAX] = { *found }, pred;
+    hl_pose_t pose[MAX] = { *found };
     hl_loc_result_t res[MAX];
     uint32_t score[MAX], n = 1;
     res[0] = *loc;
     for (int k = -(int)s->p.long_drive_turns; k <= (int)s->p.long_drive_turns; k++) {
         hl_pose_t from = s->pose;
         from.theta = (hl_bam_t)(from.theta + k * (int32_t)s->p.long_drive_turn);
-        pred = hl_pose_compose(from, drive);
+        hl_pose_t pred = hl_pose_compose(from, drive);
         if (k != 0 && hl_pose_in_range(pred) &&
             localize(s, scan, pred, &res[n], &pose[n]) == HL_OK)
             n++;
