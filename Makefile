@@ -1,16 +1,22 @@
 # houghloc - sonar localization and map-making daemon.
 #
-#   make            build everything into build/
-#   make test       install missing packages, build, run all tests (unit tests under
+#   make            build the product into build/: the daemon, its clients and tools, the
+#                   libraries and the bindings (BINS)
+#   make test       install missing packages, build the product, the unit tests and the
+#                   lab programs the tests exercise, run all tests (unit tests under
 #                   AddressSanitizer + UndefinedBehaviorSanitizer)
-#   make bench      localization benchmark at -O2
 #   make demo       houghlocd drives the built-in simulated robot through the lab
 #                   (WORLD=corridor: the second building)
-#   make logs       regenerate the simulated data sets in logs/ (byte-identical)
-#   make experiments  rerun the paper's three experiments
+#   make lab        build the laboratory's programs (LAB_BINS, tools/lab/lab.mk); its
+#                   targets build what they need and run it: bench, logs, experiments,
+#                   experiments-seeds, kidnap, eval-real, trials
+#   make fuzz       the fuzz targets under libFuzzer (tests/fuzz/fuzz.mk)
+#   make crash-trials  kill -9 of houghlocd during a replay, 100 times (src/daemon)
 #   make clean
 #
-# Sub-makefiles tools/*/*.mk add their programs to BINS and their tests to TEST_BINS.
+# The product's fragments (src/*/*.mk, tools/*/*.mk, tests/*/*.mk, packaging/*.mk) add
+# their programs to BINS and their tests to TEST_BINS and INTEGRATION_TESTS; the lab's
+# (tools/lab/lab.mk and tools/lab/*/*.mk) add theirs to LAB_BINS.
 
 BUILD    ?= build
 CC       ?= cc
@@ -48,9 +54,6 @@ TRIG_SRC  := $(BUILD)/gen/trig_table.c
 VECTOR_FLAGS := -ftree-vectorize -fvect-cost-model=dynamic
 KERNEL_SRCS  := src/core/blur.c src/core/peak.c src/core/localize.c
 
-# ---- test kit: synthetic scenes and the floating-point reference localizer ------------
-TESTKIT_SRCS := tools/testkit/synthroom.c tools/testkit/ref_localize.c
-
 # ---- LCM types, generated at build time (never committed) -----------------------------
 LCM_DEFS   := $(wildcard lcmtypes/*.lcm)
 LCM_NAMES  := $(patsubst lcmtypes/houghloc_%.lcm,%,$(LCM_DEFS))
@@ -62,37 +65,36 @@ asanobj = $(patsubst %.c,$(BUILD)/asan/%.o,$(1))
 
 CORE_OBJS      := $(call obj,$(CORE_SRCS)) $(BUILD)/obj/gen/trig_table.o
 CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(BUILD)/asan/gen/trig_table.o
-TESTKIT_OBJS      := $(call obj,$(TESTKIT_SRCS))
-TESTKIT_ASAN_OBJS := $(call asanobj,$(TESTKIT_SRCS))
 LCM_OBJS       := $(call obj,$(LCM_C_SRCS:$(BUILD)/%=%))
 LCM_ASAN_OBJS  := $(call asanobj,$(LCM_C_SRCS:$(BUILD)/%=%))
 
 CORE_LIB      := $(BUILD)/lib/libhoughloc_core.a
 CORE_ASAN_LIB := $(BUILD)/lib/libhoughloc_core_asan.a
-TESTKIT_LIB      := $(BUILD)/lib/libhoughloc_testkit.a
-TESTKIT_ASAN_LIB := $(BUILD)/lib/libhoughloc_testkit_asan.a
 LCM_LIB       := $(BUILD)/lib/libhoughloc_lcmtypes.a
 
 # ---- unit tests (cmocka, under ASan + UBSan) ------------------------------------------
 CORE_TESTS := $(patsubst tests/core/%.c,$(BUILD)/tests/core/%,$(wildcard tests/core/test_*.c))
 TEST_BINS  := $(CORE_TESTS)
-BINS       := $(BUILD)/bin/hl-bench
+BINS       :=
+LAB_BINS   :=
 INTEGRATION_TESTS := tests/integration/test_tools.sh
 
-.PHONY: all deps test unit-test bench demo clean lcmtypes
+.PHONY: all deps test unit-test demo clean lcmtypes
 .DEFAULT_GOAL := all
 
 # The layers in their order, each seeing the libraries of those before it: src/bus/bus.mk
 # the bus library, src/robot/robot.mk the robot link's, src/daemon/daemon.mk houghlocd;
-# then tools/*/*.mk the separate programs and packaging/packaging.mk `make install`.
+# then tools/*/*.mk the separate programs and packaging/packaging.mk `make install`;
+# last the laboratory, tools/lab/lab.mk, which builds on all of them.
 include src/bus/bus.mk src/robot/robot.mk src/daemon/daemon.mk
--include $(sort $(wildcard tools/*/*.mk tests/*/*.mk packaging/*.mk))
+-include $(sort $(filter-out tools/lab/%,$(wildcard tools/*/*.mk tests/*/*.mk packaging/*.mk)))
+include tools/lab/lab.mk
 
 # The sanitized bus library carries a sanitized copy of the generated code, so every test
 # that links it (bus, daemon) takes the generated functions from there, not $(LCM_LIB).
 $(BUS_ASAN_LIB): $(LCM_ASAN_OBJS)
 
-all: $(BINS) $(TEST_BINS)
+all: $(BINS)
 
 deps:
 	$(Q)sh tools/build/install-deps.sh
@@ -161,8 +163,6 @@ $(BUILD)/lib/%.a:
 	$(Q)rm -f $@ && ar rcs $@ $^
 $(CORE_LIB): $(CORE_OBJS)
 $(CORE_ASAN_LIB): $(CORE_ASAN_OBJS)
-$(TESTKIT_LIB): $(TESTKIT_OBJS)
-$(TESTKIT_ASAN_LIB): $(TESTKIT_ASAN_OBJS)
 $(LCM_LIB): $(LCM_OBJS)
 
 # ---- unit tests -----------------------------------------------------------------------
@@ -174,23 +174,12 @@ $(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TESTKIT_ASAN_LIB) $(CORE_A
 unit-test: $(TEST_BINS)
 	$(Q)sh tests/run-unit.sh $(TEST_BINS)
 
+# The integration tests run the product and the lab's programs (test_tools.sh, kidnap,
+# eval-real), so both are built first.
 test: deps
-	$(Q)$(MAKE) --no-print-directory all
+	$(Q)$(MAKE) --no-print-directory all lab
 	$(Q)$(MAKE) --no-print-directory unit-test
 	$(Q)sh tests/run-integration.sh $(INTEGRATION_TESTS)
-
-# ---- benchmark ------------------------------------------------------------------------
-$(BUILD)/bin/hl-bench: $(call obj,tools/bench/bench_localize.c) $(TESTKIT_LIB) $(CORE_LIB)
-	@mkdir -p $(@D)
-	$(Q)$(CC) -o $@ $^ -lm
-
-bench: deps
-	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-bench $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval \
-	    $(BUILD)/bin/hl-bench-posegraph OPT="-O2 -g"
-	$(Q)$(BUILD)/bin/hl-bench
-	$(Q)$(BUILD)/bin/hl-bench-posegraph --stops 256
-	$(Q)$(BUILD)/bin/hl-bench-posegraph --stops 4096
-	$(Q)BUILD=$(BUILD) sh tools/bench/bench_daemon.sh
 
 # The product on the built-in simulated robot: houghlocd drives houghloc-sim through a
 # scripted tour of WORLD (lab or corridor) with houghloc-goto; hl-eval scores the log

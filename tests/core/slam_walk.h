@@ -8,7 +8,7 @@
 #include <stdlib.h>
 
 #include "houghloc/slam.h"
-#include "../../tools/testkit/synthroom.h"
+#include "../../tools/lab/testkit/synthroom.h"
 
 #define STEPS 40
 

@@ -1,4 +1,4 @@
-/* The fixed-point localizer against the floating-point reference (tools/testkit):
+/* The fixed-point localizer against the floating-point reference (tools/lab/testkit):
  * on randomized scenes the peak cell is the same and the interpolated poses agree
  * within half a cell (and half a heading step).
  *
@@ -21,8 +21,8 @@
 #include <stdlib.h>
 
 #include "houghloc/localize.h"
-#include "../../tools/testkit/ref_localize.h"
-#include "../../tools/testkit/synthroom.h"
+#include "../../tools/lab/testkit/ref_localize.h"
+#include "../../tools/lab/testkit/synthroom.h"
 
 #define SCENES 24
 

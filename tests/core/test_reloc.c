@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "houghloc/reloc.h"
-#include "../../tools/testkit/synthroom.h"
+#include "../../tools/lab/testkit/synthroom.h"
 
 typedef struct fixture {
     sr_room_t room;
@@ -75,7 +75,7 @@ static void test_finds_pose_with_heading_unknown(void **state)
     }
     print_message("reloc: %d of %d found, %d right, %d wrong\n", found, trials, right, wrong);
     /* Measured: 28 of 30 right, 1 wrong (the cluttered corner of the first room, where
-     * a wrong pose explains more readings than the true one: docs/kidnap.md). An ideal
+     * a wrong pose explains more readings than the true one: docs/results/relocalization.md). An ideal
      * ring is the hardest input for the heading stage; the sonar tour does better
      * (tests/daemon/test_cycle_lost.c). */
     assert_true(wrong <= 1);

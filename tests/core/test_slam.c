@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "houghloc/slam.h"
-#include "../../tools/testkit/synthroom.h"
+#include "../../tools/lab/testkit/synthroom.h"
 
 #include "slam_walk.h"
 

@@ -1,4 +1,4 @@
-# tests/fuzz/fuzz.mk - fuzzing kept in the project (docs/reliability-fuzz.md).
+# tests/fuzz/fuzz.mk - fuzzing kept in the project (docs/results/reliability.md).
 #
 #   make fuzz                   build every target with clang, libFuzzer, ASan and UBSan
 #                               into $(BUILD)/fuzz/ and run each for FUZZ_SECONDS (30);

@@ -105,8 +105,8 @@ static void encode_arcos(void)
     add_sip(&s, 1000, 2000, 0, 8, false);
     add_sip(&s, 1010, 2000, 12, 0, true);
     add_sip(&s, 1050, 2003, 40, 16, true);
-    put_stream("rlink", "session", &s);
-    put_stream("arcos", "session", &s);
+    put_stream("rlink", "connection", &s);
+    put_stream("arcos", "connection", &s);
 
     stream_t stale = { .n = 0 };   /* a robot still streaming from an earlier client */
     add_sip(&stale, 32760, 5, -2000, 4, false);
@@ -115,7 +115,7 @@ static void encode_arcos(void)
     add_sync(&stale, 1);
     add_id(&stale);
     add_sip(&stale, 9, 9, 4095, 32, false);
-    put_stream("rlink", "stale-session", &stale);
+    put_stream("rlink", "stale-connection", &stale);
 
     stream_t noisy = { .n = 0 };   /* garbage, a bad checksum, a bad count, then a packet */
     static const uint8_t junk[] = { 0x00, 0xFA, 0x17, 0xFA, 0xFB, 0x02, 0xFA, 0xFB, 0xFF };

@@ -41,8 +41,8 @@ cp "$tmp/one-scan.hlmap" "$C/mapstore/one-scan.hlmap"
 
 # ---- configuration -----------------------------------------------------------------------
 cp packaging/houghlocd.conf "$C/config/houghlocd.conf"
-for f in tools/realeval/*.conf; do cp "$f" "$C/config/realeval-$(basename "$f")"; done
-for f in tools/kidnap/*.conf; do cp "$f" "$C/config/kidnap-$(basename "$f")"; done
+for f in tools/lab/realeval/*.conf; do cp "$f" "$C/config/realeval-$(basename "$f")"; done
+for f in tools/lab/kidnap/*.conf; do cp "$f" "$C/config/kidnap-$(basename "$f")"; done
 "$B/bin/houghlocd" --config /dev/null --print-config > "$C/config/printed.conf"
 printf '[slam]\nmode = paper\n[daemon]\nsave_every = 0\n' > "$C/config/paper"
 printf '[fence]\npolygon = -5,-5 5,-5 5,5 -5,5\n[lcm]\nprefix = robot1/\n' > "$C/config/fence"

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Integration test of `make kidnap` (tools/kidnap/) on a tiny configuration, without the
+# Integration test of `make kidnap` (tools/lab/kidnap/) on a tiny configuration, without the
 # real data: the simulated lab with 10 trials (its tour, the daemon's map of it, the
 # row), then the table's header, its one row (names, numbers in range, shares adding up
 # to 100) and the summary line; the per-trial file; the leave-one-stretch-out path of
@@ -63,22 +63,22 @@ check "the map-frame summary on stderr" \
 # answer is found, so nothing is ambiguous and success can only grow.
 detail=$out/trials/lab_sonar.tsv
 row=$(awk -F'\t' 'NR == 2 { print $4, $5, $6 }' "$tsv")
-again=$(sh tools/kidnap/rescore.sh "$detail" |
+again=$(sh tools/lab/kidnap/rescore.sh "$detail" |
         sed -n 's/^rescore .* trials=20 success_pct=\([0-9.]*\) ambiguous_pct=\([0-9.]*\) wrong_pct=\([0-9.]*\)$/\1 \2 \3/p')
 check "rescore.sh at the search's bar gives the row ($row)" [ "${again:-none}" = "$row" ]
 check "rescore.sh with no bar: none ambiguous, success no lower" \
-    sh -c "sh tools/kidnap/rescore.sh --max-ratio 1 --min-explained 0 '$detail' |
+    sh -c "sh tools/lab/kidnap/rescore.sh --max-ratio 1 --min-explained 0 '$detail' |
            awk -v s0='${row%% *}' '{ for (i = 1; i <= NF; i++) { split(\$i, kv, \"=\"); v[kv[1]] = kv[2] } }
                END { exit !(v[\"ambiguous_pct\"] == 0 && v[\"success_pct\"] >= s0 &&
                             v[\"success_pct\"] + v[\"wrong_pct\"] == 100) }'"
 exits "rescore.sh --max-ratio 2 is bad usage" 2 "--max-ratio 2 is outside" \
-    sh tools/kidnap/rescore.sh --max-ratio 2 "$detail"
+    sh tools/lab/kidnap/rescore.sh --max-ratio 2 "$detail"
 exits "rescore.sh on a file that is not a detail file" 1 "not a hl-kidnap detail file" \
-    sh tools/kidnap/rescore.sh "$tsv"
+    sh tools/lab/kidnap/rescore.sh "$tsv"
 # a detail file cut inside its trials: five whole lines, then ten fields of the sixth
 { head -n 6 "$detail"; sed -n 7p "$detail" | cut -f 1-10; } >"$tmp/cut.tsv"
 exits "rescore.sh on a cut detail file names the cut line" 1 "is not a whole trial" \
-    sh tools/kidnap/rescore.sh "$tmp/cut.tsv"
+    sh tools/lab/kidnap/rescore.sh "$tmp/cut.tsv"
 
 # hl-tour-study replays tour 1 as the daemon did (the tours' settings, from make's stamp
 # file): the same RMSE and far poses as hl-eval score on the daemon's own output.
@@ -93,7 +93,7 @@ daemon=$(tail -n 1 "$out/sim/lab/1/score.txt" |
 check "hl-tour-study --mode track matches the daemon's tour (hl-eval score: $daemon)" \
     [ "${daemon:-no score}" = "$study" ]
 # Each scan alone from its true pose against a drift-free map: never 0.5 m off (none of
-# the 24 lab tours' 3,048 stops was, docs/kidnap.md).
+# the 24 lab tours' 3,048 stops was, docs/results/relocalization.md).
 # shellcheck disable=SC2086
 "$BIN/hl-tour-study" --config /dev/null $tour_sets --mode oracle --quiet \
     "$out/sim/lab/1/tour.lcmlog" >"$tmp/oracle.out" 2>&1
@@ -102,8 +102,8 @@ check "hl-tour-study --mode oracle: 127 stops scored, none far" \
     "$tmp/oracle.out"
 # hl-tour-study's map of the tour is the daemon's own (the same picture). Loop closure,
 # after the tour (--mode graph) or as it goes (houghlocd's slam.close_loops, which the
-# tours use), brings tour 1 nearer the truth than tracking alone (337.8 mm: 131.2 and,
-# with square walls, 80.7 as of the thirteenth session, docs/kidnap.md).
+# tours use), brings tour 1 nearer the truth than tracking alone (the figures:
+# docs/results/relocalization.md).
 # shellcheck disable=SC2086
 "$BIN/hl-tour-study" --config /dev/null $tour_sets --quiet --write-map "$tmp/redrawn.hlmap" \
     "$out/sim/lab/1/tour.lcmlog" >/dev/null 2>&1
@@ -133,7 +133,7 @@ for how in "--set slam.close_loops=false --set slam.square_walls=false --mode gr
 done
 # Square walls (slam.square_walls, which the tours use): each stop's readings tie its
 # heading to the world, so tour 1 ends nearer the truth than with loop closure alone
-# (80.7 mm against 97.2 as of the thirteenth session).
+# (docs/results/relocalization.md).
 # shellcheck disable=SC2086
 loops_only=$("$BIN/hl-tour-study" --config /dev/null $tour_sets --set slam.square_walls=false \
              --quiet "$out/sim/lab/1/tour.lcmlog" 2>/dev/null |

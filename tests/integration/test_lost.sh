@@ -1,5 +1,5 @@
 #!/bin/sh
-# Integration test of the kidnapped robot (docs/kidnap.md): houghlocd maps the lab's
+# Integration test of the kidnapped robot (docs/design/relocalization.md): houghlocd maps the lab's
 # south-east leg driving houghloc-sim; the simulator is restarted where the robot stands
 # and, a second later, teleports it 3 m away (--teleport-after, --teleport-to: the wheels
 # do not turn, so the odometry says nothing). The next destination makes the daemon sound
@@ -23,7 +23,7 @@ n=$(($$ % 500))
 PORT=$((22000 + n))
 URL="udpm://239.255.76.67:$((9300 + n))?ttl=0&recv_buf_size=4194304"
 write_robot_conf "$tmp/robot.conf"
-# the lost state is off by default (docs/kidnap.md): this robot watches for a kidnap
+# the lost state is off by default (docs/design/relocalization.md): this robot watches for a kidnap
 printf '[daemon]\nsearch_every = 1\nlost_after = 2\n' >>"$tmp/robot.conf"
 
 goto() {        # goto X Y: houghloc-goto's exit status; its output in $tmp/goto.out

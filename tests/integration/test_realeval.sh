@@ -1,5 +1,5 @@
 #!/bin/sh
-# Integration test of `make eval-real` (tools/realeval/) without the real data: two small
+# Integration test of `make eval-real` (tools/lab/realeval/) without the real data: two small
 # buildings written here (a laser going twice round a pillar in a rectangular room, with
 # odometry that drifts), run through the whole pipeline with DATA= and BUILDINGS=, two
 # jobs at a time. Checks real.tsv's header, its 24 rows in order, the `-` cells of the
@@ -195,9 +195,9 @@ check "a missing building: make fails with one line naming it" \
 
 # The paper files are the paper preset whole but for the raster bound; the improved
 # files keep the improved mode, the laser's with thin beams and a map for a building.
-"$BIN/houghlocd" --config /dev/null --set slam.mode=paper --print-config >"$tmp/paper" 2>&1
+"$BIN/houghlocd" --config /dev/null --set slam.mode=paper --print-config=all >"$tmp/paper" 2>&1
 for c in laser sonar; do
-    "$BIN/houghlocd" --config "tools/realeval/$c-paper.conf" --print-config >"$tmp/$c.paper" 2>&1
+    "$BIN/houghlocd" --config "tools/lab/realeval/$c-paper.conf" --print-config=all >"$tmp/$c.paper" 2>&1
     check "$c-paper.conf: the preset's values (47 mm cells, global search, no guard)" \
         sh -c 'grep -q "^mode = paper$" "$1" && grep -q "^cell_mm = 47$" "$1" &&
                grep -q "^window_mm = 0$" "$1" && grep -q "^guarded = false$" "$1" &&
@@ -208,13 +208,13 @@ for c in laser sonar; do
         sed -n "/^\[slam\]/,\$p" "$2" | grep -v "^max_cells = " >"$2.tail"
         cmp -s "$1.tail" "$2.tail" && grep -q "^max_cells = 67108864$" "$1"' - "$tmp/$c.paper" "$tmp/paper"
 done
-"$BIN/houghlocd" --config tools/realeval/laser.conf --print-config >"$tmp/laser.improved" 2>&1
+"$BIN/houghlocd" --config tools/lab/realeval/laser.conf --print-config=all >"$tmp/laser.improved" 2>&1
 check "laser.conf in improved mode: echo bearings off, fitted normals keeping the unfitted, the guard on, a bounded 15,000-vector map" sh -c '
     grep -q "^mode = improved$" "$1" && grep -q "^echo_bearings = false$" "$1" &&
     grep -q "^fit_normals = true$" "$1" && grep -q "^keep_unfitted = true$" "$1" &&
     grep -q "^guarded = true$" "$1" && grep -q "^map_capacity = 15000$" "$1" &&
     grep -q "^map_per_place = 2$" "$1"' - "$tmp/laser.improved"
-"$BIN/houghlocd" --config tools/realeval/sonar.conf --print-config >"$tmp/sonar.improved" 2>&1
+"$BIN/houghlocd" --config tools/lab/realeval/sonar.conf --print-config=all >"$tmp/sonar.improved" 2>&1
 check "sonar.conf in improved mode: echo bearings on" sh -c '
     grep -q "^mode = improved$" "$1" && grep -q "^echo_bearings = true$" "$1"' - "$tmp/sonar.improved"
 

@@ -58,7 +58,7 @@ check "limits.tsv has its six rows" test "$(tail -n +2 "$tmp/exp/limits.tsv" | w
 check "progress goes to stderr" grep -q "^table1: " "$tmp/progress"
 
 # The multi-seed summary runs and prints its orientation line.
-BUILD=${BUILD:-build} sh tools/experiments/seeds.sh 2 --only orientation >"$tmp/seeds"
+BUILD=${BUILD:-build} sh tools/lab/experiments/seeds.sh 2 --only orientation >"$tmp/seeds"
 check "seeds.sh summarises two seeds" grep -q "^orientation, 2 seeds: mean |bias| [0-9.]* deg, sigma [0-9.]* deg$" "$tmp/seeds"
 
 # The benchmark's lines parse (values are not judged here: that is `make bench`).

@@ -12,4 +12,5 @@ major=14    # Debian 12's clang
 if command -v clang >/dev/null 2>&1; then
     major=$(clang -dumpversion | cut -d. -f1)
 fi
-exec sh "$(dirname "$0")/install-deps.sh" clang "libclang-rt-$major-dev"
+exec sh "$(dirname "$0")/install-deps.sh" --for "make fuzz (clang and its libFuzzer runtime)" \
+    clang "libclang-rt-$major-dev"

@@ -1,0 +1,139 @@
+// kidnap.hpp - the kidnap experiment (make kidnap, tools/lab/kidnap/kidnap.mk): a robot set
+// down somewhere in a known map with no idea of its pose, one scan, and the global
+// search of hl_slam_relocalize. What the two kinds of world share: the trials, their
+// scoring, and the row of the table.
+#ifndef HLKID_KIDNAP_HPP
+#define HLKID_KIDNAP_HPP
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../experiments/dataset.hpp"
+#include "inputs.hpp"
+#include "houghloc/map.h"
+#include "houghloc/slam.h"
+
+namespace hlkid {
+
+// A found answer counts as a success within both (inclusive); farther off it is wrong.
+constexpr double kSuccessMm = 500.0;
+constexpr double kSuccessDeg = 5.0;
+constexpr double kNearMm = 5000.0;
+// The grid of Trial::truth_score around the true pose.
+constexpr int kTruthNearMm = 300, kTruthStepMm = 100, kTruthNearDeg = 6, kTruthStepDeg = 3;
+
+// The table's columns, in order (kidnap.tsv's header).
+extern const char *const kHeader;
+
+enum class Outcome { Success, Ambiguous, Wrong };
+
+struct Trial {
+    int32_t seq = 0;            // the test scan's seq in its log
+    hl_pose_t truth{};
+    hl_status_t status = HL_OK;
+    hl_reloc_result_t result{};
+    uint32_t map_vectors = 0;
+    uint32_t near_vectors = 0;  // map vectors within kNearMm of the true position: how
+                                // much the map knows of the place (for the detail file)
+    double ms = 0.0;            // the hl_slam_relocalize call alone (CLOCK_MONOTONIC)
+    uint32_t truth_score = 0;   // hl_slam_judge's best within kTruthNearMm, kTruthNearDeg
+                                // of the truth: what the map lets the search find there
+    uint32_t answer_climbed = 0;    // ... and near the answer (both climbed alike), so
+                                    // that the two compare as places, not as poses
+    double error_mm = 0.0, error_deg = 0.0;     // of result.pose, when it has one
+    Outcome outcome = Outcome::Ambiguous;
+    int map = 1;                // which of the row's maps (1..), for the detail file
+};
+
+// Runs the trials one by one and keeps what the row and the detail file need.
+class Scorer {
+public:
+    Scorer(std::string world, std::string input, const hl_reloc_params_t &reloc)
+        : world_(std::move(world)), input_(std::move(input)), reloc_(reloc) {}
+
+    // Relocalizes @p scan (as the sensor gave it) in @p slam's map and scores the answer
+    // against @p truth. HL_OK with `found` is a success or wrong; HL_OK without it and
+    // HL_ERR_EMPTY (no answer) are ambiguous. Any other status means the experiment is
+    // set up wrong (a map too big for the configured search): false, with one line.
+    bool run(hl_slam_t *slam, const hlexp::Sounding &test, std::string *err);
+
+    // The trials that follow are in map @p index of @p count (1 of 1 until called).
+    void set_map(int index, int count)
+    {
+        map_ = index;
+        maps_ = count;
+        map_first_ = trials_.size();
+    }
+    const std::vector<Trial> &trials() const { return trials_; }
+    std::string name() const { return world_ + " " + input_; }
+    // The row: world input trials success_pct ambiguous_pct wrong_pct median_ms p90_ms.
+    void write_row(FILE *out) const;
+    // One line per trial (seq, truth, answer, runner-up, errors, time), for tuning.
+    bool write_detail(const std::string &path, std::string *err) const;
+    // One progress line every @p every trials of the current map and at its @p total.
+    void progress(int total, int every) const;
+
+private:
+    std::string world_, input_;
+    hl_reloc_params_t reloc_;   // the search's parameters, for the reason of a failure
+    std::vector<Trial> trials_;
+    int map_ = 1, maps_ = 1;
+    size_t map_first_ = 0;      // the current map's first trial: its trials are the rest
+};
+
+// The coarse raster one candidate heading of the global search needs over the bounding
+// box of @p map (as the localizer places it), for the progress lines and the error.
+uint64_t coarse_cells_needed(const hl_reloc_params_t &p, const hl_vector_t *map, uint32_t n,
+                             double *width_m, double *height_m);
+
+// Puts @p n vectors into @p slam's map (hl_slam_restore, the state of a started slam).
+bool restore_map(hl_slam_t *slam, const hl_vector_t *v, uint32_t n, std::string *err);
+
+// ---- simulated worlds (sim.cpp) -------------------------------------------------------
+
+// Writes @p trials test soundings in the simulated world @p world_path ("" = the built-in
+// lab) to the LCM log @p log_path: random poses drawn with @p seed, free and in the toured
+// space, uniformly random headings; each a full sounding of the tour's robot and sonar.
+bool write_sim_tests(const std::string &world_path, int trials, uint64_t seed,
+                     const std::string &log_path, std::string *err);
+
+// Loads the vectors of the daemon's map file @p path into @p slam.
+bool load_daemon_map(hl_slam_t *slam, const std::string &path, std::string *err);
+
+// ---- real buildings (real.cpp) --------------------------------------------------------
+
+// Maps made from a log's scans at their true poses (no localization: what a drift-free
+// robot would map), as the slam of @p p makes its map: capacity, culling seed, density
+// bound, echo bearings. Each make() starts from an empty map and a new map's culling
+// generator, so a map does not depend on those made before it.
+class TruthMapper {
+public:
+    TruthMapper(const hl_slam_params_t &p, const hlexp::Soundings &log);
+    ~TruthMapper();
+    TruthMapper(const TruthMapper &) = delete;
+    TruthMapper &operator=(const TruthMapper &) = delete;
+    // Every scan of the log, in log order, but those within @p exclude_mm of @p centre
+    // (a negative @p exclude_mm leaves none out).
+    bool make(hl_pose_t centre, double exclude_mm, std::string *err);
+    const hl_map_t *map() const { return map_; }
+
+private:
+    const hl_slam_params_t &p_;
+    const hlexp::Soundings &log_;
+    hl_map_t *map_;
+    bool ok_ = false;
+    hl_rng_t fresh_{};              // a new map's culling generator
+    std::vector<hl_scan_t> placed_; // the scans at their echo bearings, when estimated
+};
+
+// For @p trials test scans spread evenly over @p log: a map of every other scan more than
+// @p exclude_mm from the test scan's true position, at its true pose, in log order, made
+// as the slam of @p p makes its map; then the trial.
+bool run_real(const hl_slam_params_t &p, const hlexp::Soundings &log, int trials,
+              double exclude_mm, Scorer *scorer, std::string *err);
+
+}  // namespace hlkid
+#endif

@@ -1,0 +1,25 @@
+# tools/lab/lab.mk - the laboratory: the programs and scripts that measure houghloc (the
+# paper's experiments, relocalization, the real buildings, reliability trials, benchmarks,
+# the simulated data sets). Nothing here is installed; `make` does not build it.
+# Included by the top Makefile after every product fragment, so the product's libraries
+# ($(SIM_LIB), $(DAEMON_LIB), ...) are defined here.
+#
+#   make lab                 every lab program (LAB_BINS)
+#   make bench               tools/lab/bench          (docs/results/performance.md)
+#   make logs                tools/lab/sim-logs       the simulated data sets in logs/
+#   make experiments         tools/lab/experiments    (docs/results/experiments.md)
+#   make experiments-seeds
+#   make kidnap              tools/lab/kidnap         (docs/results/relocalization.md)
+#   make eval-real           tools/lab/realeval       (docs/results/real-buildings.md)
+#   make trials              tools/lab/trials         (docs/results/reliability.md)
+# (make fuzz and make crash-trials are the tests' own: tests/fuzz/fuzz.mk, src/daemon.)
+#
+# Each folder's fragment adds its programs to LAB_BINS. The test kit comes first: the
+# benchmarks name its library in their prerequisites, and the top Makefile's unit tests
+# link it.
+
+include tools/lab/testkit/testkit.mk
+include $(sort $(filter-out tools/lab/testkit/testkit.mk,$(wildcard tools/lab/*/*.mk)))
+
+.PHONY: lab
+lab: $(LAB_BINS)

@@ -1,0 +1,199 @@
+#!/bin/sh
+# run_one.sh - one cell of `make eval-real` (tools/lab/realeval/realeval.mk, docs/results/real-buildings.md).
+#
+#   run_one.sh import BUILDING INPUT SELECTION
+#       houghloc-import-carmen: DATA/raw/BUILDING-raw.log.gz and its ground truth to
+#       EVAL_OUT/input/BUILDING_INPUT_SELECTION.lcmlog (cached: made once, shared by the
+#       modes; written under a temporary name and renamed, so it is whole or absent)
+#   run_one.sh cell BUILDING INPUT SELECTION MODE
+#       imports if the import is missing, then for MODE odometry scores the odometry
+#       alone (houghloc-eval --odometry); for MODE paper or improved replays the import
+#       through houghlocd's batch path (tools/lab/realeval/INPUT.conf for improved,
+#       INPUT-paper.conf for paper)
+#       and scores its POSE; writes the row EVAL_OUT/rows/BUILDING_INPUT_MODE_SELECTION.tsv
+#
+# INPUT is laser or sonar, SELECTION every or moved, MODE odometry, paper or improved.
+# Environment: BUILD (default build: programs in BUILD/bin), DATA (default
+# ../shared/data), EVAL_OUT (default BUILD/eval).
+#
+# A row is the tab-separated cells of real.tsv's columns (report.sh writes the header):
+#   dataset input mode selection scans ate_rmse_m rpe_trans_rmse_m rpe_trans_mean_m
+#   max_err_m ms_per_scan wall_ms_per_scan rejected
+# `-` where a cell does not apply (odometry has no times and rejects nothing; an RPE
+# that houghloc-eval reports as nan, a run shorter than one 1 m segment).
+#
+# Every daemon run starts at the first true pose (as an operator places the robot), so
+# that the map and the true path share a frame in the pictures; the ATE aligns the
+# trajectories anyway and the RPE is relative, so the figures do not depend on it.
+#
+# Progress goes to stderr. Any failing step stops with one line
+#   eval-real: BUILDING INPUT SELECTION MODE: STEP failed: REASON
+# and exit status 1 (2 for bad usage), leaving no row file.
+set -u
+
+BUILD=${BUILD:-build}
+BIN=$BUILD/bin
+DATA=${DATA:-../shared/data}
+EVAL_OUT=${EVAL_OUT:-$BUILD/eval}
+HERE=$(dirname "$0")
+
+usage() {
+    echo "usage: run_one.sh import BUILDING INPUT SELECTION" >&2
+    echo "       run_one.sh cell BUILDING INPUT SELECTION MODE" >&2
+    exit 2
+}
+
+what=""
+die() {     # die STEP REASON: the one line, exit 1
+    echo "eval-real: $what: $1 failed: $2" >&2
+    exit 1
+}
+
+abs() {     # abs PATH: PATH made absolute (liblcm's file:// URLs need it)
+    case $1 in /*) echo "$1" ;; *) echo "$PWD/$1" ;; esac
+}
+
+now_ms() {  # wall clock in milliseconds (GNU date)
+    t=$(date +%s%N) && case $t in *[!0-9]*) return 1 ;; esac && echo $((t / 1000000))
+}
+
+field() {   # field FILE KEY: the value after " KEY=" in a key=value line
+    tr ' ' '\n' <"$1" | sed -n "s/^$2=//p" | head -n 1
+}
+
+lasterr() { # lasterr FILE: its last line that is not a syslog info/debug line, for die
+    l=$(grep -v '^<[67]>' "$1" 2>/dev/null | tail -n 1)
+    [ -n "$l" ] || l=$(tail -n 1 "$1" 2>/dev/null)
+    echo "$l" | sed 's/^<[0-7]>//'
+}
+
+[ $# -ge 4 ] || usage
+cmd=$1 b=$2 input=$3 sel=$4
+case $input in laser | sonar) ;; *) usage ;; esac
+case $sel in every | moved) ;; *) usage ;; esac
+case $cmd in
+import) [ $# -eq 4 ] || usage; mode="" ;;
+cell) [ $# -eq 5 ] || usage; mode=$5
+    case $mode in odometry | paper | improved) ;; *) usage ;; esac ;;
+*) usage ;;
+esac
+what="$b $input $sel${mode:+ $mode}"
+
+in_log=$EVAL_OUT/input/${b}_${input}_${sel}.lcmlog
+
+# ---- import --------------------------------------------------------------------------
+do_import() {
+    raw=$DATA/raw/$b-raw.log.gz
+    gt=$DATA/raw/$b-groundtruth.tum
+    [ -r "$raw" ] || die import "no $raw"
+    [ -r "$gt" ] || die import "no $gt"
+    mkdir -p "$EVAL_OUT/input" || die import "cannot create $EVAL_OUT/input"
+    tmp_log=$in_log.tmp.$$
+    echo "eval-real: $b $input $sel: importing" >&2
+    if ! "$BIN/houghloc-import-carmen" --input "$input" --select "$sel" --truth "$gt" \
+        "$raw" "$tmp_log" 2>"$in_log.sum"; then
+        rm -f "$tmp_log"
+        die import "$(lasterr "$in_log.sum")"
+    fi
+    mv "$tmp_log" "$in_log" || die import "cannot rename $tmp_log"
+}
+
+if [ "$cmd" = import ]; then
+    do_import
+    exit 0
+fi
+[ -s "$in_log" ] || do_import
+# The importer's count of scans written: every scored row must cover all of them.
+want_scans=$(sed -n 's/.*: wrote .*: scans=\([0-9]*\) .*/\1/p' "$in_log.sum" 2>/dev/null)
+
+# ---- replay and score ----------------------------------------------------------------
+cell=${b}_${input}_${mode}_${sel}
+run=$EVAL_OUT/runs/$cell
+row=$EVAL_OUT/rows/$cell.tsv
+mkdir -p "$run" "$EVAL_OUT/rows" || die setup "cannot create $run"
+rm -f "$row"
+echo "eval-real: $what: running" >&2
+
+score=$run/score.txt
+ms="-" wall="-" rejected="-"
+if [ "$mode" = odometry ]; then
+    "$BIN/houghloc-eval" --odometry --tsv "$in_log" >"$score" 2>"$run/score.err" ||
+        die score "$(lasterr "$run/score.err")"
+    secs=""
+else
+    conf=$HERE/$input.conf          # the improved mode
+    [ "$mode" = paper ] && conf=$HERE/$input-paper.conf
+    [ -r "$conf" ] || die replay "no $conf"
+    start=$("$BIN/hl-eval" start "$in_log" 2>"$run/start.err") ||
+        die start "$(lasterr "$run/start.err")"
+    # shellcheck disable=SC2086
+    set -- $start
+    [ $# -eq 3 ] || die start "hl-eval start printed '$start'"
+    out=$run/out.lcmlog
+    rm -f "$out" "$run/map.hlmap"
+    t0=$(now_ms) || die replay "date +%s%N does not give nanoseconds"
+    # The window of the compute-time median covers every scan (the longest building has
+    # 4791), so STATUS's median is over the whole run.
+    "$BIN/houghlocd" --config "$conf" --set daemon.compute_window=10000 \
+        --set "start.x_m=$1" --set "start.y_m=$2" --set "start.heading_deg=$3" \
+        --fresh-map --map "$run/map.hlmap" \
+        --lcm-url "file://$(abs "$in_log")?speed=0" \
+        --lcm-out "file://$(abs "$out")?mode=w" 2>"$run/daemon.err" ||
+        die replay "$(lasterr "$run/daemon.err")"
+    t1=$(now_ms) || die replay "date"
+    "$BIN/hl-eval" status "$out" >"$run/status.txt" 2>"$run/status.err" ||
+        die status "$(lasterr "$run/status.err")"
+    "$BIN/houghloc-eval" --tsv "$in_log" "$out" >"$score" 2>"$run/score.err" ||
+        die score "$(lasterr "$run/score.err")"
+    status_scans=$(field "$run/status.txt" scans)
+    samples=$(field "$run/status.txt" compute_samples)
+    median_us=$(field "$run/status.txt" compute_median_us)
+    case $median_us in '' | *[!0-9]*) die status "no compute_median_us in the last STATUS" ;; esac
+    [ "$samples" = "$status_scans" ] ||
+        echo "eval-real: $what: warning: the compute median covers $samples of $status_scans scans" >&2
+    ms=$(awk -v u="$median_us" 'BEGIN { printf "%.3f", u / 1000 }')
+    rejected=$(field "$score" rejected_wild)
+    case $rejected in '' | *[!0-9]*) die score "no rejected_wild in houghloc-eval's line" ;; esac
+    secs=$(awk -v a="$t0" -v z="$t1" 'BEGIN { printf "%.1f", (z - a) / 1000 }')
+fi
+
+scans=$(field "$score" scans)
+case $scans in '' | *[!0-9]*) die score "no scans= in houghloc-eval's line" ;; esac
+[ "$scans" -gt 0 ] || die score "no scan scored"
+if [ -n "$want_scans" ] && [ "$scans" != "$want_scans" ]; then
+    die score "$scans scans scored of the $want_scans imported (see $run/score.err)"
+fi
+if [ "$mode" != odometry ]; then
+    [ "$status_scans" = "$scans" ] ||
+        die status "STATUS counts $status_scans scans, houghloc-eval scored $scans"
+    wall=$(awk -v a="$t0" -v z="$t1" -v n="$scans" 'BEGIN { printf "%.3f", (z - a) / n }')
+fi
+
+# The row: houghloc-eval's figures as printed (6 decimals), nan as `-`.
+tmp_row=$row.tmp.$$
+awk -v b="$b" -v i="$input" -v m="$mode" -v s="$sel" -v n="$scans" -v ms="$ms" \
+    -v wall="$wall" -v rej="$rejected" '
+    { for (k = 1; k <= NF; k++) { split($k, kv, "="); v[kv[1]] = kv[2] } }
+    function cell(key,   x) {
+        x = v[key]
+        if (x == "" ) { bad = key; return "" }
+        if (x ~ /^(-?nan|-?inf)$/) return "-"
+        if (x !~ /^[0-9]+(\.[0-9]+)?$/) { bad = key; return "" }
+        return x
+    }
+    END {
+        line = b "\t" i "\t" m "\t" s "\t" n
+        line = line "\t" cell("ate_rmse_m") "\t" cell("rpe_trans_rmse_m")
+        line = line "\t" cell("rpe_trans_mean_m") "\t" cell("max_err_m")
+        line = line "\t" ms "\t" wall "\t" rej
+        if (bad != "") { print "no number for " bad > "/dev/stderr"; exit 1 }
+        print line
+    }' "$score" >"$tmp_row" 2>"$run/row.err" || {
+    rm -f "$tmp_row"
+    die score "houghloc-eval's line: $(lasterr "$run/row.err")"
+}
+mv "$tmp_row" "$row" || die row "cannot rename $tmp_row"
+
+done_rows=$(find "$EVAL_OUT/rows" -name '*.tsv' | wc -l)
+ate=$(field "$score" ate_rmse_m)
+echo "eval-real: $what: done, ATE $ate m, $scans scans${secs:+ in $secs s} ($done_rows${REALEVAL_TOTAL:+ of $REALEVAL_TOTAL} rows)" >&2

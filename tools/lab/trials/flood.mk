@@ -1,0 +1,30 @@
+# tools/lab/trials/flood.mk - the programs of the Flood and Commands trials (make trials):
+# hl-flood publishes malformed LCM messages on houghlocd's inputs (flood.c, flood_msg.c);
+# hl-forge sends signed, forged, replayed, stale, unsigned and out-of-fence requests and
+# checks each REPLY (forge.c, forge_req.c). Included by tools/lab/lab.mk.
+#
+# Like houghloc-goto they see include/ and src/daemon (for keyfile.h), never the generated
+# LCM headers: messages go through src/bus.
+
+FLOOD_OBJS := $(BUILD)/obj/tools/lab/trials/flood.o $(BUILD)/obj/tools/lab/trials/flood_msg.o \
+              $(BUILD)/obj/tools/lab/trials/trial_args.o
+FORGE_OBJS := $(BUILD)/obj/tools/lab/trials/forge.o $(BUILD)/obj/tools/lab/trials/forge_req.o \
+              $(BUILD)/obj/tools/lab/trials/trial_args.o \
+              $(BUILD)/obj/src/daemon/keyfile.o
+
+LAB_BINS += $(BUILD)/bin/hl-flood $(BUILD)/bin/hl-forge
+
+$(BUILD)/obj/tools/lab/trials/%.o: tools/lab/trials/%.c
+	@mkdir -p $(@D)
+	@echo "  CC      $<"
+	$(Q)$(CC) $(CORE_CPPFLAGS) -Isrc/daemon $(PKG_CFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/bin/hl-flood: $(FLOOD_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD      $@"
+	$(Q)$(CC) -o $@ $(FLOOD_OBJS) $(BUS_LIB) $(BUS_LDLIBS)
+
+$(BUILD)/bin/hl-forge: $(FORGE_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD      $@"
+	$(Q)$(CC) -o $@ $(FORGE_OBJS) $(BUS_LIB) $(BUS_LDLIBS)

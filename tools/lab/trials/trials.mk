@@ -1,0 +1,13 @@
+# tools/lab/trials/trials.mk - `make trials`: every reliability trial in one run, under 15
+# minutes here, progress on stderr, one machine-readable last line
+# (tools/lab/trials/trials.sh; docs/results/reliability.md). FUZZ_SECONDS (30) per fuzz
+# target; TRIALS_SKIP="flood sanitizers" leaves trials out. Included by tools/lab/lab.mk,
+# after tests/fuzz/fuzz.mk (read with the product's fragments), whose regression replays
+# it builds with hl-flood and hl-forge (flood.mk); `make fuzz` itself is run by the
+# script, in the background.
+.PHONY: trials
+TRIALS_PROGS := $(addprefix $(BUILD)/bin/,houghlocd houghloc-sim houghloc-goto houghloc-ctl \
+                  hl-eval houghloc-import-carmen hl-flood hl-forge)
+trials: deps
+	$(Q)$(MAKE) --no-print-directory $(TRIALS_PROGS) $(FUZZ_REPLAYS)
+	$(Q)MAKE="$(MAKE)" BUILD=$(BUILD) FUZZ_SECONDS=$(or $(FUZZ_SECONDS),30) sh tools/lab/trials/trials.sh
