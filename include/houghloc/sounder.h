@@ -32,16 +32,25 @@ extern "C" {
 #define HL_ROBOT_MAX_TRANSDUCERS 32
 #define HL_SOUNDER_MAX_STEPS 32
 
-/** Where a robot's sonar transducers point (robot frame, counter-clockwise from ahead). */
+/** A robot: where its sonar transducers point (robot frame, counter-clockwise from
+ *  ahead) and how its raw ranges read in millimetres. */
 typedef struct hl_robot_profile {
     char name[16];
     int32_t transducers;                        /* 1..HL_ROBOT_MAX_TRANSDUCERS */
     hl_bam_t bearing[HL_ROBOT_MAX_TRANSDUCERS]; /* transducer k's axis */
+    hl_calib_t calib;                           /* its sonar calibration (the daemon's
+                                                   calibration.* keys override it) */
 } hl_robot_profile_t;
+
+/* The built-in profiles' names, for messages. */
+#define HL_ROBOT_PROFILE_NAMES "bonnie, pioneer3 or houghloc-sim"
 
 /**
  * The built-in profiles: "bonnie" (the paper's robot: 16 transducers 22.5 degrees apart,
- * transducer 0 ahead) and "pioneer3" (a Pioneer 3's front and rear rings).
+ * transducer 0 ahead), "pioneer3" (a Pioneer 3's front and rear rings), both with the
+ * default calibration (raw values taken as millimetres), and "houghloc-sim" (the simulated
+ * robot: bonnie's ring, with the calibration hl-calibrate measures for its simulated
+ * transducers).
  * @return HL_OK, or HL_ERR_ARG for NULL or an unknown name.
  */
 hl_status_t hl_robot_profile_find(const char *name, hl_robot_profile_t *out);

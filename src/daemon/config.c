@@ -1,4 +1,5 @@
-/* config.c - defaults, INI file (libinih), overrides, validation, printing. */
+/* config.c - defaults, INI file (libinih), presets, overrides, validation (printing:
+ * config_print.c). */
 #include "config.h"
 
 #include <ctype.h>
@@ -44,17 +45,48 @@ static void apply_mode(hl_config_t *c)
         hl_slam_params_default(&c->slam);
 }
 
+static const hl_config_key_t *find_full_key(const char *full);
+static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, char *why);
+
+/* The presets, in order: slam.mode sets the method's parameters afresh, slam.profile's
+ * keys go over them (so that its fragment, --print-profile, read as a file means the
+ * same), robot.profile gives the calibration. The other keys come after all three.
+ * @return false with "config: ..." in why (a profile key the table cannot set). */
+bool hl_config_apply_presets(hl_config_t *c, char *why)
+{
+    apply_mode(c);
+    const hl_sensor_profile_t *sp = hl_sensor_profile_find(c->profile);
+    for (size_t i = 0; sp && i < sp->n_keys; i++) {
+        const hl_config_key_t *k = find_full_key(sp->keys[i].key);
+        char reason[200];
+        if (!k || !set_value(c, k, sp->keys[i].value, reason))
+            return snprintf(why, HL_CONFIG_WHY_LEN, "config: slam.profile %s: cannot set %s",
+                            sp->name, sp->keys[i].key), false;
+    }
+    hl_robot_profile_t rp;
+    if (hl_robot_profile_find(c->robot_profile, &rp) == HL_OK)
+        c->sounder.calib = rp.calib;
+    return true;
+}
+
+bool hl_config_key_is_preset(const hl_config_key_t *k)
+{
+    return k->type == HL_KEY_MODE || k->type == HL_KEY_SENSOR_PROFILE ||
+           k->type == HL_KEY_ROBOT_PROFILE;
+}
+
 void hl_config_defaults(hl_config_t *c)
 {
     memset(c, 0, sizeof *c);
     c->queue = 1000;
     c->save_every = 50;
     c->map_period_ms = 1000;
+    c->map_input_ratio = 4;
     c->status_period_ms = 1000;
     c->idle_after_ms = 5000;
     c->compute_window = 100;
     /* The lost state is off until the global search meets its wrong-answer target
-     * (docs/kidnap.md): a wrong answer adopted moves the robot's estimate, and the map,
+     * (docs/results/relocalization.md): a wrong answer adopted moves the robot's estimate, and the map,
      * to the wrong place. RELOCALIZE works regardless. */
     c->lost_after = 0;
     c->lost_peak_ratio = 0.5;
@@ -70,7 +102,9 @@ void hl_config_defaults(hl_config_t *c)
     hl_fence_rect(&c->fence, -10000, -10000, 10000, 10000);
     snprintf(c->fence_text, sizeof c->fence_text, "-10,-10 10,-10 10,10 -10,10");
     snprintf(c->mode, sizeof c->mode, "improved");
-    apply_mode(c);
+    snprintf(c->profile, sizeof c->profile, HL_SENSOR_PROFILE_DEFAULT);
+    char why[HL_CONFIG_WHY_LEN];
+    hl_config_apply_presets(c, why);  /* the defaults' presets set nothing a table could refuse */
 }
 
 /* ---- values ------------------------------------------------------------------------ */
@@ -168,7 +202,7 @@ static bool check_profile(const char *v, char *why)
     hl_robot_profile_t profile;
     if (hl_robot_profile_find(v, &profile) == HL_OK)
         return true;
-    return REASON("'%s' is not a robot profile (bonnie or pioneer3)", v), false;
+    return REASON("'%.60s' is not a robot profile (" HL_ROBOT_PROFILE_NAMES ")", v), false;
 }
 
 /* The longest line libinih reads whole (its 200-byte buffer holds 198 characters, the
@@ -195,7 +229,7 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
     bool b;
     switch (k->type) {
     case HL_KEY_LINK:
-    case HL_KEY_PROFILE:
+    case HL_KEY_ROBOT_PROFILE:
     case HL_KEY_STR:
         if (strlen(v) >= k->size)
             return REASON("longer than %zu characters", k->size - 1), false;
@@ -208,7 +242,7 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
                           "as a comment", v), false;
         if (k->type == HL_KEY_LINK && *v && !check_link(v, why))
             return false;
-        if (k->type == HL_KEY_PROFILE && !check_profile(v, why))
+        if (k->type == HL_KEY_ROBOT_PROFILE && !check_profile(v, why))
             return false;
         memcpy(field, v, strlen(v) + 1);
         return true;
@@ -228,6 +262,12 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
         if (strcmp(v, "improved") != 0 && strcmp(v, "paper") != 0)
             return REASON("'%s' is not improved or paper", v), false;
         snprintf(c->mode, sizeof c->mode, "%s", v);
+        return true;   /* applied as a preset by hl_config_load */
+    case HL_KEY_SENSOR_PROFILE:
+        if (!hl_sensor_profile_find(v))
+            return REASON("'%.60s' is not a sensor profile (" HL_SENSOR_PROFILE_NAMES ")", v),
+                   false;
+        snprintf(c->profile, sizeof c->profile, "%s", v);
         return true;   /* applied as a preset by hl_config_load */
     case HL_KEY_FENCE_RECT:
     case HL_KEY_FENCE_POLYGON:
@@ -272,12 +312,21 @@ static const hl_config_key_t *find_key(const char *section, const char *name)
     return NULL;
 }
 
+static const hl_config_key_t *find_full_key(const char *full)
+{
+    for (size_t i = 0; i < hl_config_nkeys; i++)
+        if (strcmp(hl_config_keys[i].name, full) == 0)
+            return &hl_config_keys[i];
+    return NULL;
+}
+
 /* ---- the file and the overrides ------------------------------------------------------ */
 
 typedef struct parse_ctx {
     hl_config_t *c;
     const char *path;
-    bool mode_only;     /* first pass: only slam.mode */
+    bool presets_only;  /* first pass: only the presets (slam.mode, slam.profile,
+                           robot.profile); second pass: all other keys */
     bool failed;
     char *why;
     FILE *file;
@@ -312,7 +361,7 @@ static int on_key(void *user, const char *section, const char *name, const char 
     char reason[REASON_LEN];
     if (!k) {
         snprintf(p->why, KEY_MSG_LEN, "unknown key '%s' in section [%s]", name, section);
-    } else if (p->mode_only != (k->type == HL_KEY_MODE)) {
+    } else if (p->presets_only != hl_config_key_is_preset(k)) {
         return 1;
     } else if (set_value(p->c, k, value, reason)) {
         return 1;
@@ -325,10 +374,10 @@ static int on_key(void *user, const char *section, const char *name, const char 
 }
 
 /* Runs one pass over the file. @return false with the reason in why. */
-static bool parse_file(hl_config_t *c, const char *path, bool mode_only, char *why)
+static bool parse_file(hl_config_t *c, const char *path, bool presets_only, char *why)
 {
     char reason[KEY_MSG_LEN];
-    parse_ctx_t p = { .c = c, .path = path, .mode_only = mode_only, .why = reason,
+    parse_ctx_t p = { .c = c, .path = path, .presets_only = presets_only, .why = reason,
                       .at_line_start = true };
     p.file = fopen(path, "r");
     if (!p.file)
@@ -353,7 +402,7 @@ static bool parse_file(hl_config_t *c, const char *path, bool mode_only, char *w
     return false;
 }
 
-static bool apply_override(hl_config_t *c, const char *o, bool mode_only, char *why)
+static bool apply_override(hl_config_t *c, const char *o, bool presets_only, char *why)
 {
     const char *eq = strchr(o, '=');
     const char *dot = strchr(o, '.');
@@ -370,7 +419,7 @@ static bool apply_override(hl_config_t *c, const char *o, bool mode_only, char *
     const hl_config_key_t *k = find_key(section, name);
     if (!k)
         return WHY("--set %s: unknown key '%s.%s'", o, section, name), false;
-    if (mode_only != (k->type == HL_KEY_MODE))
+    if (presets_only != hl_config_key_is_preset(k))
         return true;
     char reason[REASON_LEN];
     if (!set_value(c, k, eq + 1, reason))
@@ -408,93 +457,16 @@ bool hl_config_load(hl_config_t *c, const char *path, bool optional,
         else if (f)
             fclose(f);
     }
-    /* Pass 1: the mode preset, from the file then the overrides; pass 2: the rest. */
+    /* Pass 1: the presets, from the file then the overrides; pass 2: the rest. */
     for (int pass = 0; pass < 2; pass++) {
-        bool mode_only = pass == 0;
-        if (path && !parse_file(c, path, mode_only, why))
+        bool presets_only = pass == 0;
+        if (path && !parse_file(c, path, presets_only, why))
             return false;
         for (int i = 0; i < n_overrides; i++)
-            if (!apply_override(c, overrides[i], mode_only, why))
+            if (!apply_override(c, overrides[i], presets_only, why))
                 return false;
-        if (mode_only)
-            apply_mode(c);
+        if (presets_only && !hl_config_apply_presets(c, why))
+            return false;
     }
     return validate(c, why);
-}
-
-/* ---- printing ------------------------------------------------------------------------ */
-
-/* The fewest decimals (up to 17 significant digits) that read back as @p v, in plain
- * notation: 0.05, 30, 1.1 rather than 0.050000000000000003 or 3e+01. */
-static void print_double(FILE *out, double v)
-{
-    char buf[64];
-    for (int decimals = 0; decimals <= 17; decimals++) {
-        snprintf(buf, sizeof buf, "%.*f", decimals, v);
-        if (strtod(buf, NULL) == v)
-            break;
-    }
-    /* a value too small for 17 decimals (1e-30 would print as 0): 17 significant digits
-     * always read back the same double */
-    if (strtod(buf, NULL) != v)
-        snprintf(buf, sizeof buf, "%.17g", v);
-    fprintf(out, "%s", buf);
-}
-
-static void print_value(const hl_config_t *c, const hl_config_key_t *k, FILE *out)
-{
-    const char *field = (const char *)c + k->offset;
-    switch (k->type) {
-    case HL_KEY_STR:
-    case HL_KEY_LINK:
-    case HL_KEY_PROFILE: fprintf(out, "%s", field); break;
-    case HL_KEY_I32: fprintf(out, "%d", *(const int32_t *)field); break;
-    case HL_KEY_U16: fprintf(out, "%u", *(const uint16_t *)field); break;
-    case HL_KEY_U32: fprintf(out, "%u", *(const uint32_t *)field); break;
-    case HL_KEY_U64: fprintf(out, "%llu", (unsigned long long)*(const uint64_t *)field); break;
-    case HL_KEY_DOUBLE: print_double(out, *(const double *)field); break;
-    case HL_KEY_BOOL: fprintf(out, "%s", *(const bool *)field ? "true" : "false"); break;
-    case HL_KEY_DEG: {
-        hl_bam_t a = *(const hl_bam_t *)field;
-        /* the fewest decimals that read back as the same BAM */
-        for (int decimals = 0; decimals <= 17; decimals++) {
-            char buf[64];
-            double deg = k->min < 0 ? hl_bam_to_sdeg(a) : a == 32768 ? 180.0 : hl_bam_to_deg(a);
-            snprintf(buf, sizeof buf, "%.*f", decimals, deg);
-            if (hl_bam_from_deg(strtod(buf, NULL)) == a || decimals == 17) {
-                fprintf(out, "%s", buf);
-                break;
-            }
-        }
-        break;
-    }
-    case HL_KEY_METRES: fprintf(out, "%.3f", *(const hl_mm_t *)field / 1000.0); break;
-    case HL_KEY_Q8: fprintf(out, "%g", *(const uint16_t *)field / 256.0); break;
-    case HL_KEY_LEVEL: fprintf(out, "%s", hl_log_level_name(*(const int32_t *)field)); break;
-    case HL_KEY_MODE: fprintf(out, "%s", c->mode); break;
-    case HL_KEY_FENCE_POLYGON: fprintf(out, "%s", c->fence_text); break;
-    case HL_KEY_FENCE_RECT: break;
-    }
-}
-
-void hl_config_print(const hl_config_t *c, FILE *out)
-{
-    fputs("; houghlocd configuration (INI): every key with its value; ';' starts a comment.\n"
-          "; Keys left out keep the compiled-in defaults; `houghlocd --print-config` prints\n"
-          "; the effective values, and README.md explains each section.\n\n", out);
-    char section[64] = "";
-    for (size_t i = 0; i < hl_config_nkeys; i++) {
-        const hl_config_key_t *k = &hl_config_keys[i];
-        if (k->type == HL_KEY_FENCE_RECT)
-            continue;   /* the fence prints as its polygon, which reads back the same */
-        const char *dot = strchr(k->name, '.');
-        size_t slen = (size_t)(dot - k->name);
-        if (strncmp(section, k->name, slen) != 0 || section[slen] != '\0') {
-            snprintf(section, sizeof section, "%.*s", (int)slen, k->name);
-            fprintf(out, "%s[%s]\n", i ? "\n" : "", section);
-        }
-        fprintf(out, "; %s\n%s = ", k->help, dot + 1);
-        print_value(c, k, out);
-        fputc('\n', out);
-    }
 }

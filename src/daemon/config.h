@@ -4,8 +4,12 @@
  *
  * Every key is "section.key" (the INI section and the key in it); config_keys.c lists
  * them with their types, ranges and one-line descriptions, and packaging/houghlocd.conf
- * is the commented default file. slam.mode (improved or paper) is a preset applied before
- * every other key, wherever it is written, so that single keys can adjust a preset.
+ * is the commented default file of the operator's keys (hl_config_print_operator).
+ *
+ * Three keys are presets, applied before every other key wherever they are written, so
+ * that single keys can adjust them: slam.mode (improved or paper: the method), then
+ * slam.profile (the sensor, profiles.h: its keys over the mode's), and robot.profile (the
+ * robot, sounder.h: its transducers and its calibration under the calibration.* keys).
  */
 #ifndef HOUGHLOC_DAEMON_CONFIG_H
 #define HOUGHLOC_DAEMON_CONFIG_H
@@ -20,6 +24,7 @@
 #include "houghloc/rlink.h"
 #include "houghloc/slam.h"
 #include "houghloc/sounder.h"
+#include "profiles.h"
 
 #define HL_CONFIG_DEFAULT_PATH "/etc/houghloc/houghlocd.conf"
 #define HL_CONFIG_PATH_MAX 512
@@ -35,11 +40,12 @@ typedef struct hl_config {
     char prefix[HL_BUS_PREFIX_MAX + 1];
     int32_t queue;                      /* liblcm queue per subscription, messages */
     /* [daemon] */
-    char map_file[HL_CONFIG_PATH_MAX];  /* "" = $STATE_DIRECTORY/map.hlmap, else
-                                           /var/lib/houghloc/map.hlmap */
+    char map_file[HL_CONFIG_PATH_MAX];  /* "" = the default location (map_location.h) */
     int32_t save_every;                 /* save after this many integrations; 0 = only
                                            on exit and on SAVE */
     int32_t map_period_ms;              /* MAP at most this often, in message time */
+    int32_t map_input_ratio;            /* MAP bytes per byte of SONAR and ODOMETRY taken
+                                           (cycle_map.c); 0 = no bound in bytes */
     int32_t status_period_ms;           /* STATUS this often, wall clock */
     int32_t idle_after_ms;              /* no SONAR this long (wall clock): state IDLE */
     int32_t compute_window;             /* scans in STATUS's compute median and p99 */
@@ -56,10 +62,11 @@ typedef struct hl_config {
     char fence_text[1024];              /* as given, for --print-config */
     /* [slam], [localize], [echo], [refine] */
     char mode[16];                      /* "improved" or "paper" */
+    char profile[HL_SENSOR_PROFILE_NAME_MAX]; /* a sensor profile (profiles.h) */
     hl_slam_params_t slam;
     /* [robot], [calibration], [drive], [link]: the live robot (robot.h) */
     char robot_link[272];               /* "" = none: SONAR and ODOMETRY come over LCM */
-    char robot_profile[16];             /* bonnie or pioneer3 */
+    char robot_profile[16];             /* a robot profile (sounder.h) */
     bool robot_sound_on_connect;
     int32_t robot_lost_soundings;
     int32_t robot_reconnect_max_ms;
@@ -68,13 +75,14 @@ typedef struct hl_config {
     hl_rlink_params_t rlink;
 } hl_config_t;
 
-/** The compiled-in defaults (improved mode, host-only LCM, a 20 m square fence). */
+/** The compiled-in defaults (improved mode, sensor profile sonar-stops, robot profile
+ *  bonnie, host-only LCM, a 20 m square fence). */
 void hl_config_defaults(hl_config_t *c);
 
 /**
- * Builds the effective configuration: defaults, the preset named by slam.mode (in the
- * file or the overrides, the overrides winning), the file's keys, then @p overrides
- * ("section.key=value", in order).
+ * Builds the effective configuration: defaults, the presets named by slam.mode,
+ * slam.profile and robot.profile (in the file or the overrides, the overrides winning),
+ * the file's other keys, then @p overrides ("section.key=value", in order).
  * @param path      the INI file; NULL for none.
  * @param optional  a missing file is not an error (the default path).
  * @return true, or false with one line in @p why ("FILE:LINE: key 'x.y': reason" for
@@ -84,7 +92,13 @@ void hl_config_defaults(hl_config_t *c);
 bool hl_config_load(hl_config_t *c, const char *path, bool optional,
                     const char *const *overrides, int n_overrides, char *why);
 
-/** Writes the effective configuration as an INI file that hl_config_load reads back. */
+/** Writes the effective configuration, every key with its comment, as an INI file that
+ *  hl_config_load reads back (--print-config=all). */
 void hl_config_print(const hl_config_t *c, FILE *out);
+
+/** Writes the operator's keys, and any other key whose value differs from what the
+ *  presets give it, as an INI file that hl_config_load reads back to the same
+ *  configuration (--print-config; packaging/houghlocd.conf is it for the defaults). */
+void hl_config_print_operator(const hl_config_t *c, FILE *out);
 
 #endif

@@ -1,6 +1,8 @@
 /* config_keys.c - every configuration key, its type, range and meaning. */
 #include "config_keys.h"
 
+#include <string.h>
+
 #include "config.h"
 #include "houghloc/fixed.h"
 
@@ -20,11 +22,17 @@ const hl_config_key_t hl_config_keys[] = {
     { "lcm.queue", HL_KEY_I32, F(queue), 1, 100000,
       "messages liblcm queues per input channel before it drops (its default is 30)" },
     { "daemon.map_file", HL_KEY_STR, F(map_file), 0, 0,
-      "the map file; empty: $STATE_DIRECTORY/map.hlmap, else /var/lib/houghloc/map.hlmap" },
+      "the map file; empty: $STATE_DIRECTORY/map.hlmap (the service), else "
+      "/var/lib/houghloc/map.hlmap if that folder is writable, else "
+      "$XDG_STATE_HOME/houghloc/map.hlmap (~/.local/state/houghloc/)" },
     { "daemon.save_every", HL_KEY_I32, F(save_every), 0, 1000000,
       "save the map after this many integrated scans; 0: only on exit and on SAVE" },
     { "daemon.map_period_ms", HL_KEY_I32, F(map_period_ms), 0, 3600000,
       "publish MAP at most this often, in message time (a changed map waits for the next scan)" },
+    { "daemon.map_input_ratio", HL_KEY_I32, F(map_input_ratio), 0, 1000,
+      "after the first MAP, the next waits until the SONAR and ODOMETRY bytes since the last, "
+      "times this, reach its size: MAP stays within this many times the input; 0: no bound "
+      "in bytes" },
     { "daemon.status_period_ms", HL_KEY_I32, F(status_period_ms), 100, 60000,
       "publish STATUS this often (and on every state change)" },
     { "daemon.idle_after_ms", HL_KEY_I32, F(idle_after_ms), 100, 3600000,
@@ -43,7 +51,7 @@ const hl_config_key_t hl_config_keys[] = {
       "error, warning, notice, info or debug" },
     { "auth.key_file", HL_KEY_STR, F(key_file), 0, 0,
       "a file of 64 hex digits, mode 0600; when set, DESTINATION and COMMAND must carry its MAC "
-      "(under systemd: /run/credentials/houghlocd.service/key, see docs/service.md)" },
+      "(under systemd: /run/credentials/houghlocd.service/key, see docs/manual/service.md)" },
     { "start.x_m", HL_KEY_METRES, F(start.x_mm), -4194, 4194,
       "where the first scan is placed, metres (this defines the map frame)" },
     { "start.y_m", HL_KEY_METRES, F(start.y_mm), -4194, 4194, "metres" },
@@ -51,11 +59,15 @@ const hl_config_key_t hl_config_keys[] = {
     { "fence.rect", HL_KEY_FENCE_RECT, F(fence), 0, 0,
       "destinations must lie in this rectangle: MIN_X,MIN_Y,MAX_X,MAX_Y in metres" },
     { "fence.polygon", HL_KEY_FENCE_POLYGON, F(fence), 0, 0,
-      "... or in this polygon: X,Y X,Y X,Y ... in metres (3 to 64 vertices, one line of at "
-      "most 199 characters); the last of fence.rect and fence.polygon wins" },
+      "destinations must lie in this polygon: X,Y X,Y X,Y ... in metres (3 to 64 vertices, "
+      "one line); or fence.rect = MIN_X,MIN_Y,MAX_X,MAX_Y; the last of the two wins" },
     { "slam.mode", HL_KEY_MODE, F(mode), 0, 0,
       "improved (echo bearings, refinement, guarded) or paper (the paper's method); a preset "
       "applied before every other key" },
+    { "slam.profile", HL_KEY_SENSOR_PROFILE, F(profile), 0, 0,
+      "the sensor: sonar-stops (a sonar ring sounded at stops, the paper's), sonar-continuous "
+      "(sounded several times a second) or laser; a preset applied after slam.mode's "
+      "(--print-profile)" },
     { "slam.map_capacity", HL_KEY_U32, S(map_capacity), 1, 1048576,
       "vectors kept, the one bound on the map (the localizer is made for as many); new ones beyond it are culled at random (paper: 1500)" },
     { "slam.map_per_place", HL_KEY_U32, S(map_per_place), 0, 1000,
@@ -94,7 +106,7 @@ const hl_config_key_t hl_config_keys[] = {
     { "slam.close_loops", HL_KEY_BOOL, S(close_loops), 0, 0,
       "loop closure: match each stop against the earlier stops near it and fit all stops to the matches, moving the map (not in the paper)" },
     { "slam.closure_stops", HL_KEY_U32, S(closure_stops), 2, 4096,
-      "... the stops it remembers (a fit takes up to 0.05 s at 256, 1.5 s at 4096: docs/performance.md)" },
+      "... the stops it remembers (a fit takes up to 0.05 s at 256, 1.5 s at 4096: docs/results/performance.md)" },
     { "slam.square_walls", HL_KEY_BOOL, S(square_walls), 0, 0,
       "... and the building's walls run along slam.wall_axis_deg and square to it: each stop's readings tie its heading to the world (needs slam.close_loops)" },
     { "slam.wall_axis_deg", HL_KEY_DEG, S(wall_axis), 0, 90, "... that axis, in the map's frame" },
@@ -199,10 +211,12 @@ const hl_config_key_t hl_config_keys[] = {
     { "reloc.max_edge_ratio", HL_KEY_DOUBLE, S(reloc.max_edge_ratio), 0, 1,
       "also found when readings favouring the runner-up are at most this share of those favouring the answer; 0: off" },
     { "robot.link", HL_KEY_LINK, F(robot_link), 0, 0,
-      "the robot: serial:DEVICE[,BAUD] (ARCOS over a serial port; 9600 baud unless given) or "
-      "tcp:HOST:PORT (houghloc-sim, port 8101); empty: no robot, SONAR and ODOMETRY come over LCM" },
-    { "robot.profile", HL_KEY_PROFILE, F(robot_profile), 0, 0,
-      "where the transducers point: bonnie (16 evenly, the paper's robot) or pioneer3" },
+      "the robot: serial:DEVICE[,BAUD] (ARCOS, 9600 baud unless given), tcp:HOST:PORT "
+      "(houghloc-sim) or file:CAPTURE (a houghloc-sim --capture, replayed); empty: SONAR and "
+      "ODOMETRY come over LCM" },
+    { "robot.profile", HL_KEY_ROBOT_PROFILE, F(robot_profile), 0, 0,
+      "which robot: bonnie (16 transducers evenly, the paper's), pioneer3, or houghloc-sim "
+      "(bonnie's ring with the simulator's calibration); a preset under calibration.*" },
     { "robot.sound_on_connect", HL_KEY_BOOL, F(robot_sound_on_connect), 0, 0,
       "sound once when the robot first connects (the map's first scan)" },
     { "robot.lost_soundings", HL_KEY_I32, F(robot_lost_soundings), 0, 1000,
@@ -219,7 +233,8 @@ const hl_config_key_t hl_config_keys[] = {
     { "robot.step_timeout_ms", HL_KEY_I32, SND(step_timeout_ms), 100, 600000,
       "robot time allowed for one position (turn, settle, a reading from every transducer)" },
     { "calibration.gain_q16", HL_KEY_I32, SND(calib.gain_q16), 1, 1048576,
-      "sonar range: mm per raw unit x 65536 (hl-calibrate prints it)" },
+      "sonar range: mm per raw unit x 65536 (hl-calibrate prints it; default: "
+      "robot.profile's)" },
     { "calibration.offset_mm", HL_KEY_I32, SND(calib.offset_mm), -10000, 10000,
       "sonar range: added after the gain" },
     { "calibration.min_raw", HL_KEY_U16, SND(calib.min_raw), 0, 65535,
@@ -251,3 +266,27 @@ const hl_config_key_t hl_config_keys[] = {
 };
 
 const size_t hl_config_nkeys = sizeof hl_config_keys / sizeof hl_config_keys[0];
+
+/* The keys an operator sets (--print-config, packaging/houghlocd.conf): where the
+ * daemon talks and keeps its map, who may command it, where the robot starts and may go,
+ * which sensor and robot it has, and how the robot drives. Every other key is a research
+ * knob of the localizer, the map, the sounding or the link. */
+static const char *const operator_keys[] = {
+    "lcm.url", "lcm.prefix",
+    "daemon.map_file", "daemon.save_every", "daemon.log_level",
+    "auth.key_file",
+    "start.x_m", "start.y_m", "start.heading_deg",
+    "fence.polygon",
+    "slam.profile",
+    "robot.link", "robot.profile",
+    "calibration.gain_q16", "calibration.offset_mm",
+    "drive.arrive_mm", "drive.max_leg_mm", "drive.speed_mm_s", "drive.turn_deg_s",
+};
+
+bool hl_config_key_for_operator(const hl_config_key_t *k)
+{
+    for (size_t i = 0; i < sizeof operator_keys / sizeof operator_keys[0]; i++)
+        if (strcmp(k->name, operator_keys[i]) == 0)
+            return true;
+    return false;
+}

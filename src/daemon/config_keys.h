@@ -2,6 +2,7 @@
 #ifndef HOUGHLOC_DAEMON_CONFIG_KEYS_H
 #define HOUGHLOC_DAEMON_CONFIG_KEYS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 enum hl_key_type {
@@ -17,10 +18,11 @@ enum hl_key_type {
     HL_KEY_Q8,          /* uint16_t x 256, written as a plain number */
     HL_KEY_LEVEL,       /* log level name */
     HL_KEY_MODE,        /* slam.mode preset */
+    HL_KEY_SENSOR_PROFILE, /* slam.profile preset: a sensor profile name (profiles.h) */
     HL_KEY_FENCE_RECT,
     HL_KEY_FENCE_POLYGON,
     HL_KEY_LINK,        /* char[size]: "" or a robot link (link.h) */
-    HL_KEY_PROFILE,     /* char[size]: a robot profile name (sounder.h) */
+    HL_KEY_ROBOT_PROFILE, /* robot.profile preset: a robot profile name (sounder.h) */
 };
 
 typedef struct hl_config_key {
@@ -34,5 +36,20 @@ typedef struct hl_config_key {
 
 extern const hl_config_key_t hl_config_keys[];
 extern const size_t hl_config_nkeys;
+
+/** An operator's key: printed by --print-config and in packaging/houghlocd.conf; the
+ *  others are research knobs, printed there only when set away from their default. */
+bool hl_config_key_for_operator(const hl_config_key_t *k);
+
+/** A preset key (slam.mode, slam.profile, robot.profile): read before every other key. */
+bool hl_config_key_is_preset(const hl_config_key_t *k);
+
+/* hl_config_t is declared in config.h, which includes this file's users. */
+struct hl_config;
+
+/** Applies @p c's presets, in order: slam.mode's parameters afresh, slam.profile's keys
+ *  over them, robot.profile's calibration. @return false with "config: ..." in @p why
+ *  (HL_CONFIG_WHY_LEN bytes) when a profile names a key the table cannot set. */
+bool hl_config_apply_presets(struct hl_config *c, char *why);
 
 #endif

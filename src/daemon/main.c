@@ -16,7 +16,9 @@
 #include "keyfile.h"
 #include "log.h"
 #include "loop.h"
+#include "map_location.h"
 #include "mapstore.h"
+#include "profiles.h"
 
 
 #define HOST_ONLY_URL "udpm://239.255.76.67:7667?ttl=0"
@@ -30,8 +32,10 @@ static const char usage[] =
     "Options:\n"
     "  -c, --config FILE    configuration file (default " HL_CONFIG_DEFAULT_PATH ";\n"
     "                       a missing default file means the compiled-in defaults)\n"
-    "  -m, --map FILE       map file (default $STATE_DIRECTORY/map.hlmap, else\n"
-    "                       /var/lib/houghloc/map.hlmap)\n"
+    "  -m, --map FILE       map file (default: $STATE_DIRECTORY/map.hlmap under the\n"
+    "                       service; else /var/lib/houghloc/map.hlmap if that folder is\n"
+    "                       writable; else $XDG_STATE_HOME/houghloc/map.hlmap, by default\n"
+    "                       ~/.local/state/houghloc/, created 0700); logged at start\n"
     "      --fresh-map      start with an empty map; a map file that does not load is\n"
     "                       moved aside to FILE.bad-N first\n"
     "  -u, --lcm-url URL    listen here (default: config lcm.url, $LCM_DEFAULT_URL, else\n"
@@ -42,8 +46,14 @@ static const char usage[] =
     "                       live default); 'file://OUT.lcmlog?mode=w' records a log\n"
     "  -p, --prefix P       channel name prefix (SONAR becomes PSONAR, ...)\n"
     "  -s, --set K=V        set configuration key K (section.key), after the file;\n"
-    "                       may be repeated\n"
-    "      --print-config   print the effective configuration and exit\n"
+    "                       may be repeated; e.g. --set slam.profile=laser,\n"
+    "                       --set robot.profile=houghloc-sim\n"
+    "      --print-config   print the effective configuration's operator keys (and any\n"
+    "                       other key set away from its default) and exit\n"
+    "      --print-config=all  print every key of it, each with its comment, and exit\n"
+    "      --print-profile NAME  print the keys sensor profile NAME sets (slam.profile:\n"
+    "                       sonar-stops, sonar-continuous or laser) as an INI fragment,\n"
+    "                       the file share/houghloc/profiles/NAME.conf, and exit\n"
     "      --check-map      check the map file, print what it holds and exit (0 if it\n"
     "                       loads, 1 if not)\n"
     "  -h, --help           this text\n"
@@ -57,7 +67,7 @@ static const char usage[] =
 typedef struct options {
     const char *config;
     bool config_given;
-    bool fresh_map, print_config, check_map;
+    bool fresh_map, print_config, print_all, check_map;
     const char *sets[HL_CONFIG_MAX_OVERRIDES];
     char set_buf[4][HL_CONFIG_URL_MAX + 32];   /* --map/--lcm-url/--lcm-out/--prefix as sets */
     int n_sets, n_buf;
@@ -88,13 +98,16 @@ static bool add_set(options_t *o, const char *key, const char *value)
 /* @return -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, options_t *o)
 {
-    enum { OPT_FRESH = 256, OPT_PRINT, OPT_VERSION, OPT_CHECK };
+    enum { OPT_FRESH = 256, OPT_PRINT, OPT_VERSION, OPT_CHECK, OPT_PROFILE };
     static const struct option longopts[] = {
         { "config", required_argument, NULL, 'c' },  { "map", required_argument, NULL, 'm' },
         { "fresh-map", no_argument, NULL, OPT_FRESH }, { "lcm-url", required_argument, NULL, 'u' },
         { "lcm-out", required_argument, NULL, 'o' }, { "prefix", required_argument, NULL, 'p' },
-        { "set", required_argument, NULL, 's' },     { "print-config", no_argument, NULL, OPT_PRINT },
-        { "check-map", no_argument, NULL, OPT_CHECK }, { "help", no_argument, NULL, 'h' },          { "version", no_argument, NULL, OPT_VERSION },
+        { "set", required_argument, NULL, 's' },
+        { "print-config", optional_argument, NULL, OPT_PRINT },
+        { "print-profile", required_argument, NULL, OPT_PROFILE },
+        { "check-map", no_argument, NULL, OPT_CHECK }, { "help", no_argument, NULL, 'h' },
+        { "version", no_argument, NULL, OPT_VERSION },
         { NULL, 0, NULL, 0 },
     };
     o->config = HL_CONFIG_DEFAULT_PATH;
@@ -110,7 +123,22 @@ static int parse_args(int argc, char **argv, options_t *o)
         case 'p': ok = add_set(o, "lcm.prefix", optarg); break;
         case 's': ok = add_set(o, NULL, optarg); break;
         case OPT_FRESH: o->fresh_map = true; break;
-        case OPT_PRINT: o->print_config = true; break;
+        case OPT_PRINT:
+            if (optarg && strcmp(optarg, "all") != 0)
+                return usage_error("--print-config takes no value or '=all', not", optarg);
+            o->print_config = true;
+            o->print_all = optarg != NULL;
+            break;
+        case OPT_PROFILE: {
+            const hl_sensor_profile_t *p = hl_sensor_profile_find(optarg);
+            if (!p) {
+                fprintf(stderr, "houghlocd: unknown sensor profile '%s' (" HL_SENSOR_PROFILE_NAMES
+                        ")\n", optarg);
+                return 2;
+            }
+            hl_sensor_profile_print(p, stdout);
+            return 0;
+        }
         case OPT_CHECK: o->check_map = true; break;
         case 'h': fputs(usage, stdout); return 0;
         case OPT_VERSION: puts("houghlocd " HL_VERSION); return 0;
@@ -120,21 +148,29 @@ static int parse_args(int argc, char **argv, options_t *o)
         if (!ok)
             return usage_error("too many settings (at most 64), at", argv[optind - 1]);
     }
+    if (optind < argc && o->print_config && strcmp(argv[optind], "all") == 0)
+        return usage_error("unexpected argument (write --print-config=all)", argv[optind]);
     if (optind < argc)
         return usage_error("unexpected argument", argv[optind]);
     return -1;
 }
 
-/* The map file: the config's, else the service's state directory, else /var/lib. */
-static void map_path(const hl_config_t *cfg, char *out, size_t cap)
+/* The map file: the config's (--map), else the default location (map_location.h).
+ * @param create  may create the user's folder (the daemon; not --check-map).
+ * @return false after printing why. */
+static bool map_path(const hl_config_t *cfg, bool create, char *out, size_t cap)
 {
-    const char *state_dir = getenv("STATE_DIRECTORY");
-    if (cfg->map_file[0])
+    if (cfg->map_file[0]) {
         snprintf(out, cap, "%s", cfg->map_file);
-    else if (state_dir && *state_dir && !strchr(state_dir, ':'))
-        snprintf(out, cap, "%s/map.hlmap", state_dir);
-    else
-        snprintf(out, cap, "/var/lib/houghloc/map.hlmap");
+        return true;
+    }
+    const char *from = "";
+    char why[HL_MAP_LOCATION_WHY_LEN];
+    if (!hl_map_location_default(create, out, cap, &from, why))
+        return fprintf(stderr, "houghlocd: %s\n", why), false;
+    if (create)
+        hl_log(HL_LOG_INFO, "map file %s: the default location, from %s", out, from);
+    return true;
 }
 
 /* A daemon that could not save would lose its map at the first stop: refuse at once. */
@@ -159,11 +195,14 @@ static bool load_map(hl_cycle_t *cycle, const char *path, bool fresh, uint32_t c
         return fprintf(stderr, "houghlocd: out of memory\n"), false;
     char why[HL_MAPSTORE_WHY_LEN];
     hl_status_t st = hl_mapstore_load(path, &m, why);
+    bool too_big = st == HL_ERR_CAPACITY;
+    if (too_big)    /* a good map for a larger configuration: name the setting */
+        hl_capacity_advice(path, m.needed, capacity, why, sizeof why);
     if (st == HL_OK && !fresh) {
         st = hl_cycle_restore(cycle, &m);
-        if (st != HL_OK)
-            snprintf(why, sizeof why, "%.300s: holds %u vectors, more than slam.map_capacity %u",
-                     path, m.count, capacity);
+        too_big = st != HL_OK;
+        if (too_big)
+            hl_capacity_advice(path, m.count, capacity, why, sizeof why);
     }
     bool ok = true;
     if (st == HL_OK) {
@@ -181,6 +220,9 @@ static bool load_map(hl_cycle_t *cycle, const char *path, bool fresh, uint32_t c
             hl_log(HL_LOG_NOTICE, "--fresh-map: moved the unloadable map to %s (%s)", moved, why);
         else
             fprintf(stderr, "houghlocd: %s\n", why2);
+    } else if (too_big) {
+        fprintf(stderr, "houghlocd: %s\n", why);
+        ok = false;
     } else {
         fprintf(stderr, "houghlocd: %s; start with --fresh-map to move it aside and begin a "
                 "new map\n", why);
@@ -193,7 +235,8 @@ static bool load_map(hl_cycle_t *cycle, const char *path, bool fresh, uint32_t c
 static int check_map(const hl_config_t *cfg)
 {
     char path[HL_CONFIG_PATH_MAX], why[HL_MAPSTORE_WHY_LEN];
-    map_path(cfg, path, sizeof path);
+    if (!map_path(cfg, false, path, sizeof path))
+        return 1;
     hl_mapfile_t m = { .max_vectors = HL_MAP_MAX_CAPACITY };
     m.vectors = calloc(HL_MAP_MAX_CAPACITY, sizeof *m.vectors);
     if (!m.vectors)
@@ -219,6 +262,7 @@ static bool cycle_params(const hl_config_t *cfg, hl_cycle_params_t *p)
     *p = (hl_cycle_params_t){
         .slam = cfg->slam, .start = cfg->start, .fence = cfg->fence,
         .save_every = cfg->save_every, .map_period_ms = cfg->map_period_ms,
+        .map_input_ratio = cfg->map_input_ratio,
         .idle_after_ms = cfg->idle_after_ms, .compute_window = cfg->compute_window,
         .lost_after = cfg->lost_after, .lost_peak_ratio = cfg->lost_peak_ratio,
         .search_every = cfg->search_every,
@@ -246,7 +290,8 @@ static bool robot_params(const hl_config_t *cfg, hl_robot_params_t *p)
     if (!hl_link_spec_parse(cfg->robot_link, &p->link, why))
         return fprintf(stderr, "houghlocd: %s\n", why), false;
     if (hl_robot_profile_find(cfg->robot_profile, &p->profile) != HL_OK)
-        return fprintf(stderr, "houghlocd: unknown robot profile '%s'\n", cfg->robot_profile), false;
+        return fprintf(stderr, "houghlocd: unknown robot profile '%s' (" HL_ROBOT_PROFILE_NAMES
+                       ")\n", cfg->robot_profile), false;
     return true;
 }
 
@@ -276,9 +321,9 @@ static int run(const hl_config_t *cfg, const options_t *o)
     if (live_robot && !robot_params(cfg, &rp))
         return 1;
 
-    map_path(cfg, path, sizeof path);
     hl_cycle_params_t cp;
-    if (!map_folder_writable(path) || !cycle_params(cfg, &cp))
+    if (!map_path(cfg, true, path, sizeof path) || !map_folder_writable(path) ||
+        !cycle_params(cfg, &cp))
         return 1;
     hl_loop_params_t lp = { .in_url = in_url, .out_url = out_url, .batch = reads_log == 1,
                             .prefix = cfg->prefix, .queue = cfg->queue,
@@ -297,10 +342,13 @@ static int run(const hl_config_t *cfg, const options_t *o)
     else if (load_map(cycle, path, o->fresh_map, cfg->slam.map_capacity)) {
         hl_loop_attach_robot(loop, robot);
         if (live_robot)
-            hl_log(HL_LOG_INFO, "robot: %s, profile %s, %d x %d readings per sounding",
-                   cfg->robot_link, rp.profile.name, rp.profile.transducers, rp.sounder.steps);
+            hl_log(HL_LOG_INFO, "robot: %s, profile %s, %d x %d readings per sounding, "
+                   "calibration mm = raw x %d / 65536 %+d", cfg->robot_link, rp.profile.name,
+                   rp.profile.transducers, rp.sounder.steps, rp.sounder.calib.gain_q16,
+                   rp.sounder.calib.offset_mm);
         hl_log(HL_LOG_INFO, "houghlocd %s ready: in %s, out %s, channel prefix '%s', %s mode, "
-               "map %s, requests %s", HL_VERSION, in_url, out_url, cfg->prefix, cfg->mode, path,
+               "sensor profile %s, map %s, requests %s", HL_VERSION, in_url, out_url,
+               cfg->prefix, cfg->mode, cfg->profile, path,
                cp.authenticate ? "authenticated" : "NOT authenticated");
         sd_notify(0, "READY=1");
         hl_cycle_set_state(cycle, HL_BUS_STATE_IDLE, 0);
@@ -336,7 +384,10 @@ int main(int argc, char **argv)
     }
     hl_log_set_level(cfg->log_level);
     if (o.print_config) {
-        hl_config_print(cfg, stdout);
+        if (o.print_all)
+            hl_config_print(cfg, stdout);
+        else
+            hl_config_print_operator(cfg, stdout);
         rc = 0;
     } else if (o.check_map)
         rc = check_map(cfg);

@@ -1,5 +1,5 @@
 /*
- * mapstore.c - the map file (mapstore.h; layout and crash analysis in docs/mapfile.md).
+ * mapstore.c - the map file (mapstore.h; layout and crash analysis in docs/manual/mapfile.md).
  *
  * Both directions stream through fixed buffers on the stack: no allocation, whatever
  * the map's size. Every number is written byte by byte in little-endian order, so the
@@ -21,7 +21,7 @@
 static const uint8_t MAGIC[8] = { 'H', 'L', 'M', 'A', 'P', '\r', '\n', 0x1a };
 
 enum {
-    HDR_LEN = 93,       /* header bytes, version 1 (offsets in docs/mapfile.md) */
+    HDR_LEN = 93,       /* header bytes, version 1 (offsets in docs/manual/mapfile.md) */
     VEC_LEN = 12,       /* x i32, y i32, normal u16, range u16 */
     CRC_LEN = 4,
     IO_LEN = 4092,      /* the stream buffer: 341 whole vectors */
@@ -91,7 +91,7 @@ static hl_pose_t get_pose(const uint8_t *b)
                         (hl_bam_t)get(b + 8, 2) };
 }
 
-/* The header; the offsets are the table in docs/mapfile.md. */
+/* The header; the offsets are the table in docs/manual/mapfile.md. */
 static void put_header(uint8_t *h, const hl_mapfile_t *m)
 {
     memcpy(h, MAGIC, sizeof MAGIC);
@@ -359,10 +359,12 @@ static hl_status_t load_fd(int fd, const char *path, hl_mapfile_t *out, char *wh
     const char *bad = hdr[28] > 1 ? "the started byte is not 0 or 1" : header_error(&m);
     if (bad)
         return fail(HL_ERR_RANGE, why, path, "%s", bad);
-    if (!store)
+    if (!store) {
+        out->needed = m.count;  /* so that the caller can say what capacity it takes */
         return fail(HL_ERR_CAPACITY, why, path,
                     "holds %" PRIu32 " vectors, more than the %" PRIu32 " this map takes",
                     m.count, m.max_vectors);
+    }
     for (uint32_t i = 0; i < m.count; i++)
         if (!hl_vector_in_range(&m.vectors[i]))
             return fail(HL_ERR_RANGE, why, path, "vector %" PRIu32 " out of range", i);

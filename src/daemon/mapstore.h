@@ -3,7 +3,7 @@
  * where the last one stopped, saved so that a crash at any instant leaves either the
  * old file or the new one, never a mix.
  *
- * Format (little-endian, version HL_MAPSTORE_VERSION; docs/mapfile.md):
+ * Format (little-endian, version HL_MAPSTORE_VERSION; docs/manual/mapfile.md):
  *   header  magic "HLMAP\r\n\x1a" (8 bytes), format version u32, header bytes u32,
  *           capacity u32, count u32, map version u32, started u8, pose (x i32, y i32,
  *           theta u16), odometry reference (same), peak average u32, culling PRNG
@@ -34,6 +34,8 @@ typedef struct hl_mapfile {
     hl_vector_t *vectors;       /* save: count vectors; load: caller storage for
                                    max_vectors */
     uint32_t max_vectors;       /* load only */
+    uint32_t needed;            /* load only: when HL_ERR_CAPACITY refuses the file, the
+                                   vectors it holds (the capacity it takes) */
     int64_t last_request_seq;   /* highest DESTINATION/COMMAND seq accepted (replay guard) */
     int64_t last_scan_utime;    /* the newest integrated scan's time */
     uint64_t scans;             /* scans integrated over the map's life */
@@ -49,7 +51,8 @@ hl_status_t hl_mapstore_save(const char *path, const hl_mapfile_t *m, char *why)
  * Loads and checks. @return HL_OK; HL_ERR_OS with errno == ENOENT when the file does not
  * exist (the caller starts a fresh map), other HL_ERR_OS for a read error; HL_ERR_PARSE
  * for a file that is not a map file, truncated, of another format version, or fails its
- * checksum; HL_ERR_CAPACITY when it holds more than max_vectors vectors; HL_ERR_RANGE for
+ * checksum; HL_ERR_CAPACITY when it holds more than max_vectors vectors (out->needed
+ * says how many, nothing else of @p out changes); HL_ERR_RANGE for
  * a field out of range. @p why names the file and the reason in one line.
  */
 hl_status_t hl_mapstore_load(const char *path, hl_mapfile_t *out, char *why);

@@ -188,6 +188,6 @@ static inline hl_status_t load_into(fixture_t *f, hl_mapfile_t *out, uint32_t ma
 
 /* ---- tests --------------------------------------------------------------------------- */
 
-/* Every field at the offset docs/mapfile.md gives, and back. */
+/* Every field at the offset docs/manual/mapfile.md gives, and back. */
 
 #endif

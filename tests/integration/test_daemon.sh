@@ -26,11 +26,48 @@ check "--print-config exits 0" test $? -eq 0
 $BIN/houghlocd --config "$tmp/a.conf" --print-config >"$tmp/b.conf"
 check "--print-config output reads back to the same values" cmp -s "$tmp/a.conf" "$tmp/b.conf"
 check "packaging/houghlocd.conf is the commented defaults" cmp -s "$tmp/a.conf" packaging/houghlocd.conf
-$D --set slam.mode=paper --print-config >"$tmp/paper.conf"
+check "packaging/houghlocd.conf: the operator's 19 keys, under 80 lines" \
+    sh -c 'test "$(grep -c "^[a-z_0-9]* = " "$1")" -eq 19 && test "$(wc -l <"$1")" -lt 80' - packaging/houghlocd.conf
+$D --print-config=all >"$tmp/all.conf"
+$BIN/houghlocd --config "$tmp/all.conf" --print-config=all >"$tmp/all2.conf"
+check "--print-config=all prints every key, and reads back the same" \
+    sh -c "cmp -s $tmp/all.conf $tmp/all2.conf && grep -q '^coarse_max_cells = ' $tmp/all.conf"
+$D --set slam.map_capacity=3000 --print-config >"$tmp/changed.conf"
+check "--print-config shows a research key set away from its default" grep -q '^map_capacity = 3000$' "$tmp/changed.conf"
+rejects "--print-config takes only =all" 2 "takes no value or '=all'" $D --print-config=some
+$D --set slam.mode=paper --print-config=all >"$tmp/paper.conf"
 check "slam.mode=paper turns echo bearings off" grep -q '^echo_bearings = false' "$tmp/paper.conf"
 printf '[slam]\nmap_capacity = 800\nmode = paper\n' >"$tmp/order.conf"
 check "slam.mode applies before other keys wherever it is written" \
     sh -c "$BIN/houghlocd --config $tmp/order.conf --print-config | grep -q '^map_capacity = 800'"
+
+# ---- sensor and robot profiles ------------------------------------------------------------
+# slam.profile is the research settings of the real-data evaluation, as a product: the
+# same effective configuration as its .conf file, key for key (slam.profile aside).
+realeval=""
+for d in tools/lab/realeval tools/realeval; do [ -f "$d/laser.conf" ] && realeval=$d && break; done
+check "the real-data evaluation's configuration files are found" test -n "$realeval"
+for pair in laser:laser sonar-continuous:sonar; do
+    $D --set slam.profile=${pair%%:*} --print-config=all | grep -v '^profile = ' >"$tmp/prof.a"
+    $BIN/houghlocd --config "$realeval/${pair#*:}.conf" --print-config=all | grep -v '^profile = ' >"$tmp/prof.b"
+    check "slam.profile=${pair%%:*} equals $realeval/${pair#*:}.conf on every key" \
+        sh -c "cmp -s $tmp/prof.a $tmp/prof.b && grep -q '^window_mm = ' $tmp/prof.a"
+done
+for p in sonar-stops sonar-continuous laser; do
+    $BIN/houghlocd --print-profile $p >"$tmp/$p.frag"
+    $D --set slam.profile=$p --print-config=all >"$tmp/$p.key"
+    $BIN/houghlocd --config "$tmp/$p.frag" --set slam.profile=$p --print-config=all >"$tmp/$p.file"
+    check "--print-profile $p: a fragment that sets what the key does" cmp -s "$tmp/$p.key" "$tmp/$p.file"
+done
+check "--print-profile laser names its keys in their sections" \
+    sh -c "grep -q '^\[slam\]$' $tmp/laser.frag && grep -q '^map_capacity = 15000$' $tmp/laser.frag"
+rejects "an unknown sensor profile: the three names" 1 "'sonar' is not a sensor profile (sonar-stops, sonar-continuous or laser)" $D --set slam.profile=sonar
+rejects "--print-profile of an unknown name: the three names" 2 "unknown sensor profile 'x' (sonar-stops, sonar-continuous or laser)" $BIN/houghlocd --print-profile x
+check "robot.profile=houghloc-sim carries the simulator's calibration" \
+    sh -c "$D --set robot.profile=houghloc-sim --print-config | grep -q '^gain_q16 = 70124$'"
+printf '[calibration]\noffset_mm = -20\n[robot]\nprofile = houghloc-sim\n' >"$tmp/calib.conf"
+check "... and calibration.* keys override it wherever written" \
+    sh -c "$BIN/houghlocd --config $tmp/calib.conf --print-config | grep -q '^offset_mm = -20$'"
 printf '[slam]\nmap_capacity = 1500\nbogus = 3\n' >"$tmp/bad.conf"
 rejects "unknown key: file, line and key" 1 "bad.conf:3: unknown key 'bogus'" $BIN/houghlocd --config "$tmp/bad.conf" --print-config
 printf '[localize]\n\ncell_mm = twelve\n' >"$tmp/bad.conf"
@@ -55,6 +92,38 @@ rejects "an unknown option" 2 "unknown option" $D --frobnicate
 rejects "a stray argument" 2 "unexpected argument" $D extra
 rejects "a map folder that cannot be written" 1 "give --map FILE" $D --map /proc/nope/map.hlmap --lcm-url "file://$PWD/$TOUR?speed=0"
 
+# ---- the default map file: the service's folder, else the system's, else the user's ------
+mkdir "$tmp/home"
+if [ -w /var/lib/houghloc ]; then user_map=/var/lib/houghloc/map.hlmap
+else user_map=$tmp/home/.local/state/houghloc/map.hlmap; fi
+(unset STATE_DIRECTORY XDG_STATE_HOME; HOME=$tmp/home $D --fresh-map --lcm-url "file://$PWD/$TOUR?speed=0" \
+    --lcm-out "file://$tmp/home.lcmlog?mode=w" 2>"$tmp/home.err")
+check "no --map, a user: the map goes to \$XDG_STATE_HOME/houghloc (~/.local/state), logged" \
+    sh -c "test -s $user_map && grep -q 'map file $user_map: the default location' $tmp/home.err"
+[ "$user_map" = /var/lib/houghloc/map.hlmap ] ||
+    check "... its folder made 0700" test "$(stat -c %a "$tmp/home/.local/state/houghloc")" = 700
+mkdir "$tmp/service"
+(STATE_DIRECTORY=$tmp/service $D --fresh-map --lcm-url "file://$PWD/$TOUR?speed=0" \
+    --lcm-out "file://$tmp/service.lcmlog?mode=w" 2>/dev/null)
+check "\$STATE_DIRECTORY comes first (the service)" test -s "$tmp/service/map.hlmap"
+if [ ! -w /var/lib/houghloc ]; then
+    rejects "nowhere for the map: the locations tried, and --map" 1 "tried /var/lib/houghloc" \
+        env -u STATE_DIRECTORY XDG_STATE_HOME=/proc/nope $D --lcm-url "file://$PWD/$TOUR?speed=0"
+fi
+
+# ---- a map larger than the configured one: the setting to raise, not only --fresh-map ----
+replay $TOUR "$tmp/big.out" "$tmp/big.map" --fresh-map --set slam.map_capacity=16000 2>/dev/null
+n_big=$($D --map "$tmp/big.map" --check-map | sed -n 's/.* \([0-9]*\) of 16000 vectors.*/\1/p')
+check "a 16000-vector map of the tour holds more than 1500 vectors ($n_big)" test "${n_big:-0}" -gt 1500
+cp "$tmp/big.map" "$tmp/big.orig"
+rejects "... refused under the default, naming slam.map_capacity and the value to set" 1 \
+    "holds $n_big vectors, more than slam.map_capacity = 1500: raise it (--set slam.map_capacity=$n_big, or slam.profile = laser)" \
+    $D --map "$tmp/big.map" --lcm-url "file://$PWD/$TOUR?speed=0" --lcm-out "file://$tmp/big2.out?mode=w"
+check "... left as it was" cmp -s "$tmp/big.map" "$tmp/big.orig"
+"$BIN/hl-eval" split $TOUR 4 "$tmp/four.lcmlog" /dev/null
+replay "$tmp/four.lcmlog" "$tmp/big3.out" "$tmp/big.map" --set slam.map_capacity=$n_big 2>/dev/null
+check "... and loads with the capacity it names" test $? -eq 0
+
 # ---- batch replay: every scan answered, byte-identical twice ----------------------------
 replay $TOUR "$tmp/run1.lcmlog" "$tmp/run1.map" --fresh-map 2>"$tmp/run1.err"
 check "batch replay exits 0 at the end of the log" test $? -eq 0
@@ -64,7 +133,7 @@ for ch in POSE MAP; do
     "$BIN/hl-eval" extract "$tmp/run2.lcmlog" $ch "$tmp/run2.$ch"
     check "two batch replays give byte-identical $ch" cmp -s "$tmp/run1.$ch" "$tmp/run2.$ch"
 done
-check "the POSE stream equals the golden one (tests/data/tour.POSE; make golden)" cmp -s "$tmp/run1.POSE" tests/data/tour.POSE
+check "the POSE stream equals the golden one (tests/golden/tour.sonar-stops.POSE; make golden)" cmp -s "$tmp/run1.POSE" tests/golden/tour.sonar-stops.POSE
 check "the replay answers every scan with one POSE" sh -c "$BIN/hl-eval score --quiet $TOUR $tmp/run1.lcmlog | grep -q '^demo stops=128 '"
 check "the replay writes STATUS too" sh -c "$BIN/hl-eval extract $tmp/run1.lcmlog STATUS $tmp/st && test -s $tmp/st"
 check "the map file is saved at the end" sh -c "$D --map $tmp/run1.map --check-map | grep -q 'map version'"

@@ -1,0 +1,267 @@
+/* Tests for the configuration's presets and printouts (config.c, profiles.c, the robot
+ * profiles of src/robot/profile.c): the sensor profiles' keys and their order against
+ * slam.mode and single keys, refusals naming the choices, robot.profile's calibration
+ * under calibration.*, the operator's printout and its read-back, the fragment of
+ * --print-profile, and the advice for a map larger than the configuration. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "config.h"
+#include "config_keys.h"
+#include "profiles.h"
+
+typedef struct fixture {
+    char path[64];
+    hl_config_t a, b;
+    char why[HL_CONFIG_WHY_LEN];
+} fixture_t;
+
+static int setup(void **state)
+{
+    fixture_t *f = calloc(1, sizeof *f);
+    snprintf(f->path, sizeof f->path, "/tmp/hl-config-XXXXXX");
+    int fd = mkstemp(f->path);
+    if (fd < 0)
+        return -1;
+    close(fd);
+    *state = f;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    fixture_t *f = *state;
+    unlink(f->path);
+    free(f);
+    return 0;
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *fp = fopen(path, "w");
+    assert_non_null(fp);
+    fputs(text, fp);
+    fclose(fp);
+}
+
+/* What a printer writes, in a string the caller frees. */
+static char *printed(const hl_config_t *c, void (*print)(const hl_config_t *, FILE *))
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *fp = open_memstream(&buf, &len);
+    assert_non_null(fp);
+    print(c, fp);
+    fclose(fp);
+    return buf;
+}
+
+static void load_ok(fixture_t *f, hl_config_t *c, const char *path, const char *set1,
+                    const char *set2)
+{
+    const char *sets[2] = { set1, set2 };
+    int n = set2 ? 2 : set1 ? 1 : 0;
+    bool ok = hl_config_load(c, path, false, sets, n, f->why);
+    if (!ok)
+        fail_msg("%s", f->why);
+}
+
+/* The default profile sets nothing: the compiled-in defaults. */
+static void test_sonar_stops_is_the_defaults(void **state)
+{
+    fixture_t *f = *state;
+    hl_config_defaults(&f->a);
+    assert_string_equal(f->a.profile, "sonar-stops");
+    load_ok(f, &f->b, NULL, "slam.profile=sonar-stops", NULL);
+    char *x = printed(&f->a, hl_config_print), *y = printed(&f->b, hl_config_print);
+    assert_string_equal(x, y);
+    free(x);
+    free(y);
+    assert_int_equal(hl_sensor_profile_find("sonar-stops")->n_keys, 0);
+}
+
+/* laser: its keys, the realeval settings. */
+static void test_laser_keys(void **state)
+{
+    fixture_t *f = *state;
+    load_ok(f, &f->a, NULL, "slam.profile=laser", NULL);
+    const hl_slam_params_t *p = &f->a.slam;
+    assert_int_equal(p->map_capacity, 15000);
+    assert_int_equal(p->map_per_place, 2);
+    assert_int_equal(p->window_mm, 500);
+    assert_false(p->echo_bearings);
+    assert_true(p->fit_normals);
+    assert_true(p->normals.keep_unfitted);
+    assert_int_equal(p->loc.reading_stride, 2);
+    assert_int_equal(p->loc.group_mm, 48);
+    assert_int_equal(p->reloc.coarse_cell_mm, 200);
+    assert_int_equal(p->reloc.coarse_max_cells, 2097152);
+    assert_true(p->refine);          /* the improved mode's, untouched */
+    assert_int_equal(hl_sensor_profile_capacity(hl_sensor_profile_find("laser")), 15000);
+}
+
+/* Presets first wherever written: mode, then the profile over it, then single keys. */
+static void test_order_mode_profile_keys(void **state)
+{
+    fixture_t *f = *state;
+    write_file(f->path, "[slam]\nmap_capacity = 800\nwindow_mm = 700\nprofile = laser\n"
+                        "mode = paper\n");
+    load_ok(f, &f->a, f->path, NULL, NULL);
+    assert_string_equal(f->a.mode, "paper");
+    assert_string_equal(f->a.profile, "laser");
+    assert_int_equal(f->a.slam.map_capacity, 800);   /* the key over the profile */
+    assert_int_equal(f->a.slam.window_mm, 700);
+    assert_int_equal(f->a.slam.loc.cell_mm, 47);     /* paper's: laser leaves it */
+    assert_false(f->a.slam.guarded);                 /* paper's */
+    assert_int_equal(f->a.slam.loc.group_mm, 48);    /* the profile's over paper's 0 */
+    /* an override of the profile wins over the file's */
+    load_ok(f, &f->b, f->path, "slam.profile=sonar-continuous", NULL);
+    assert_string_equal(f->b.profile, "sonar-continuous");
+    assert_true(f->b.slam.heading_gain == 0.3);
+    assert_int_equal(f->b.slam.loc.group_mm, 0);
+    assert_int_equal(f->b.slam.map_capacity, 800);
+}
+
+static void test_unknown_profile_refused(void **state)
+{
+    fixture_t *f = *state;
+    const char *sets[1] = { "slam.profile=sonar" };
+    assert_false(hl_config_load(&f->a, NULL, false, sets, 1, f->why));
+    assert_string_equal(f->why, "--set slam.profile=sonar: 'sonar' is not a sensor profile "
+                                "(sonar-stops, sonar-continuous or laser)");
+    write_file(f->path, "[slam]\n\nprofile = lidar\n");
+    assert_false(hl_config_load(&f->a, f->path, false, NULL, 0, f->why));
+    assert_non_null(strstr(f->why, ":3: key 'slam.profile': 'lidar' is not a sensor profile "
+                                   "(sonar-stops, sonar-continuous or laser)"));
+}
+
+/* robot.profile carries a calibration; calibration.* wins wherever it is written. */
+static void test_robot_profile_calibration(void **state)
+{
+    fixture_t *f = *state;
+    load_ok(f, &f->a, NULL, "robot.profile=houghloc-sim", NULL);
+    assert_int_equal(f->a.sounder.calib.gain_q16, 70124);
+    assert_int_equal(f->a.sounder.calib.offset_mm, -35);
+    assert_int_equal(f->a.sounder.calib.min_raw, 200);
+    write_file(f->path, "[calibration]\ngain_q16 = 66000\n[robot]\nprofile = houghloc-sim\n");
+    load_ok(f, &f->b, f->path, NULL, NULL);
+    assert_int_equal(f->b.sounder.calib.gain_q16, 66000);
+    assert_int_equal(f->b.sounder.calib.offset_mm, -35);
+    load_ok(f, &f->b, NULL, "robot.profile=pioneer3", NULL);
+    assert_int_equal(f->b.sounder.calib.gain_q16, 65536);
+    assert_int_equal(f->b.sounder.calib.offset_mm, 0);
+    const char *sets[1] = { "robot.profile=sim" };
+    assert_false(hl_config_load(&f->a, NULL, false, sets, 1, f->why));
+    assert_non_null(strstr(f->why, "(bonnie, pioneer3 or houghloc-sim)"));
+}
+
+/* The operator's printout: exactly the operator's keys at the defaults, under 80 lines. */
+static void test_operator_printout_of_the_defaults(void **state)
+{
+    fixture_t *f = *state;
+    hl_config_defaults(&f->a);
+    char *text = printed(&f->a, hl_config_print_operator);
+    int lines = 0, keys = 0;
+    for (const char *s = text; *s; s++)
+        lines += *s == '\n';
+    for (const char *s = text; s; s = strchr(s, '\n'), s = s ? s + 1 : NULL)
+        keys += *s && *s != ';' && *s != '[' && *s != '\n';    /* "key = value" lines */
+    for (size_t i = 0; i < hl_config_nkeys; i++) {
+        const hl_config_key_t *k = &hl_config_keys[i];
+        char line[80];
+        snprintf(line, sizeof line, "\n%s = ", strchr(k->name, '.') + 1);
+        if (hl_config_key_for_operator(k))
+            assert_non_null(strstr(text, line));
+    }
+    assert_int_equal(keys, 19);
+    assert_true(lines < 80);
+    assert_null(strstr(text, "\nmap_capacity = "));
+    assert_null(strstr(text, "\nmode = "));
+    free(text);
+}
+
+/* A research knob set away from its preset's value shows, and the printout reads back
+ * to the whole configuration. */
+static void test_operator_printout_reads_back(void **state)
+{
+    fixture_t *f = *state;
+    load_ok(f, &f->a, NULL, "slam.profile=laser", "slam.echo_bearings=true");
+    char *text = printed(&f->a, hl_config_print_operator);
+    assert_non_null(strstr(text, "\nprofile = laser\n"));
+    assert_non_null(strstr(text, "\necho_bearings = true\n"));  /* the profile's is false */
+    assert_null(strstr(text, "\nmap_capacity = "));             /* the profile's value */
+    write_file(f->path, text);
+    load_ok(f, &f->b, f->path, NULL, NULL);
+    char *x = printed(&f->a, hl_config_print), *y = printed(&f->b, hl_config_print);
+    assert_string_equal(x, y);
+    free(x);
+    free(y);
+    free(text);
+    load_ok(f, &f->a, NULL, "slam.mode=paper", NULL);
+    text = printed(&f->a, hl_config_print_operator);
+    assert_non_null(strstr(text, "\nmode = paper\n"));
+    free(text);
+}
+
+/* Each profile's fragment, read as a file, sets what the key does. */
+static void test_fragments_read_back(void **state)
+{
+    fixture_t *f = *state;
+    for (size_t i = 0; i < hl_sensor_profile_count(); i++) {
+        const hl_sensor_profile_t *p = hl_sensor_profile_at(i);
+        FILE *fp = fopen(f->path, "w");
+        assert_non_null(fp);
+        hl_sensor_profile_print(p, fp);
+        fclose(fp);
+        char set[64];
+        snprintf(set, sizeof set, "slam.profile=%s", p->name);
+        load_ok(f, &f->a, NULL, set, NULL);
+        load_ok(f, &f->b, f->path, set, NULL);
+        char *x = printed(&f->a, hl_config_print), *y = printed(&f->b, hl_config_print);
+        assert_string_equal(x, y);
+        free(x);
+        free(y);
+        load_ok(f, &f->b, f->path, NULL, NULL);   /* the fragment alone */
+        assert_int_equal(f->a.slam.map_capacity, f->b.slam.map_capacity);
+        assert_int_equal(f->a.slam.loc.prior_sigma_mm, f->b.slam.loc.prior_sigma_mm);
+    }
+    assert_null(hl_sensor_profile_at(hl_sensor_profile_count()));
+    assert_null(hl_sensor_profile_find("nope"));
+}
+
+static void test_capacity_advice(void **state)
+{
+    (void)state;
+    char out[512];
+    hl_capacity_advice("/x/map.hlmap", 15000, 1500, out, sizeof out);
+    assert_string_equal(out, "/x/map.hlmap: holds 15000 vectors, more than slam.map_capacity "
+                             "= 1500: raise it (--set slam.map_capacity=15000, or slam.profile "
+                             "= laser) or start afresh with --fresh-map (which moves this file "
+                             "aside)");
+    hl_capacity_advice("m", 20000, 15000, out, sizeof out);
+    assert_non_null(strstr(out, "(--set slam.map_capacity=20000) or start afresh"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(test_sonar_stops_is_the_defaults, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_laser_keys, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_order_mode_profile_keys, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_unknown_profile_refused, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_robot_profile_calibration, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_operator_printout_of_the_defaults, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_operator_printout_reads_back, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_fragments_read_back, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_capacity_advice, setup, teardown),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
