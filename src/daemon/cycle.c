@@ -1,4 +1,4 @@
-/* cycle.c - scans in, poses and maps out (see cycle.h). */
+/* cycle.c - scans in, poses and maps out (see cycle.h; MAP's rate: cycle_map.c). */
 #include "cycle_internal.h"
 
 #include <math.h>
@@ -24,6 +24,7 @@ hl_cycle_t *hl_cycle_create(const hl_cycle_params_t *p, const hl_cycle_io_t *io)
 {
     if (!p || !io || !io->emit || !io->now_us || p->compute_window < 1 ||
         p->compute_window > 10000 || p->save_every < 0 || p->map_period_ms < 0 ||
+        p->map_input_ratio < 0 || p->map_input_ratio > HL_CYCLE_MAP_RATIO_MAX ||
         !hl_pose_in_range(p->start))
         return NULL;
     hl_cycle_t *c = calloc(1, sizeof *c);
@@ -107,47 +108,6 @@ void hl_cycle_note_error(hl_cycle_t *c, const char *what)
     snprintf(c->last_error, sizeof c->last_error, "%s", what);
 }
 
-/* ---- MAP ----------------------------------------------------------------------------- */
-
-static void publish_map(hl_cycle_t *c)
-{
-    hl_map_t *map = hl_slam_map(c->slam);
-    hl_bus_map_t m = {
-        .utime = c->map_changed_utime, .version = (int32_t)hl_map_version(map),
-        .capacity = (int32_t)hl_map_capacity(map), .count = hl_map_count(map),
-        .vectors = (hl_vector_t *)hl_map_vectors(map),
-    };
-    int len = hl_bus_encode_map(&m, c->map_buf, c->map_buf_len);
-    if (len < 0) {
-        hl_cycle_fault(c, NULL, "map encode", "MAP: the map does not encode (a bug)");
-        return;
-    }
-    c->io.emit(c->io.ctx, HL_CH_MAP, c->map_buf, (size_t)len);
-    c->published_version = hl_map_version(map);
-    c->map_published = true;
-    c->map_published_utime = c->map_changed_utime;
-}
-
-static bool map_pending(const hl_cycle_t *c)
-{
-    return hl_map_version(hl_slam_map(c->slam)) != c->published_version;
-}
-
-/* A changed map goes out at most once per map_period_ms of message time. */
-static void maybe_publish_map(hl_cycle_t *c)
-{
-    if (map_pending(c) && (!c->map_published ||
-                           c->map_changed_utime - c->map_published_utime >=
-                               (int64_t)c->p.map_period_ms * 1000))
-        publish_map(c);
-}
-
-void hl_cycle_flush_map(hl_cycle_t *c)
-{
-    if (map_pending(c))
-        publish_map(c);
-}
-
 /* ---- SONAR and ODOMETRY ------------------------------------------------------------- */
 
 static float share(uint32_t part, uint32_t whole)
@@ -226,6 +186,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
         hl_cycle_fault(c, NULL, "sonar gap", what);
     }
     place_first_scan(c, in->odometry);
+    hl_cycle_map_input(c, len);
     c->have_scan = true;
     c->last_scan_seq = in->seq;
     c->last_scan_utime = in->utime;
@@ -289,7 +250,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
         c->map_changed_utime = in->utime;
         c->since_save++;
     }
-    maybe_publish_map(c);
+    hl_cycle_maybe_publish_map(c);
     int8_t state = c->lost ? HL_BUS_STATE_LOST : HL_BUS_STATE_LOCALIZING;
     if (c->state != state)
         hl_cycle_set_state(c, state, now_us);
@@ -310,6 +271,7 @@ static void on_odometry(hl_cycle_t *c, const void *data, size_t len)
     }
     if (!c->have_odometry)
         c->first_odometry = o.pose;
+    hl_cycle_map_input(c, len);
     c->have_odometry = true;
     c->last_odometry_utime = o.utime;
     if (o.utime > c->newest_utime)

@@ -49,6 +49,9 @@ typedef struct hl_cycle_io {
     void *ctx;
 } hl_cycle_io_t;
 
+/** The largest map_input_ratio: MAP bytes per byte of input. */
+#define HL_CYCLE_MAP_RATIO_MAX 1000
+
 typedef struct hl_cycle_params {
     hl_slam_params_t slam;
     hl_pose_t start;            /* where the first scan is placed */
@@ -57,6 +60,10 @@ typedef struct hl_cycle_params {
     hl_auth_key_t key;
     int32_t save_every;         /* integrations between saves; 0 = only when asked */
     int32_t map_period_ms;      /* least message time between two MAP messages */
+    int32_t map_input_ratio;    /* 0..HL_CYCLE_MAP_RATIO_MAX: after the first, a MAP goes
+                                   out only once the SONAR and ODOMETRY bytes received
+                                   since the previous one, times this, reach its size
+                                   (cycle_map.c); 0 = no bound in bytes */
     int32_t idle_after_ms;      /* wall time without SONAR before the state is IDLE */
     int32_t compute_window;     /* scans in the compute-time statistics, 1..10000 */
     int32_t lost_after;         /* doubtful scans in a row that make the daemon lost
@@ -100,7 +107,8 @@ void hl_cycle_tick(hl_cycle_t *c, int64_t now_us);
 /** Publishes STATUS now with @p state (HL_BUS_STATE_*) and remembers the state. */
 void hl_cycle_set_state(hl_cycle_t *c, int8_t state, int64_t now_us);
 
-/** Publishes a MAP whose change was held back by map_period_ms, if any (at shutdown). */
+/** Publishes a MAP whose change was held back by map_period_ms or map_input_ratio, if any
+ *  (at shutdown: the last MAP of a run is the final map). */
 void hl_cycle_flush_map(hl_cycle_t *c);
 
 /** Whether the map should be saved now (save_every reached, or a SAVE request). */

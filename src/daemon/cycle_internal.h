@@ -1,5 +1,5 @@
-/* cycle_internal.h - the cycle's state, shared by cycle.c, cycle_requests.c and
- * cycle_status.c only. */
+/* cycle_internal.h - the cycle's state, shared by cycle.c and its parts cycle_*.c
+ * only. */
 #ifndef HOUGHLOC_DAEMON_CYCLE_INTERNAL_H
 #define HOUGHLOC_DAEMON_CYCLE_INTERNAL_H
 
@@ -27,10 +27,11 @@ struct hl_cycle {
     int32_t bad_packets;            /* robot packets dropped, from the robot link */
     uint64_t scans_total;           /* over the map's life, saved with it */
 
-    /* MAP publishing */
+    /* MAP publishing (cycle_map.c) */
     uint32_t published_version;
     bool map_published;
     int64_t map_published_utime, map_changed_utime;
+    int64_t input_since_map;        /* SONAR and ODOMETRY bytes taken since the last MAP */
     uint8_t *map_buf;
     size_t map_buf_len;
 
@@ -74,6 +75,12 @@ void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t no
 void hl_cycle_reply(hl_cycle_t *c, int64_t seq, int8_t result, const char *message);
 void hl_cycle_publish_status(hl_cycle_t *c);
 void hl_cycle_record_compute(hl_cycle_t *c, int64_t us);
+
+/** Counts @p len bytes of SONAR or ODOMETRY taken (valid and in order) towards the next
+ *  MAP's byte allowance (cycle_map.c). */
+void hl_cycle_map_input(hl_cycle_t *c, size_t len);
+/** Publishes MAP if the map changed and both bounds allow it (cycle_map.c). */
+void hl_cycle_maybe_publish_map(hl_cycle_t *c);
 
 /** Not lost, no candidate, no runs counted (the lost state's bookkeeping, cleared). */
 void hl_cycle_clear_lost(hl_cycle_t *c);

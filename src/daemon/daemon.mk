@@ -48,7 +48,7 @@ $(BUILD)/tests/daemon/%: $(BUILD)/asan/tests/daemon/%.o $(DAEMON_ASAN_LIB) $(ROB
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -o $@ $< $(DAEMON_ASAN_LIB) $(DAEMON_ASAN_LDLIBS) $(CMOCKA_LIBS)
 
-INTEGRATION_TESTS += tests/integration/test_daemon.sh
+INTEGRATION_TESTS += tests/integration/test_daemon.sh tests/integration/test_mapmsg.sh
 
 # 100 kill -9 trials of a replay (the test suite runs 20).
 .PHONY: crash-trials
@@ -60,14 +60,3 @@ $(BUILD)/tests/daemon/test_alloc: $(BUILD)/asan/tests/daemon/test_alloc.o $(DAEM
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o $@ $< $(DAEMON_ASAN_LIB) $(DAEMON_ASAN_LDLIBS) $(CMOCKA_LIBS)
-
-# The golden POSE stream of the tour (tests/data/tour.POSE), compared byte for byte by
-# test_daemon.sh. Regenerate it only when a change of output is intended, and say why.
-.PHONY: golden
-golden: $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval
-	$(Q)rm -f $(BUILD)/golden.hlmap
-	$(Q)$(BUILD)/bin/houghlocd --config /dev/null --fresh-map --map $(BUILD)/golden.hlmap \
-	    --lcm-url "file://$(CURDIR)/logs/tour.lcmlog?speed=0" \
-	    --lcm-out "file://$(CURDIR)/$(BUILD)/golden.lcmlog?mode=w" 2>/dev/null
-	$(Q)$(BUILD)/bin/hl-eval extract $(BUILD)/golden.lcmlog POSE tests/data/tour.POSE
-	@echo "tests/data/tour.POSE regenerated"

@@ -418,7 +418,7 @@ static void test_restore_continues_exactly(void **state)
 }
 
 /* A restored cycle saves after its first change: a daemon killed before every save would
- * otherwise never write a newer file (found by the power-cut trial, docs/reliability.md). */
+ * otherwise never write a newer file (found by the power-cut trial, docs/results/reliability.md). */
 static void test_restored_cycle_saves_first_change(void **state)
 {
     (void)state;
