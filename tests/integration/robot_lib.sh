@@ -11,8 +11,10 @@ need_robot_programs() {
 }
 
 # write_robot_conf FILE: houghlocd on the robot at PORT, starting where tools/demo/lab.route
-# starts (the south-east leg's open floor).
+# starts (the south-east leg's open floor), ROBOT_START: the map frame is the lab's, so
+# that tests name places and true poses in one frame (hl-eval live --start "$ROBOT_START").
 . tools/houghloc-sim/daemon_conf.sh
+ROBOT_START=5.4,1.5,0
 write_robot_conf() {
     write_lab_robot_conf "$1" 5.4 1.5 0
 }

@@ -4,5 +4,5 @@
 # and hl-eval, which `make all` builds.
 INTEGRATION_TESTS += tests/integration/test_robot.sh
 # The kidnapped robot: houghloc-sim teleports the robot; the daemon notices, is lost, finds
-# it again within three soundings (docs/kidnap.md).
+# it again within three soundings (docs/results/relocalization.md).
 INTEGRATION_TESTS += tests/integration/test_lost.sh

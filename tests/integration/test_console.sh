@@ -4,7 +4,8 @@
 # token to view, the page's token needed to POST, Host checked); the open mode (--listen
 # elsewhere: every request needs the token); 401, 403, 404, 405 and 400 answers that
 # publish nothing, while one good POST publishes exactly one DESTINATION (lcm-logger
-# records it), signed with --key; the event stream; no CPU use when idle; clean stops.
+# records it), signed with --key; the event stream; no CPU use when idle; clean stops;
+# --ground-truth draws the simulator's true poses in the daemon's map frame (--start).
 set -u
 BIN=${BUILD:-build}/bin
 C=$BIN/houghloc-console
@@ -21,12 +22,13 @@ OPORT=$(( 19600 + n ))
 "$C" --help >"$tmp/help" 2>"$tmp/err"
 check "--help exits 0" test $? -eq 0
 check "--help prints the usage line" grep -q "^Usage: houghloc-console \[options\]$" "$tmp/help"
-check "--help names every option" sh -c 'for o in --lcm-url --prefix --key --listen --token-file --ground-truth --help --version; do grep -q -- "  $o" "$1" || exit 1; done' - "$tmp/help"
+check "--help names every option" sh -c 'for o in --lcm-url --prefix --key --listen --token-file --ground-truth --start --help --version; do grep -q -- "  $o" "$1" || exit 1; done' - "$tmp/help"
 check "--help names the default address" grep -q "default 127.0.0.1:8047" "$tmp/help"
 check "--help writes nothing on stderr" test ! -s "$tmp/err"
 check "--version prints the name" sh -c "$C --version | grep -q '^houghloc-console [0-9]'"
 exits "unknown option" 2 'unknown option "--bogus"' "$C" --bogus
 exits "--timeout is not the console's" 2 'unknown option "--timeout"' "$C" --timeout 3
+exits "--deadline is not the console's" 2 'unknown option "--deadline"' "$C" --deadline 3
 exits "a stray argument" 2 'unexpected argument "extra"' "$C" extra
 exits "--listen without a value" 2 "--listen needs a value" "$C" --listen
 exits "--listen followed by an option" 2 "--listen needs a value" "$C" --listen --ground-truth
@@ -120,5 +122,42 @@ check "open mode: POST with the header: 202, unsigned" sh -c "test \"\$(curl -s 
 kill -INT $console; wait $console
 check "SIGINT: a clean stop (exit 0)" test $? -eq 0
 check "no log line without the prefix" sh -c "! grep -hv '^houghloc-console: ' $tmp/c.err $tmp/o.err"
+
+# ---- --ground-truth: the simulator's poses drawn in the daemon's map frame ---------------
+# The first scans of logs/lab28, whose robot starts at (0.614, -0.004) m facing -92
+# degrees in the world: the console must draw its first true pose at the daemon's start
+# pose (--start, default the origin) and the last one moved rigidly with it.
+exits "--start not a pose" 2 "--start '1,2' is not X,Y,DEG" "$C" --start 1,2
+exits "--start beyond the map" 2 "outside +-4194.304 m" "$C" --start=5000,0,0
+"$BIN/hl-eval" split logs/lab28.lcmlog 3 "$tmp/first.lcmlog" "$tmp/rest.lcmlog"
+first=$("$BIN/hl-eval" start "$tmp/first.lcmlog")
+last=$("$BIN/hl-eval" truth "$tmp/first.lcmlog" | tr ',' ' ')
+GPORT=$(( 19500 + n % 100 ))
+GURL="udpm://239.255.76.67:$(( 9400 + n ))?ttl=0"
+for start in "0,0,0" "2,-1,90"; do
+    "$C" --lcm-url "$GURL" --listen "127.0.0.1:$GPORT" --ground-truth --start "$start" \
+        2>"$tmp/g.err" &
+    console=$!; pids="$pids $console"
+    w=0; while ! grep -q "serving" "$tmp/g.err" && [ $w -lt 50 ]; do sleep 0.1; w=$((w + 1)); done
+    lcm-logplayer -s 20 -e '^GROUND_TRUTH$' -l "$GURL" "$tmp/first.lcmlog" >/dev/null
+    curl -s -N --max-time 1 "http://127.0.0.1:$GPORT/events" >"$tmp/gevents"
+    kill -TERM $console; wait $console
+    # the kept track's first point, and the last true pose sent
+    track=$(sed -n 's/^data: {"estimate":\[[^]]*\],"truth":\[\([-0-9]*\),\([-0-9]*\).*/\1 \2/p' "$tmp/gevents")
+    pose=$(grep -A1 '^event: truth$' "$tmp/gevents" | tail -n 1 |
+           sed -n 's/.*"scan_seq":[0-9]*,"x_mm":\([-0-9]*\),"y_mm":\([-0-9]*\),"heading_deg":\([-0-9.]*\).*/\1 \2 \3/p')
+    check "--start $start: the first true pose drawn at the start ($track)" \
+        awk -v t="$track" -v s="$start" 'BEGIN { split(t, a, " "); split(s, b, ",")
+            exit !(a[1] != "" && a[1] == b[1] * 1000 && a[2] == b[2] * 1000) }'
+    check "--start $start: the last true pose moved rigidly with it ($pose)" \
+        awk -v f="$first" -v l="$last" -v p="$pose" -v s="$start" 'BEGIN {
+            split(f, F, " "); split(l, L, " "); split(p, P, " "); split(s, S, ",")
+            r = atan2(0, -1) / 180; t = (S[3] - F[3]) * r; c = cos(t); n = sin(t)
+            dx = L[1] - F[1]; dy = L[2] - F[2]
+            x = 1000 * (S[1] + c * dx - n * dy); y = 1000 * (S[2] + n * dx + c * dy)
+            h = L[3] - F[3] + S[3]; while (h < 0) h += 360; while (h >= 360) h -= 360
+            dh = P[3] - h; if (dh > 180) dh -= 360; if (dh < -180) dh += 360
+            exit !(P[1] != "" && (P[1] - x) ^ 2 + (P[2] - y) ^ 2 <= 9 && dh * dh < 0.01) }'
+done
 
 exit $fail

@@ -40,6 +40,25 @@ check "aligned ATE <= hl-eval's unaligned RMSE ($rmse mm)" \
 check "max error >= ATE RMSE" \
     awk -v a="$(val "$tmp/tsv" ate_rmse_m)" -v m="$(val "$tmp/tsv" max_err_m)" 'BEGIN { exit !(m >= a) }'
 
+# hl-eval compares in the daemon's map frame: the truth's first pose at the daemon's start
+# (--start, default the origin, where this daemon started), so the first scan, placed at
+# the start, is 0 mm off; told the wrong start (the world's), it is off by that much.
+"$BIN/hl-eval" score "$LOG" "$tmp/o.lcmlog" >"$tmp/hlfull"
+check "hl-eval score: the first scan 0 mm from the truth in the map frame" \
+    grep -qE '^stop +1 +scan +0 +error +0 mm' "$tmp/hlfull"
+"$BIN/hl-eval" score --start "$(hl_start=$("$BIN/hl-eval" start "$LOG"); echo "$hl_start" | tr ' ' ',')" \
+    "$LOG" "$tmp/o.lcmlog" >"$tmp/hlworld"
+check "hl-eval score --start at the world's start: the first scan 6734 mm off (the origin)" \
+    grep -qE '^stop +1 +scan +0 +error +6734 mm' "$tmp/hlworld"
+"$BIN/hl-eval" live --quiet --start=0,0,0 "$LOG" "$tmp/o.lcmlog" >"$tmp/hllive"
+check "hl-eval live --quiet --start=0,0,0 LOG OUT: takes the option, prints the one line" \
+    grep -qx 'demo stops=[0-9]* rmse_mm=[0-9.]* max_mm=[0-9.]* odometry_rmse_mm=[0-9.]* wild_accepted=[0-9]*' "$tmp/hllive"
+rejects "hl-eval --start not a pose" 2 "--start 'a,b,c' is not X,Y,DEG" \
+    "$BIN/hl-eval" score --start a,b,c "$LOG" "$tmp/o.lcmlog"
+rejects "hl-eval --start without a value" 2 "--start needs X,Y,DEG" "$BIN/hl-eval" live "$LOG" --start
+rejects "hl-eval score with one log" 2 "expected IN.lcmlog OUT.lcmlog" "$BIN/hl-eval" score "$LOG"
+check "hl-eval --version prints the release" sh -c '"$1" --version | grep -q "^hl-eval [0-9]"' - "$BIN/hl-eval"
+
 # --odometry needs no OUT; its ATE is at most hl-eval's odometry RMSE.
 "$EVAL" --odometry --tsv "$LOG" >"$tmp/odo"
 check "--odometry exits 0" test $? -eq 0

@@ -12,7 +12,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 . tests/integration/lib.sh
 
-# ---- writing a map file (docs/mapfile.md) -------------------------------------------
+# ---- writing a map file (docs/manual/mapfile.md) -------------------------------------------
 u8() {      # one byte
     printf "\\$(printf %03o "$1")"
 }
@@ -96,7 +96,7 @@ check "tour PGM: header + width x height bytes" test "$(wc -c <"$tmp/tour.pgm")"
 check "tour PGM holds only 0, 205 and 254" test "$(tail -c $((${wh% *} * ${wh#* })) "$tmp/tour.pgm" |
     od -An -tu1 -v | tr -s ' ' '\n' | grep . | sort -un | tr '\n' ' ')" = "0 205 254 "
 check "tour YAML resolution 0.05" test "$(yaml "$tmp/tour.yaml" resolution)" = 0.050000
-# Every vector of the file (docs/mapfile.md: 12 bytes each from byte 93): its surface
+# Every vector of the file (docs/manual/mapfile.md: 12 bytes each from byte 93): its surface
 # cell occupied; halfway to its sensor, the cell or a neighbour (Bresenham's cells stray
 # up to one cell from the exact line) free, unless another surface lies there.
 count=$(od -An -tu1 -j20 -N4 "$tmp/m.hlmap" | awk '{ print $1 + 256 * ($2 + 256 * ($3 + 256 * $4)) }')
@@ -142,6 +142,21 @@ png_h() {   # a PNG's height, from its IHDR
 check "--trajectory: the picture gains its two legend lines" \
     test "$(png_h "$tmp/traj.png")" -gt "$(png_h "$tmp/tour.png")"
 check "the PGM ignores the trajectories" cmp -s "$tmp/traj.pgm" "$tmp/tour.pgm"
+# The truth is drawn in the map frame: its first pose at the daemon's start pose (--start,
+# default the origin, as the daemon that made the map), so the true path lies on the map
+# as the estimated one does and the picture keeps its size; a start 20 m north moves it
+# off the map, and the picture grows to hold it.
+png_w() {   # a PNG's width
+    od -An -tu1 -j16 -N4 "$1" | awk '{ print (($1 * 256 + $2) * 256 + $3) * 256 + $4 }'
+}
+"$MAP" --trajectory "$tmp/o.lcmlog" "$tmp/m.hlmap" "$tmp/est" >/dev/null
+"$MAP" --trajectory logs/tour.lcmlog "$tmp/m.hlmap" "$tmp/truth" >/dev/null
+check "the true path on the map: the picture as with the estimated one" \
+    test "$(png_w "$tmp/truth.png")x$(png_h "$tmp/truth.png")" = "$(png_w "$tmp/est.png")x$(png_h "$tmp/est.png")"
+"$MAP" --start 0,20,0 --trajectory logs/tour.lcmlog "$tmp/m.hlmap" "$tmp/north" >/dev/null
+check "--start 0,20,0: the true path 20 m north, a taller picture" \
+    test "$(png_h "$tmp/north.png")" -gt "$(png_w "$tmp/north.png")"
+rejects "--start not a pose" 2 "--start '1,2,x' is not X,Y,DEG" "$MAP" --start 1,2,x "$tmp/m.hlmap" "$tmp/x"
 
 # ---- usage and bad input ------------------------------------------------------------
 check "--help exits 0 and shows the usage" sh -c '"$1" --help | grep -q "^Usage: houghloc-map"' - "$MAP"

@@ -50,7 +50,8 @@ bad_packets_of() {  # bad_packets_of LOG: the last STATUS's bad_packets
     status_of "$1" bad_packets
 }
 demo_line() {   # demo_line LOG: hl-eval live's last line, "stops=.. max_mm=.." as words
-    "$BIN/hl-eval" live "$1" | tail -n 1 | tr ' ' '\n'
+    # (the daemon starts at the robot's true start, write_robot_conf: the frames agree)
+    "$BIN/hl-eval" live --start "$ROBOT_START" "$1" | tail -n 1 | tr ' ' '\n'
 }
 value() {       # value KEY < key=value lines
     sed -n "s/^$1=//p"

@@ -3,7 +3,7 @@
  * Host check against DNS rebinding, and the decision for one request. Pure apart from
  * access_token_generate (libsodium's randombytes_buf) and access_token_load (a file).
  *
- * The model (docs/console.md, "Access"):
+ * The model (docs/manual/houghloc-console.md, "Access"):
  *   - loopback bind (the default, 127.0.0.1): anyone on this host may view without a
  *     token, as anyone on it may already listen to the LCM group; the Host header must
  *     name the loopback address or localhost with the bound port, so that a web page

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "truth_frame.h"
+
 #define STR_(x) #x
 #define STR(x) STR_(x)
 
@@ -32,7 +34,11 @@ static const char usage_text[] =
     "                      the token: open http://ADDR:PORT/?token=TOKEN once\n"
     "  --token-file FILE   the token (16 to 128 letters, digits, '-', '_', '.', '~'; mode\n"
     "                      600); default: a random one, printed at start\n"
-    "  --ground-truth      also show GROUND_TRUTH (the simulated robot's true pose)\n"
+    "  --ground-truth      also show GROUND_TRUTH (the simulated robot's true pose), in\n"
+    "                      the map frame: its first pose heard is drawn at the daemon's\n"
+    "                      start pose (start the console before the robot moves)\n"
+    "  --start X,Y,DEG     the daemon's start pose, [start] in its configuration\n"
+    "                      (default 0,0,0, the daemon's default)\n"
     "  --help              this text\n"
     "  --version           the version\n"
     "\n"
@@ -107,6 +113,10 @@ static int set_value(console_options_t *o, const char *name, const char *v)
                                    "[::1]:8047",
                                    v);
         o->listen = v;
+    } else if (strcmp(name, "--start") == 0) {
+        char why[HL_TRUTH_FRAME_WHY_LEN];
+        if (!hl_truth_frame_parse_pose(v, &o->start, why))
+            return req_usage_error(PROG, "--start %s", why);
     } else {
         o->token_file = v;
     }
@@ -129,8 +139,8 @@ static int on_option(void *user, const char *arg)
     console_options_t *o = user;
     if (o->pending)
         return req_usage_error(PROG, "%s needs a value", o->pending);
-    static const char *const valued[] = { "--listen", "--token-file" };
-    for (int i = 0; i < 2; i++) {
+    static const char *const valued[] = { "--listen", "--token-file", "--start" };
+    for (int i = 0; i < 3; i++) {
         size_t n = strlen(valued[i]);
         if (strncmp(arg, valued[i], n) == 0 && (arg[n] == '\0' || arg[n] == '='))
             return take_value(o, arg, valued[i]);
@@ -139,8 +149,9 @@ static int on_option(void *user, const char *arg)
         o->ground_truth = true;
         return WAITING;
     }
-    /* request.c's --timeout is for clients that wait for one answer: not ours */
-    if (strncmp(arg, "--timeout", 9) == 0 && (arg[9] == '\0' || arg[9] == '='))
+    /* request.c's --timeout and --deadline are for clients that wait for an answer */
+    if ((strncmp(arg, "--timeout", 9) == 0 && (arg[9] == '\0' || arg[9] == '=')) ||
+        (strncmp(arg, "--deadline", 10) == 0 && (arg[10] == '\0' || arg[10] == '=')))
         return req_usage_error(PROG, "unknown option \"%s\"", arg);
     return REQ_NOT_MINE;
 }

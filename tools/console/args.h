@@ -25,6 +25,8 @@ typedef struct console_options {
     char host[64];                  /* the address as a Host header names it */
     const char *token_file;         /* NULL: a token generated at start */
     bool ground_truth;
+    hl_pose_t start;                /* the daemon's start pose (--start): where the
+                                       truth's first pose is drawn */
     const char *pending;            /* internal: an option waiting for its value */
 } console_options_t;
 

@@ -6,7 +6,7 @@
  * Events "data:" line. Lengths are millimetres, headings degrees (0..360, counter-
  * clockwise from the map's +x axis), times microseconds. Sequence numbers are int64
  * values a client chooses, beyond what a JavaScript number holds exactly: they travel
- * as decimal strings. The shapes are listed in docs/console.md.
+ * as decimal strings. The shapes are listed in docs/manual/houghloc-console.md.
  */
 #ifndef HOUGHLOC_TOOLS_CONSOLE_BRIDGE_H
 #define HOUGHLOC_TOOLS_CONSOLE_BRIDGE_H

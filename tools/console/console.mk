@@ -1,5 +1,5 @@
 # tools/console/console.mk - houghloc-console: the operator console, houghlocd's live map
-# and pose in a browser, click to send the robot somewhere (docs/console.md). Included by
+# and pose in a browser, click to send the robot somewhere (docs/manual/houghloc-console.md). Included by
 # the top Makefile.
 #
 # Like houghloc-goto it sees include/, src/daemon (keyfile.h) and tools/goto (request.h),
@@ -7,6 +7,8 @@
 # request.o for the options it shares with the clients, and src/daemon's keyfile.o.
 # The page, tools/console/page.html, is embedded by hl-embed into $(BUILD)/gen (never
 # committed). (This file is read before tools/goto/goto.mk: it names request.o itself.)
+# GROUND_TRUTH is moved into the map frame by tools/eval's truth_frame.c (unit-tested
+# here, tests/console/test_truth_frame.c).
 
 MHD_CFLAGS := $(shell pkg-config --cflags libmicrohttpd 2>/dev/null)
 MHD_LIBS   := $(shell pkg-config --libs libmicrohttpd 2>/dev/null)
@@ -14,11 +16,12 @@ MHD_LIBS   := $(shell pkg-config --libs libmicrohttpd 2>/dev/null)
 # The pure modules, unit-tested under the sanitizers; the rest touches sockets and LCM.
 CONSOLE_PURE := jbuf bridge destreq access hub
 CONSOLE_OBJS := $(patsubst %,$(BUILD)/obj/tools/console/%.o,$(CONSOLE_PURE) args http sender main) \
-                $(BUILD)/obj/gen/console_page.o \
+                $(BUILD)/obj/gen/console_page.o $(BUILD)/obj/tools/eval/truth_frame.o \
                 $(BUILD)/obj/tools/goto/request.o $(BUILD)/obj/src/daemon/keyfile.o
-CONSOLE_ASAN_OBJS := $(patsubst %,$(BUILD)/asan/tools/console/%.o,$(CONSOLE_PURE))
+CONSOLE_ASAN_OBJS := $(patsubst %,$(BUILD)/asan/tools/console/%.o,$(CONSOLE_PURE)) \
+                     $(BUILD)/asan/tools/eval/truth_frame.o
 CONSOLE_TESTS := $(patsubst tests/console/%.c,$(BUILD)/tests/console/%,$(wildcard tests/console/test_*.c))
-CONSOLE_CPPFLAGS := $(CORE_CPPFLAGS) -Isrc/daemon -Itools/goto -Itools/console
+CONSOLE_CPPFLAGS := $(CORE_CPPFLAGS) -Isrc/daemon -Itools/goto -Itools/console -Itools/eval
 
 BINS              += $(BUILD)/bin/houghloc-console
 TEST_BINS         += $(CONSOLE_TESTS)

@@ -24,6 +24,7 @@
 #include "http.h"
 #include "hub.h"
 #include "sender.h"
+#include "truth_frame.h"
 
 #define KEEPALIVE_MS 15000
 #define LOG(...) (fprintf(stderr, PROG ": " __VA_ARGS__), fputc('\n', stderr))
@@ -46,6 +47,7 @@ typedef struct console {
     jbuf_t json;                /* reused for every message */
     char channel[CH_COUNT][HL_BUS_CHANNEL_MAX];
     unsigned long undecodable[CH_COUNT];
+    hl_truth_frame_t truth_frame;   /* GROUND_TRUTH (the simulator's world) to the map */
 } console_t;
 
 static volatile sig_atomic_t stop_signal;
@@ -100,6 +102,10 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
         hl_bus_pose_t p;
         if (hl_bus_decode_pose(rbuf->data, rbuf->data_size, &p, why) != HL_OK)
             return undecodable(c, ch, why);
+        /* drawn beside the estimate, so in its frame: truth_frame.h */
+        if (ch == CH_TRUTH && !hl_truth_frame_map(&c->truth_frame, p.pose, &p.pose))
+            return undecodable(c, ch, "the true pose lies beyond the map's range from "
+                               "--start");
         bridge_pose(&c->json, &p);
         publish_json(c, ch == CH_POSE ? HUB_POSE : HUB_TRUTH, p.pose.x_mm, p.pose.y_mm);
     } else if (ch == CH_STATUS) {
@@ -210,6 +216,7 @@ static int run(console_t *c, const sigset_t *unblocked)
 static int start(console_t *c)
 {
     c->policy = (access_policy_t){ .loopback = c->opt.loopback, .port = c->opt.port };
+    hl_truth_frame_init(&c->truth_frame, c->opt.start);
     snprintf(c->policy.bound_host, sizeof c->policy.bound_host, "%s", c->opt.host);
     char why[HL_KEYFILE_WHY_LEN > ACCESS_WHY_LEN ? HL_KEYFILE_WHY_LEN : ACCESS_WHY_LEN];
     if (c->opt.token_file ? access_token_load(c->opt.token_file, c->policy.token, why) != HL_OK

@@ -8,6 +8,9 @@
  *   hl-eval live LOG [OUT.lcmlog]       the same for a live run's one log (make demo):
  *                                       each scan against the last GROUND_TRUTH before it;
  *                                       with OUT, the POSE of a replay of LOG instead
+ *   (score and live take --quiet, and --start X,Y,DEG: the daemon's start pose, default
+ *   the origin as the daemon's; the truth is compared in the daemon's map frame, its
+ *   first pose laid on that start pose: truth_frame.h)
  *   hl-eval extract LOG CHANNEL FILE    the payloads of every event on CHANNEL, each as
  *                                       a 4-byte big-endian length and the bytes, so that
  *                                       two runs compare with cmp(1)
@@ -34,12 +37,14 @@
 #include "houghloc/bus.h"
 #include "houghloc/logcheck.h"
 #include "houghloc/slam.h"
+#include "houghloc/version.h"
 #include "runlog.h"
+#include "truth_frame.h"
 
 static const char usage[] =
     "Usage: hl-eval start IN.lcmlog\n"
-    "       hl-eval score [--quiet] IN.lcmlog OUT.lcmlog\n"
-    "       hl-eval live [--quiet] LOG [OUT.lcmlog]\n"
+    "       hl-eval score [--quiet] [--start X,Y,DEG] IN.lcmlog OUT.lcmlog\n"
+    "       hl-eval live [--quiet] [--start X,Y,DEG] LOG [OUT.lcmlog]\n"
     "       hl-eval extract LOG CHANNEL FILE\n"
     "       hl-eval status LOG\n"
     "       hl-eval truth LOG\n"
@@ -51,7 +56,11 @@ static const char usage[] =
     "  demo stops=<n> rmse_mm=<x> max_mm=<y> odometry_rmse_mm=<z> wild_accepted=<k>\n"
     "where the odometry error integrates the scans' odometry from the first true pose and\n"
     "wild_accepted counts ACCEPTED poses more than 0.5 m from the truth. live does the\n"
-    "same for the one log of a live run, each scan against the last GROUND_TRUTH before it.\n";
+    "same for the one log of a live run, each scan against the last GROUND_TRUTH before it.\n"
+    "The truth is compared in the daemon's map frame: its first pose (the robot standing\n"
+    "where the run began) is laid on the daemon's start pose, --start (metres, metres,\n"
+    "degrees; default 0,0,0, the daemon's default [start]).\n"
+    "       hl-eval --help | --version\n";
 
 typedef hl_runlog_stop_t stop_t;
 
@@ -87,12 +96,41 @@ static int cmd_start(const char *in)
 
 #define WILD_MM 500.0   /* the paper's wild error */
 
+/* What score and live take besides their logs. */
+typedef struct score_opts {
+    bool quiet;
+    hl_pose_t start;        /* the daemon's start pose (--start) */
+} score_opts_t;
+
+/* Moves every stop's truth into the map frame of a daemon started at @p start.
+ * @return 0, or 1 after the message when a pose leaves the coordinate range. */
+static int truth_to_map_frame(hl_runlog_t *r, hl_pose_t start, const char *in)
+{
+    if (!r->has_first_truth)
+        return 0;   /* no stop has a truth: score says so */
+    hl_truth_frame_t f;
+    hl_truth_frame_init(&f, start);
+    hl_truth_frame_anchor(&f, r->first_truth);
+    for (size_t i = 0; i < r->n; i++) {
+        stop_t *s = &r->stops[i];
+        if (s->has_truth && !hl_truth_frame_map(&f, s->truth, &s->truth)) {
+            fprintf(stderr, "hl-eval: %s: scan %d's true pose moved to the map frame lies "
+                    "beyond +-%.3f m (check --start)\n", in, s->seq, HL_COORD_MAX_MM / 1000.0);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* Prints the error at every stop of @p r and the last line; @p what names the output. */
-static int score(hl_runlog_t *r, int rc, const char *in, const char *out, bool quiet)
+static int score(hl_runlog_t *r, int rc, const char *in, const char *out, const score_opts_t *o)
 {
     const stop_t *first = NULL;
     double se = 0, se_odo = 0, max = 0;
     size_t n = 0, missing = 0, wild = 0;
+    const bool quiet = o->quiet;
+    if (rc == 0)
+        rc = truth_to_map_frame(r, o->start, in);
     for (size_t i = 0; rc == 0 && i < r->n; i++) {
         const stop_t *s = &r->stops[i];
         if (!s->has_scan || !s->has_truth)
@@ -128,20 +166,56 @@ static int score(hl_runlog_t *r, int rc, const char *in, const char *out, bool q
     return rc;
 }
 
-static int cmd_score(const char *in, const char *out, bool quiet)
+static int cmd_score(const char *in, const char *out, const score_opts_t *o)
 {
     hl_runlog_t r = { .prog = "hl-eval" };
     int rc = hl_runlog_load_input(&r, in) || hl_runlog_load_output(&r, out);
-    return score(&r, rc, in, out, quiet);
+    return score(&r, rc, in, out, o);
 }
 
-static int cmd_live(const char *log, const char *out, bool quiet)
+static int cmd_live(const char *log, const char *out, const score_opts_t *o)
 {
     hl_runlog_t r = { .prog = "hl-eval" };
     int rc = hl_runlog_load_live(&r, log, out == NULL);
     if (rc == 0 && out)
         rc = hl_runlog_load_output(&r, out);
-    return score(&r, rc, log, out ? out : log, quiet);
+    return score(&r, rc, log, out ? out : log, o);
+}
+
+/* score and live: [--quiet] [--start X,Y,DEG | --start=X,Y,DEG] LOGS (2 for score, 1 or 2
+ * for live), options in any order before the logs. @return the exit code. */
+static int cmd_scoring(int argc, char **argv)
+{
+    const bool live = strcmp(argv[1], "live") == 0;
+    score_opts_t o = { .quiet = false };
+    const char *logs[2];
+    int nlogs = 0;
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--quiet") == 0) {
+            o.quiet = true;
+        } else if (strncmp(a, "--start", 7) == 0 && (a[7] == '\0' || a[7] == '=')) {
+            const char *v = a[7] == '=' ? a + 8 : i + 1 < argc ? argv[++i] : NULL;
+            char why[HL_TRUTH_FRAME_WHY_LEN];
+            if (!v)
+                return fprintf(stderr, "hl-eval: %s: --start needs X,Y,DEG\n", argv[1]), 2;
+            if (!hl_truth_frame_parse_pose(v, &o.start, why))
+                return fprintf(stderr, "hl-eval: %s: --start %s\n", argv[1], why), 2;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return fprintf(stderr, "hl-eval: %s: unknown option '%s' (try --help)\n", argv[1],
+                           a), 2;
+        } else if (nlogs < 2) {
+            logs[nlogs++] = a;
+        } else {
+            return fprintf(stderr, "hl-eval: %s: too many arguments at '%s' (try --help)\n",
+                           argv[1], a), 2;
+        }
+    }
+    if (live ? nlogs < 1 : nlogs != 2)
+        return fprintf(stderr, "hl-eval: %s: expected %s (try --help)\n", argv[1],
+                       live ? "LOG [OUT.lcmlog]" : "IN.lcmlog OUT.lcmlog"), 2;
+    return live ? cmd_live(logs[0], nlogs == 2 ? logs[1] : NULL, &o)
+                : cmd_score(logs[0], logs[1], &o);
 }
 
 typedef struct extract {
@@ -337,13 +411,12 @@ int main(int argc, char **argv)
 {
     if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0))
         return fputs(usage, stdout), 0;
-    bool quiet = argc >= 3 && strcmp(argv[2], "--quiet") == 0;
+    if (argc >= 2 && strcmp(argv[1], "--version") == 0)
+        return printf("hl-eval %s\n", HL_VERSION), 0;
     if (argc == 3 && strcmp(argv[1], "start") == 0)
         return cmd_start(argv[2]);
-    if (argc == 4 + quiet && strcmp(argv[1], "score") == 0)
-        return cmd_score(argv[2 + quiet], argv[3 + quiet], quiet);
-    if ((argc == 3 + quiet || argc == 4 + quiet) && strcmp(argv[1], "live") == 0)
-        return cmd_live(argv[2 + quiet], argc == 4 + quiet ? argv[3 + quiet] : NULL, quiet);
+    if (argc >= 2 && (strcmp(argv[1], "score") == 0 || strcmp(argv[1], "live") == 0))
+        return cmd_scoring(argc, argv);
     if (argc == 5 && strcmp(argv[1], "extract") == 0)
         return cmd_extract(argv[2], argv[3], argv[4]);
     if (argc == 3 && strcmp(argv[1], "status") == 0)

@@ -56,6 +56,14 @@ static hl_runlog_stop_t *stop_for(hl_runlog_t *r, int32_t seq)
     return &r->stops[r->n++];
 }
 
+static void note_first_truth(hl_runlog_t *r, hl_pose_t truth)
+{
+    if (!r->has_first_truth) {
+        r->first_truth = truth;
+        r->has_first_truth = true;
+    }
+}
+
 /* IN: scans (their time and odometry) and ground truth. */
 static bool on_input(void *user, const lcm_eventlog_event_t *ev, char *why)
 {
@@ -81,6 +89,7 @@ static bool on_input(void *user, const lcm_eventlog_event_t *ev, char *why)
                    false;
         s->truth = p.pose;
         s->has_truth = true;
+        note_first_truth(r, p.pose);
     }
     return true;
 }
@@ -113,6 +122,7 @@ static bool on_output(void *user, const lcm_eventlog_event_t *ev, char *why)
 int hl_runlog_load_input(hl_runlog_t *r, const char *path)
 {
     r->n = 0;
+    r->has_first_truth = false;
     r->stops = calloc(HL_RUNLOG_MAX_STOPS, sizeof *r->stops);
     if (!r->stops)
         return fprintf(stderr, "%s: out of memory\n", r->prog), 1;
@@ -143,6 +153,7 @@ static bool on_live(void *user, const lcm_eventlog_event_t *ev, char *why)
             return false;
         l->truth = p.pose;
         l->has_truth = true;
+        note_first_truth(l->r, p.pose);
         return true;
     }
     if (hl_runlog_is_channel(ev, HL_CHANNEL_POSE))
@@ -163,6 +174,7 @@ static bool on_live(void *user, const lcm_eventlog_event_t *ev, char *why)
 int hl_runlog_load_live(hl_runlog_t *r, const char *path, bool poses)
 {
     r->n = 0;
+    r->has_first_truth = false;
     r->stops = calloc(HL_RUNLOG_MAX_STOPS, sizeof *r->stops);
     if (!r->stops)
         return fprintf(stderr, "%s: out of memory\n", r->prog), 1;

@@ -43,6 +43,9 @@ typedef struct hl_runlog {
     const char *prog;           /* the program's name, first on every error line */
     hl_runlog_stop_t *stops;    /* HL_RUNLOG_MAX_STOPS entries, n of them used */
     size_t n;
+    hl_pose_t first_truth;      /* the log's first GROUND_TRUTH (has_first_truth): where
+                                   the robot stood when the run began */
+    bool has_first_truth;
 } hl_runlog_t;
 
 /**

@@ -114,11 +114,21 @@ static int on_positional(void *user, const char *arg)
     return add_positional(w->o, &w->cmd, arg);
 }
 
+/* houghloc-goto's --deadline bounds a trip; a command's one answer has --timeout. */
+static int on_option(void *user, const char *arg)
+{
+    (void)user;
+    if (strncmp(arg, "--deadline", 10) == 0 && (arg[10] == '\0' || arg[10] == '='))
+        return req_usage_error(CTL_PROG, "unknown option \"%s\" (a command's answer is "
+                               "bounded by --timeout)", arg);
+    return REQ_NOT_MINE;
+}
+
 int ctl_parse_args(int argc, char **argv, ctl_options_t *o)
 {
     walk_t w = { o, NULL };
     const req_args_t args = { .prog = CTL_PROG, .usage = usage_text,
-                              .positional = on_positional, .user = &w };
+                              .positional = on_positional, .option = on_option, .user = &w };
     int rc = req_walk_args(&args, argc, argv, &o->req);
     if (rc != WAITING)
         return rc;

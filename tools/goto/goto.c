@@ -2,11 +2,11 @@
  * goto.c - houghloc-goto: sends the robot to a destination through houghlocd.
  *
  * One DESTINATION message (signed with --key), then the REPLY messages that carry its
- * seq: ACCEPTED, then ARRIVED or a refusal. Sending and waiting are in request.c (shared
+ * seq: ACCEPTED, then ARRIVED or a refusal. While the robot is on its way, the daemon's
+ * STATUS shows its progress, and each sign of it restarts the --timeout wait. Sending and waiting are in request.c (shared
  * with houghloc-ctl), the command line in goto_args.c.
  */
 #include <math.h>
-#include <stdio.h>
 
 #include "goto_args.h"
 #include "houghloc/fixed.h"
@@ -20,6 +20,7 @@ int main(int argc, char **argv)
         return rc;
 
     req_request_t r = { .kind = REQ_DESTINATION, .accepted_ends = o.no_wait,
+                        .follow_progress = !o.no_wait,
                         .accepted_text = "the robot is on its way" };
     r.msg.destination = (hl_bus_destination_t){
         .x_mm = (int32_t)lround(o.pos[0] * 1000.0),
@@ -27,11 +28,5 @@ int main(int argc, char **argv)
         .has_heading = o.npos == 3,
         .heading = o.npos == 3 ? hl_bam_from_deg(fmod(o.pos[2], 360.0)) : 0,
     };
-    rc = req_run(PROG, &o.req, &r);
-    if (rc == EXIT_TIMEOUT && r.accepted)
-        fprintf(stderr,
-                "%s: accepted, but no ARRIVED within %g s: the robot may still be on its "
-                "way (raise --timeout, or use --no-wait)\n",
-                PROG, o.req.timeout_s);
-    return rc;
+    return req_run(PROG, &o.req, &r);
 }

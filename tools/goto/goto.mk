@@ -14,7 +14,8 @@ CTL_OBJS  := $(BUILD)/obj/tools/goto/ctl.o $(BUILD)/obj/tools/goto/ctl_args.o \
              $(REQUEST_OBJS)
 
 BINS              += $(BUILD)/bin/houghloc-goto $(BUILD)/bin/houghloc-ctl
-INTEGRATION_TESTS += tests/integration/test_goto.sh tests/integration/test_ctl.sh
+INTEGRATION_TESTS += tests/integration/test_goto.sh tests/integration/test_ctl.sh \
+                     tests/integration/test_recipe.sh
 
 $(BUILD)/obj/tools/goto/%.o: tools/goto/%.c
 	@mkdir -p $(@D)

@@ -20,8 +20,11 @@ static const char usage_text[] =
     "  --key FILE     sign the request with the key in FILE (64 hexadecimal digits,\n"
     "                 mode 600), as a daemon configured with a key requires;\n"
     "                 unsigned otherwise\n"
-    "  --timeout S    seconds to wait for the answers, 0.1 to 3600 (default 10); the\n"
-    "                 whole trip must fit in it unless --no-wait is given\n"
+    "  --timeout S    the longest silence, 0.1 to 3600 seconds (default 10): the wait\n"
+    "                 for the first answer, then, while the robot is on its way, for\n"
+    "                 the next sign of progress in the daemon's STATUS (once a second:\n"
+    "                 this destination under way, the robot moved, turned or sounded)\n"
+    "  --deadline S   the longest whole wait, 0.1 to 86400 seconds (default none)\n"
     "  --no-wait      exit 0 as soon as the daemon accepts the destination\n"
     "  --help         this text\n"
     "  --version      the version\n"
@@ -36,8 +39,8 @@ static const char usage_text[] =
     "      go to (3 m, 4 m) and face +y, with a signed request\n"
     "  " PROG " --prefix robot1/ --no-wait 0 0\n"
     "      send robot1's daemon to the origin; exit once it accepts\n"
-    "  " PROG " --timeout 300 -12 7.25 180\n"
-    "      a long trip: wait up to 5 minutes for ARRIVED\n"
+    "  " PROG " --deadline 300 -12 7.25 180\n"
+    "      give up (exit 6) unless the robot arrives within 5 minutes\n"
     "\n"
     "Exit status:\n"
     "  0  the robot arrived (with --no-wait: the destination was accepted)\n"
@@ -48,7 +51,8 @@ static const char usage_text[] =
     "     of range (REJECTED_INVALID)\n"
     "  4  no robot is connected to the daemon (NO_ROBOT)\n"
     "  5  the daemon could not do it (FAILED)\n"
-    "  6  no answer (or no ARRIVED) within the timeout\n";
+    "  6  no answer within --timeout, no sign of progress for --timeout once\n"
+    "     under way, or no ARRIVED within --deadline\n";
 
 static const char *const pos_names[3] = { "X", "Y", "HEADING" };
 

@@ -24,6 +24,13 @@
 
 #define COORD_MAX_M (HL_COORD_MAX_MM / 1000.0)
 
+static int64_t clock_us(clockid_t id)
+{
+    struct timespec ts;
+    clock_gettime(id, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
 /* ---- the command line ---------------------------------------------------------------- */
 
 int req_usage_error(const char *prog, const char *fmt, ...)
@@ -67,12 +74,13 @@ int req_parse_value(const char *prog, const char *name, const char *arg, bool co
 
 int req_parse_option(const char *prog, int argc, char **argv, int *i, req_options_t *o)
 {
-    static const char *const names[] = { "--lcm-url", "--prefix", "--key", "--timeout" };
+    static const char *const names[] = { "--lcm-url", "--prefix", "--key", "--timeout",
+                                         "--deadline" };
     const char *a = argv[*i];
     const char *eq = strchr(a, '=');
     size_t n = eq ? (size_t)(eq - a) : strlen(a);
     int which = -1;
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < 5; k++)
         if (strlen(names[k]) == n && strncmp(a, names[k], n) == 0)
             which = k;
     if (which < 0)
@@ -97,11 +105,17 @@ int req_parse_option(const char *prog, int argc, char **argv, int *i, req_option
         if (!*v)
             return req_usage_error(prog, "--key is empty");
         o->key_file = v;
-    } else {
+    } else if (which == 3) {
         double t;
         if (!req_parse_number(v, &t) || !(t >= 0.1 && t <= 3600.0))
             return req_usage_error(prog, "--timeout \"%s\": give seconds from 0.1 to 3600", v);
         o->timeout_s = t;
+    } else {
+        double t;
+        if (!req_parse_number(v, &t) || !(t >= 0.1 && t <= 86400.0))
+            return req_usage_error(prog, "--deadline \"%s\": give seconds from 0.1 to 86400",
+                                   v);
+        o->deadline_s = t;
     }
     return WAITING;
 }
@@ -146,6 +160,11 @@ typedef struct waiter {
     req_request_t *r;
     int undecodable;    /* REPLY messages that did not decode */
     int result;         /* WAITING, or the exit code */
+    int64_t progress_us;        /* monotonic time of the last sign of progress (or of
+                                   sending): the silence is measured from it */
+    bool under_way;             /* a STATUS showed this destination under way */
+    bool seen_status;           /* a STATUS showed this request worked on (on_our_trip) */
+    hl_bus_status_t last;       /* the newest such STATUS */
 } waiter_t;
 
 /* What to print when the daemon's message is empty (ACCEPTED: the request's text). */
@@ -207,24 +226,77 @@ static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user
     fflush(out);
     w->r->accepted = w->r->accepted || r.result == HL_BUS_REPLY_ACCEPTED;
     w->result = exit_code(r.result, w->r->accepted_ends);
+    w->progress_us = clock_us(CLOCK_MONOTONIC);     /* ACCEPTED: the trip has begun */
 }
 
-static int64_t clock_us(clockid_t id)
+/* The states of a destination under way: driving, sounding, localizing a scan, or lost
+ * and sounding to find itself (IDLE, FAULT, STOPPING end it or hold it up). */
+static bool working(int8_t state)
 {
-    struct timespec ts;
-    clock_gettime(id, &ts);
-    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+    return state == HL_BUS_STATE_MOVING || state == HL_BUS_STATE_SOUNDING ||
+           state == HL_BUS_STATE_LOCALIZING || state == HL_BUS_STATE_LOST;
 }
 
-/* Handles REPLY until an answer ends the wait or the timeout runs out. */
-static int wait_for_answer(lcm_t *lcm, waiter_t *w, double timeout_s)
+/* Whether STATUS @p s shows this request being worked on: its destination under way, or,
+ * once ACCEPTED and before it starts, the sounding it waits behind (a destination that
+ * comes during a sounding begins when the sounding ends; STATUS names no destination
+ * until then). */
+static bool on_our_trip(const waiter_t *w, const hl_bus_status_t *s)
 {
-    const int64_t deadline = clock_us(CLOCK_MONOTONIC) + (int64_t)llround(timeout_s * 1e6);
+    if (s->destination_seq == w->seq)
+        return working(s->state);
+    return s->destination_seq < 0 && w->r->accepted && !w->under_way &&
+           (s->state == HL_BUS_STATE_SOUNDING || s->state == HL_BUS_STATE_LOCALIZING);
+}
+
+/* STATUS, once a second and on every change of state: a sign of progress when it shows
+ * this request being worked on and something moved on since the last one: the state,
+ * the scans made, the estimate, or the time of the newest input (the robot's packets
+ * flow). A daemon that stops, a link that goes quiet, or a destination the daemon has
+ * left give no sign, and the wait runs out after --timeout. */
+static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    waiter_t *w = user;
+    hl_bus_status_t s;
+    if (hl_bus_decode_status(rbuf->data, rbuf->data_size, &s, NULL) != HL_OK ||
+        !on_our_trip(w, &s))
+        return;
+    const hl_bus_status_t *p = &w->last;
+    bool changed = !w->seen_status || s.utime != p->utime || s.state != p->state ||
+                   s.scans != p->scans || s.pose.x_mm != p->pose.x_mm ||
+                   s.pose.y_mm != p->pose.y_mm || s.pose.theta != p->pose.theta;
+    w->seen_status = true;
+    w->under_way = w->under_way || s.destination_seq == w->seq;
+    w->last = s;
+    if (changed)
+        w->progress_us = clock_us(CLOCK_MONOTONIC);
+}
+
+/* Why a wait ended without an answer. */
+typedef enum { ENDED_SILENCE, ENDED_DEADLINE } ended_t;
+
+/* Handles REPLY (and STATUS) until an answer ends the wait, o->timeout_s passes since the
+ * last sign of progress, or the deadline since @p sent_us. */
+static int wait_for_answer(lcm_t *lcm, waiter_t *w, const req_options_t *o, int64_t sent_us,
+                           ended_t *ended)
+{
+    const int64_t silence_us = (int64_t)llround(o->timeout_s * 1e6);
+    const int64_t deadline = o->deadline_s > 0 ? sent_us + (int64_t)llround(o->deadline_s * 1e6)
+                                               : INT64_MAX;
     const int fd = lcm_get_fileno(lcm);
     while (w->result == WAITING) {
-        int64_t left = deadline - clock_us(CLOCK_MONOTONIC);
+        const int64_t now = clock_us(CLOCK_MONOTONIC);
+        int64_t left = w->progress_us + silence_us - now;
+        *ended = ENDED_SILENCE;
+        if (deadline - now < left) {
+            left = deadline - now;
+            *ended = ENDED_DEADLINE;
+        }
         if (left <= 0)
             return EXIT_TIMEOUT;
+        if (left > 1000000)
+            left = 1000000;     /* progress moves the end: look again at least each second */
         struct pollfd p = { .fd = fd, .events = POLLIN };
         int n = poll(&p, 1, (int)((left + 999) / 1000));
         if (n < 0 && errno == EINTR)
@@ -239,6 +311,29 @@ static int wait_for_answer(lcm_t *lcm, waiter_t *w, double timeout_s)
         }
     }
     return w->result;
+}
+
+/* A timeout after the daemon took the request: which limit ran out, and what STATUS said
+ * last, so that the operator can tell a slow trip from a stuck one. */
+static void report_stalled(const waiter_t *w, const req_options_t *o, ended_t ended)
+{
+    static const char *const states[] = { "STARTING", "SOUNDING", "LOCALIZING", "MOVING",
+                                          "IDLE", "FAULT", "STOPPING", "LOST" };
+    char last[96] = "no STATUS showed it under way";
+    if (w->seen_status)
+        snprintf(last, sizeof last, "last STATUS: %s at (%.3f, %.3f) m after %d scans",
+                 states[w->last.state], w->last.pose.x_mm / 1000.0, w->last.pose.y_mm / 1000.0,
+                 w->last.scans);
+    if (ended == ENDED_DEADLINE)
+        fprintf(stderr, "%s: accepted, but no ARRIVED within the --deadline of %g s (%s); "
+                "the robot may still be on its way\n", w->prog, o->deadline_s, last);
+    else if (w->r->follow_progress)
+        fprintf(stderr, "%s: accepted, but no sign of progress for %g s (%s): is the robot "
+                "stuck, or the daemon's STATUS not reaching this host? (raise --timeout)\n",
+                w->prog, o->timeout_s, last);
+    else
+        fprintf(stderr, "%s: accepted, but no final answer within %g s (raise --timeout)\n",
+                w->prog, o->timeout_s);
 }
 
 /* ---- sending ------------------------------------------------------------------------- */
@@ -319,15 +414,31 @@ int req_run(const char *prog, const req_options_t *o, req_request_t *r)
         lcm_destroy(lcm);
         return EXIT_ERROR;
     }
+    char status_channel[HL_BUS_CHANNEL_MAX];
+    if (r->follow_progress &&
+        (!hl_bus_channel(o->prefix, HL_CHANNEL_STATUS, status_channel) ||
+         !lcm_subscribe(lcm, status_channel, on_status, &w))) {
+        fprintf(stderr, "%s: cannot subscribe to STATUS\n", prog);
+        lcm_destroy(lcm);
+        return EXIT_ERROR;
+    }
+    const int64_t sent_us = clock_us(CLOCK_MONOTONIC);
+    w.progress_us = sent_us;
     if (lcm_publish(lcm, req_channel, buf, (unsigned int)len) != 0) {
         fprintf(stderr, "%s: cannot publish on %s with LCM URL \"%s\"\n", prog, req_channel,
                 url);
         lcm_destroy(lcm);
         return EXIT_ERROR;
     }
-    int rc = wait_for_answer(lcm, &w, o->timeout_s);
+    ended_t ended = ENDED_SILENCE;
+    int rc = wait_for_answer(lcm, &w, o, sent_us, &ended);
     lcm_destroy(lcm);
-    if (rc == EXIT_TIMEOUT && !r->accepted)
+    if (rc == EXIT_TIMEOUT && (r->accepted || w.seen_status))
+        report_stalled(&w, o, ended);
+    else if (rc == EXIT_TIMEOUT && ended == ENDED_DEADLINE)
+        fprintf(stderr, "%s: no reply from houghlocd within the --deadline of %g s\n", prog,
+                o->deadline_s);
+    else if (rc == EXIT_TIMEOUT)
         fprintf(stderr,
                 "%s: no reply from houghlocd within %g s on channel %s: is it running, "
                 "with the same --lcm-url and prefix?%s\n",

@@ -1,9 +1,10 @@
 /*
  * request.h - what houghloc-goto and houghloc-ctl share (private to tools/goto): the
- * common options (--lcm-url, --prefix, --key, --timeout) and their checks, one request
- * sent to houghlocd (stamped with a seq from the clock, signed, published) and the wait
- * for the REPLY messages that carry its seq, each printed as one line, ending in one of
- * the exit codes below.
+ * common options (--lcm-url, --prefix, --key, --timeout, --deadline) and their checks,
+ * one request sent to houghlocd (stamped with a seq from the clock, signed, published)
+ * and the wait for the REPLY messages that carry its seq, each printed as one line,
+ * ending in one of the exit codes below. A destination's wait follows the robot's
+ * progress in STATUS, so that a long trip needs no long timeout.
  *
  * Messages go through the bus codecs (houghloc/bus.h) and lcm_publish, never the
  * generated code. Every message printed starts with the program's name, given by the
@@ -37,11 +38,14 @@ typedef struct req_options {
     const char *url;        /* NULL: $LCM_DEFAULT_URL, else REQ_DEFAULT_URL */
     const char *prefix;     /* channel prefix, already checked by req_parse_option */
     const char *key_file;   /* NULL: unsigned */
-    double timeout_s;       /* 0.1 .. 3600 */
+    double timeout_s;       /* 0.1 .. 3600: the longest wait for an answer or, while a
+                               destination is under way, the longest silence */
+    double deadline_s;      /* 0: none; else 0.1 .. 86400, the longest whole wait */
 } req_options_t;
 
-/* The defaults: no prefix, unsigned, 10 s. */
-#define REQ_OPTIONS_DEFAULT { .url = NULL, .prefix = "", .key_file = NULL, .timeout_s = 10.0 }
+/* The defaults: no prefix, unsigned, 10 s of silence, no deadline. */
+#define REQ_OPTIONS_DEFAULT \
+    { .url = NULL, .prefix = "", .key_file = NULL, .timeout_s = 10.0, .deadline_s = 0.0 }
 
 /** Prints "<prog>: <message>; try <prog> --help" on stderr. @return EXIT_USAGE. */
 __attribute__((format(printf, 2, 3))) int req_usage_error(const char *prog, const char *fmt,
@@ -106,6 +110,9 @@ typedef struct req_request {
     } msg;                  /* everything but utime, seq and mac, which req_run fills */
     bool accepted_ends;     /* ACCEPTED ends the wait with EXIT_DONE; otherwise it is
                                printed and the wait goes on for ARRIVED or a refusal */
+    bool follow_progress;   /* a destination: ACCEPTED, and every STATUS that shows it
+                               under way and something changed (state, scans, the
+                               estimate), restart the o->timeout_s wait */
     const char *accepted_text;  /* printed for an ACCEPTED whose message is empty */
     bool accepted;          /* out: an ACCEPTED came (tells a timeout after it apart) */
 } req_request_t;
@@ -115,13 +122,15 @@ typedef struct req_request {
  * and the channel names (with o->prefix), stamps utime and seq with the wall clock in
  * microseconds (strictly increasing from call to call, as the daemon requires of the
  * seq it shares between DESTINATION and COMMAND), signs with the key in o->key_file when
- * one is given, subscribes to REPLY, publishes, and handles REPLY messages with poll()
- * until an answer to this seq ends the wait or o->timeout_s runs out.
+ * one is given, subscribes to REPLY (and STATUS when r->follow_progress), publishes, and
+ * handles the messages with poll() until an answer to this seq ends the wait, o->timeout_s
+ * passes with no answer (with r->follow_progress: no sign of progress either), or
+ * o->deadline_s (when not 0) passes since the request was sent.
  *
  * Each answer is printed as one line "<prog>: <RESULT>: <message>", ACCEPTED and ARRIVED
  * on stdout, the others on stderr. After a timeout with no answer at all it says so on
- * stderr (naming the reply channel); a timeout after ACCEPTED is left to the caller,
- * which finds r->accepted set.
+ * stderr (naming the reply channel); after ACCEPTED it says which limit ran out and the
+ * last state STATUS showed.
  *
  * @param[in,out] r  the request (not NULL); r->msg's stamps and r->accepted are written.
  * @return the exit code: EXIT_DONE on ARRIVED, or ACCEPTED when r->accepted_ends;

@@ -23,6 +23,7 @@
 #include "mapgrid.h"
 #include "mapstore.h"
 #include "runlog.h"
+#include "truth_frame.h"
 
 #define PROG "houghloc-map"
 #define MAX_TRAJECTORIES 8
@@ -41,7 +42,10 @@ static const char usage[] =
     "Options:\n"
     "  -r, --resolution M   grid cell side in metres (default 0.05)\n"
     "  -t, --trajectory LOG draw the POSE and GROUND_TRUTH paths of LOG over the picture\n"
-    "                       (repeatable, up to 8 logs: the daemon's output and input)\n"
+    "                       (repeatable, up to 8 logs: the daemon's output and input);\n"
+    "                       the truth is drawn in the map frame, its first pose laid on\n"
+    "                       the daemon's start pose (--start)\n"
+    "      --start X,Y,DEG  the daemon's start pose ([start]; default 0,0,0, its default)\n"
     "  -n, --normals        draw each vector's normal as a tick toward its sensor\n"
     "  -s, --size PX        longer side of the picture's map area (default 1200)\n"
     "  -h, --help           this text\n"
@@ -150,6 +154,7 @@ typedef struct poses {
 
 typedef struct trajectory {
     poses_t pose, truth;
+    hl_truth_frame_t frame;     /* moves GROUND_TRUTH into the map frame */
 } trajectory_t;
 
 static bool push(poses_t *ps, hl_pose_t p)
@@ -177,6 +182,9 @@ static bool on_trajectory(void *user, const lcm_eventlog_event_t *ev, char *why)
     hl_bus_pose_t p;
     if (hl_bus_decode_pose(ev->data, (size_t)ev->datalen, &p, why) != HL_OK)
         return false;
+    if (into == &t->truth && !hl_truth_frame_map(&t->frame, p.pose, &p.pose))
+        return snprintf(why, HL_BUS_WHY_LEN, "the true pose moved to the map frame lies "
+                        "beyond +-%.3f m (check --start)", HL_COORD_MAX_MM / 1000.0), false;
     if (!push(into, p.pose))
         return snprintf(why, HL_BUS_WHY_LEN, "out of memory"), false;
     return true;
@@ -189,6 +197,7 @@ typedef struct options {
     hl_mapdraw_opts_t draw;
     const char *trajectories[MAX_TRAJECTORIES];
     size_t ntrajectories;
+    hl_pose_t start;            /* the daemon's start pose (--start) */
     const char *input, *outbase;
 } options_t;
 
@@ -211,6 +220,7 @@ static int parse(int argc, char **argv, options_t *o)
         { "trajectory", required_argument, NULL, 't' },
         { "normals", no_argument, NULL, 'n' },
         { "size", required_argument, NULL, 's' },
+        { "start", required_argument, NULL, 'S' },
         { "help", no_argument, NULL, 'h' },
         { "version", no_argument, NULL, 'V' },
         { NULL, 0, NULL, 0 },
@@ -237,6 +247,12 @@ static int parse(int argc, char **argv, options_t *o)
         case 'n':
             o->draw.normals = true;
             break;
+        case 'S': {
+            char why[HL_TRUTH_FRAME_WHY_LEN];
+            if (!hl_truth_frame_parse_pose(optarg, &o->start, why))
+                return bad_usage("--start %s", why);
+            break;
+        }
         case 's': {
             errno = 0;
             long v = strtol(optarg, &end, 10);
@@ -332,6 +348,7 @@ int main(int argc, char **argv)
                                       : load_map_message(o.input, &vs);
     trajectory_t t[MAX_TRAJECTORIES] = { 0 };
     for (size_t k = 0; rc == 0 && k < o.ntrajectories; k++) {
+        hl_truth_frame_init(&t[k].frame, o.start);
         rc = hl_runlog_each_event(PROG, o.trajectories[k], on_trajectory, &t[k]);
         if (rc == 0 && t[k].pose.n == 0 && t[k].truth.n == 0) {
             fprintf(stderr, PROG ": %s: no POSE or GROUND_TRUTH message\n", o.trajectories[k]);

@@ -8,6 +8,7 @@
 
 MAP_TOOL_OBJS := $(BUILD)/obj/tools/map/houghloc_map.o $(BUILD)/obj/tools/map/mapgrid.o \
                  $(BUILD)/obj/tools/map/mapdraw.o $(BUILD)/obj/tools/eval/runlog.o \
+                 $(BUILD)/obj/tools/eval/truth_frame.o \
                  $(BUILD)/obj/src/daemon/mapstore.o
 ZLIB_LIBS := $(shell pkg-config --libs zlib 2>/dev/null)
 
