@@ -1,4 +1,4 @@
-/* link.c - link specs, the TCP transport, and reading and writing either (link.h). */
+/* link.c - link specs, the TCP transport, and reading and writing any link (link.h). */
 #include "link.h"
 
 #include <errno.h>
@@ -55,6 +55,19 @@ static bool parse_serial(const char *rest, hl_link_spec_t *out, char *why)
                "38400, 57600 or 115200)", rest, comma + 1), false;
 }
 
+static bool parse_file(const char *rest, hl_link_spec_t *out, char *why)
+{
+    size_t len = strlen(rest);
+    if (len == 0)
+        return WHY("robot link 'file:': want file:CAPTURE, a robot's captured bytes"), false;
+    if (len >= sizeof out->path)
+        return WHY("robot link 'file:%.100s...': the file name is longer than %d characters",
+                   rest, HL_LINK_SPEC_MAX - 1), false;
+    out->kind = HL_LINK_FILE;
+    memcpy(out->path, rest, len + 1);
+    return true;
+}
+
 bool hl_link_spec_parse(const char *text, hl_link_spec_t *out, char *why)
 {
     memset(out, 0, sizeof *out);
@@ -62,7 +75,10 @@ bool hl_link_spec_parse(const char *text, hl_link_spec_t *out, char *why)
         return parse_tcp(text + 4, out, why);
     if (strncmp(text, "serial:", 7) == 0)
         return parse_serial(text + 7, out, why);
-    return WHY("robot link '%s': want tcp:HOST:PORT or serial:DEVICE[,BAUD]", text), false;
+    if (strncmp(text, "file:", 5) == 0)
+        return parse_file(text + 5, out, why);
+    return WHY("robot link '%.200s': want tcp:HOST:PORT, serial:DEVICE[,BAUD] or "
+               "file:CAPTURE", text), false;
 }
 
 static bool open_tcp(hl_link_t *l, const hl_link_spec_t *spec, char *why)
@@ -96,11 +112,17 @@ hl_link_t *hl_link_open(const hl_link_spec_t *spec, char *why)
         return WHY("out of memory"), NULL;
     l->kind = spec->kind;
     l->fd = -1;
-    if (spec->kind == HL_LINK_TCP)
+    bool ok;
+    if (spec->kind == HL_LINK_TCP) {
         snprintf(l->name, sizeof l->name, "tcp:%s:%s", spec->host, spec->port);
-    else
+        ok = open_tcp(l, spec, why);
+    } else if (spec->kind == HL_LINK_SERIAL) {
         snprintf(l->name, sizeof l->name, "serial:%s", spec->device);
-    bool ok = spec->kind == HL_LINK_TCP ? open_tcp(l, spec, why) : hl_link_open_serial(l, spec, why);
+        ok = hl_link_open_serial(l, spec, why);
+    } else {
+        snprintf(l->name, sizeof l->name, "file:%s", spec->path);
+        ok = hl_link_open_file(l, spec, why);
+    }
     if (!ok) {
         hl_link_close(l);
         return NULL;
@@ -143,6 +165,8 @@ bool hl_link_connected(hl_link_t *l, char *why)
 
 ssize_t hl_link_read(hl_link_t *l, void *buf, size_t n, char *why)
 {
+    if (l->kind == HL_LINK_FILE)
+        return hl_link_read_file(l, buf, n, why);
     ssize_t got = read(l->fd, buf, n);
     if (got > 0)
         return got;
@@ -157,10 +181,17 @@ ssize_t hl_link_read(hl_link_t *l, void *buf, size_t n, char *why)
 
 ssize_t hl_link_write(hl_link_t *l, const void *buf, size_t n, char *why)
 {
+    if (l->kind == HL_LINK_FILE)
+        return (ssize_t)n;  /* the captured robot already answered what it was sent */
     ssize_t put = write(l->fd, buf, n);
     if (put >= 0)
         return put;
     if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)
         return 0;
     return WHY("%.200s: write: %s", l->name, strerror(errno)), -1;
+}
+
+bool hl_link_ended(const hl_link_t *l)
+{
+    return l->ended;
 }

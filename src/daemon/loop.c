@@ -318,6 +318,10 @@ int hl_loop_run(hl_loop_t *l, hl_cycle_t *cycle)
             hl_loop_save(l, cycle);
         if (fds[1].revents & POLLIN)
             run_timers(l);
+        if (l->robot && hl_robot_replay_ended(l->robot)) {
+            l->input_ended = true;      /* a replayed capture's end, as a replayed log's */
+            l->faulted = hl_robot_replay_ended(l->robot) < 0;
+        }
     }
     sd_notify(0, "STOPPING=1");
     if (l->robot)

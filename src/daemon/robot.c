@@ -10,6 +10,10 @@
 #include "log.h"
 #include "robot_internal.h"
 
+/* The utime of robot time 0 in a replayed capture: any fixed instant (the simulated data
+ * sets' base, 1e15 us, in 2001). */
+#define REPLAY_EPOCH_US 1000000000000000LL
+
 hl_robot_t *hl_robot_create(const hl_robot_params_t *p, hl_cycle_t *cycle,
                             const hl_cycle_io_t *io)
 {
@@ -26,9 +30,12 @@ hl_robot_t *hl_robot_create(const hl_robot_params_t *p, hl_cycle_t *cycle,
         free(r);
         return NULL;
     }
+    /* A replayed capture's messages carry a fixed time, so that two replays publish the
+     * same bytes (the ARCOS golden); a live robot's, the wall clock's. */
     struct timespec ts;
     clock_gettime(CLOCK_REALTIME, &ts);
-    r->epoch_us = (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+    r->epoch_us = p->link.kind == HL_LINK_FILE ? REPLAY_EPOCH_US
+                                               : (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
     r->backoff_ms = FIRST_BACKOFF_MS;
     return r;
 }

@@ -1,6 +1,6 @@
 /*
- * robot.h - the live robot: houghlocd's side of the robot link. It owns the connection
- * (link.h) and runs the ARCOS session (rlink.h), the rotating sounding (sounder.h) and
+ * robot.h - the live robot: houghlocd's side of the robot link. It owns the byte stream
+ * (link.h) and runs the ARCOS connection (rlink.h), the rotating sounding (sounder.h) and
  * the drive to a destination (drive.h), and turns what the robot reports into the same
  * SONAR and ODOMETRY messages a replay would carry: each is published (so lcm-logger
  * records everything a replay needs) and handed to the cycle, exactly as the loop hands
@@ -10,7 +10,9 @@
  * from the robot's own packets (one SIP per 100 ms), so they scale with a simulated
  * robot that runs faster than real time. A lost link is retried with a doubling backoff;
  * the map and the pose are kept, and the odometry is re-anchored on reconnection so a
- * robot whose odometry restarted at zero does not jump.
+ * robot whose odometry restarted at zero does not jump. A file link (a recorded stream)
+ * has no wall-clock timeouts and no second try: its end ends the daemon
+ * (hl_robot_replay_ended).
  */
 #ifndef HOUGHLOC_DAEMON_ROBOT_H
 #define HOUGHLOC_DAEMON_ROBOT_H
@@ -53,14 +55,19 @@ short hl_robot_events(const hl_robot_t *r);
 /** The fd is ready with @p revents. @p now_ms: the monotonic clock. */
 void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms);
 
-/** Periodic (every 50 ms or so): connects, reconnects, keeps the session alive. */
+/** Periodic (every 50 ms or so): connects, reconnects, keeps the ARCOS connection alive. */
 void hl_robot_tick(hl_robot_t *r, int64_t now_ms);
 
 /** A destination the cycle admitted (authentic, fresh, inside the fence); the robot
  *  answers it on REPLY: ACCEPTED, then ARRIVED or FAILED; NO_ROBOT when the link is down. */
 void hl_robot_destination(hl_robot_t *r, const hl_bus_destination_t *d, int64_t now_ms);
 
-/** At shutdown: stops the base, ends the session, closes the link. */
+/** A replayed capture (robot.link = file:CAPTURE) has ended: the daemon stops as at the
+ *  end of a replayed log. @return 0 while it goes on (or for a live link), 1 at the end
+ *  of the capture, -1 when the capture could not be opened. */
+int hl_robot_replay_ended(const hl_robot_t *r);
+
+/** At shutdown: stops the base, ends the ARCOS connection, closes the link. */
 void hl_robot_stop(hl_robot_t *r, int64_t now_ms);
 
 #endif

@@ -15,9 +15,10 @@ struct hl_robot {
 
     hl_link_t *link;
     hl_rlink_t rlink;
-    bool up;                        /* the session was UP at the last check */
+    bool up;                        /* the ARCOS connection was UP at the last check */
     int64_t retry_at_ms, backoff_ms;
     char last_fault[HL_LINK_WHY_LEN];   /* logged once until it changes */
+    int replay_end;                 /* hl_robot_replay_ended's answer */
 
     hl_sounder_t sounder;
     hl_drive_t drive;
@@ -51,9 +52,9 @@ typedef struct robot_sip_ctx {
     int64_t now_ms;
 } robot_sip_ctx_t;
 
-/** One SIP of the session (an hl_rlink_sip_fn; ctx is a robot_sip_ctx_t). */
+/** One SIP of the ARCOS connection (an hl_rlink_sip_fn; ctx is a robot_sip_ctx_t). */
 void robot_on_sip(void *ctx, const hl_arcos_sip_t *sip);
-/** The session is up: re-anchor the odometry; sound once if asked. */
+/** The ARCOS connection is up: re-anchor the odometry; sound once if asked. */
 void robot_link_up(hl_robot_t *r, int64_t now_ms);
 /** Gives up the sounding and any destination (pending or under way) with @p why. */
 void robot_abandon(hl_robot_t *r, const char *why, int64_t now_ms);

@@ -1,5 +1,6 @@
-/* robot_link.c - the live robot's connection: opening it, the session over it, losing it
- * and trying again with a doubling wait (robot.h). */
+/* robot_link.c - the live robot's link: opening it, the ARCOS connection over it, losing it
+ * and trying again with a doubling wait (robot.h); or replaying a captured one (a file
+ * link), which ends the daemon at its end. */
 #include <poll.h>
 #include <stdio.h>
 #include <string.h>
@@ -7,14 +8,37 @@
 #include "log.h"
 #include "robot_internal.h"
 
+/* A captured stream replayed (robot.link = file:CAPTURE): no wall-clock timeouts (its
+ * SYNC echoes and SIPs are all there, read as fast as the loop takes them), no second
+ * connection. */
+static bool replaying(const hl_robot_t *r)
+{
+    return r->p.link.kind == HL_LINK_FILE;
+}
+
+/* The end of a replayed capture (@p end 1), or a capture that cannot be read (-1): the
+ * loop asks hl_robot_replay_ended after each event and stops as at the end of a replayed
+ * log, saving its map. */
+static void end_replay(hl_robot_t *r, int end, const char *why)
+{
+    hl_log(end > 0 ? HL_LOG_NOTICE : HL_LOG_ERR,
+           "robot link: %s: stopping, as at the end of a replayed log", why);
+    r->replay_end = end;
+}
+
+int hl_robot_replay_ended(const hl_robot_t *r)
+{
+    return r->replay_end;
+}
+
 int hl_robot_fd(const hl_robot_t *r)
 {
-    return r->link ? hl_link_fd(r->link) : -1;
+    return r->link && !hl_link_ended(r->link) ? hl_link_fd(r->link) : -1;
 }
 
 short hl_robot_events(const hl_robot_t *r)
 {
-    if (!r->link)
+    if (!r->link || hl_link_ended(r->link))
         return 0;
     return (short)(POLLIN | (hl_link_connecting(r->link) || r->rlink.out_len ? POLLOUT : 0));
 }
@@ -49,8 +73,8 @@ static void drop_link(hl_robot_t *r, const char *why, int64_t now_ms)
     robot_set_state(r, HL_BUS_STATE_FAULT, now_ms);
 }
 
-/* Follows the session's state after anything that may change it. */
-static void check_session(hl_robot_t *r, int64_t now_ms)
+/* Follows the ARCOS connection's state after anything that may change it. */
+static void check_connection(hl_robot_t *r, int64_t now_ms)
 {
     uint64_t bad = hl_rlink_bad_packets(&r->rlink);
     if (bad != r->bad_reported) {
@@ -93,6 +117,13 @@ static void connect_now(hl_robot_t *r, int64_t now_ms)
 {
     char why[HL_LINK_WHY_LEN];
     r->link = hl_link_open(&r->p.link, why);
+    if (!r->link && replaying(r)) {
+        hl_log(HL_LOG_ERR, "robot link: %s", why);
+        hl_cycle_note_error(r->cycle, why);
+        end_replay(r, -1, "the capture cannot be replayed");
+        r->retry_at_ms = INT64_MAX;     /* no second try at a file */
+        return;
+    }
     if (!r->link) {
         drop_link(r, why, now_ms);
         return;
@@ -104,7 +135,7 @@ static void connect_now(hl_robot_t *r, int64_t now_ms)
 void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms)
 {
     char why[HL_LINK_WHY_LEN];
-    if (!r->link)
+    if (!r->link || hl_link_ended(r->link))
         return;
     if (hl_link_connecting(r->link)) {
         if (!(revents & (POLLOUT | POLLERR | POLLHUP)))
@@ -118,7 +149,16 @@ void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms)
         uint8_t in[512];
         robot_sip_ctx_t ctx = { r, now_ms };
         for (int rounds = 0; r->link && rounds < 16; rounds++) {
-            ssize_t got = hl_link_read(r->link, in, sizeof in, why);
+            /* A live robot starts its SIPs only after the OPEN that answers SYNC2's echo,
+             * so the connection is up (and the sounding on connect started) before the
+             * first SIP. A capture holds both already: read its handshake byte by byte,
+             * so that it comes up at the same point of the stream. */
+            size_t want = replaying(r) && hl_rlink_state(&r->rlink) != HL_RLINK_UP ? 1 : sizeof in;
+            ssize_t got = hl_link_read(r->link, in, want, why);
+            if (got < 0 && hl_link_ended(r->link)) {
+                end_replay(r, 1, why);
+                return;
+            }
             if (got < 0) {
                 drop_link(r, why, now_ms);
                 return;
@@ -126,10 +166,10 @@ void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms)
             if (got == 0)
                 break;
             hl_rlink_feed(&r->rlink, in, (size_t)got, now_ms, robot_on_sip, &ctx);
-            check_session(r, now_ms);
+            check_connection(r, now_ms);
         }
     }
-    check_session(r, now_ms);
+    check_connection(r, now_ms);
     flush(r, now_ms);
 }
 
@@ -138,10 +178,10 @@ void hl_robot_tick(hl_robot_t *r, int64_t now_ms)
     if (!r->link) {
         if (now_ms >= r->retry_at_ms)
             connect_now(r, now_ms);
-    } else if (!hl_link_connecting(r->link)) {
+    } else if (!hl_link_connecting(r->link) && !replaying(r)) {
         hl_rlink_tick(&r->rlink, now_ms);
     }
-    check_session(r, now_ms);
+    check_connection(r, now_ms);
     flush(r, now_ms);
 }
 

@@ -23,11 +23,11 @@ struct Rig {
     Log log{[this](const std::string &s) { lines.push_back(s); }};
     SimConfig cfg;
     SimRobot robot;
-    Session session;
+    Connection connection;
     Server server;
     explicit Rig(const Faults &f)
         : world(make_world()), cfg(config()), robot(world, cfg, Pose{}, log),
-          session(robot, log), server(robot, session, log, f, 1)
+          connection(robot, log), server(robot, connection, log, f, 1)
     {
         std::string err;
         assert_true(server.listen("127.0.0.1", 0, &err));
@@ -111,7 +111,7 @@ struct Reader {
 };
 
 // Connects, synchronizes and opens; returns the client's socket.
-int open_session(Rig &r, Reader &rd)
+int open_connection(Rig &r, Reader &rd)
 {
     int fd = r.connect_client();
     for (uint8_t k = 0; k < 3; k++) {
@@ -130,7 +130,7 @@ int open_session(Rig &r, Reader &rd)
     rd.packets.clear();
     send_cmd(fd, HL_ARCOS_OPEN, 0, false);
     send_cmd(fd, HL_ARCOS_ENABLE, 1, true);
-    r.serve_until([&r] { return r.session.streaming() && r.robot.motors_on(); });
+    r.serve_until([&r] { return r.connection.streaming() && r.robot.motors_on(); });
     return fd;
 }
 
@@ -165,7 +165,7 @@ static void test_move_over_tcp(void **state)
     (void)state;
     Rig r(Faults{});
     Reader rd;
-    int fd = open_session(r, rd);
+    int fd = open_connection(r, rd);
     send_cmd(fd, HL_ARCOS_MOVE, 500, true);
     r.serve_until([&r] { return r.robot.base().moving(); });
     std::vector<hl_arcos_sip_t> sips = run(r, rd, fd, 40);
@@ -174,7 +174,7 @@ static void test_move_over_tcp(void **state)
     assert_int_equal(sips.front().type, HL_ARCOS_SIP_MOVING);
     assert_int_equal(sips.back().type, HL_ARCOS_SIP_STOPPED);
     assert_int_equal(sips.back().x, 500);
-    // A second client is turned away; the first keeps its session.
+    // A second client is turned away; the first keeps its connection.
     int fd2 = r.connect_client();
     r.serve_until([&r] { return r.server.counts().refused == 1; });
     char c;
@@ -197,7 +197,7 @@ static void test_faults(void **state)
     f.drop_after_s = 3.0;
     Rig r(f);
     Reader rd;
-    int fd = open_session(r, rd);
+    int fd = open_connection(r, rd);
     send_cmd(fd, HL_ARCOS_MOVE, 300, true);
     r.serve_until([&r] { return r.robot.base().moving(); });
     // 30 SIPs go out before the drop at 3 s of robot time (the stream opened at 0 s):
@@ -222,7 +222,7 @@ static void test_faults(void **state)
         assert_false(r.server.step(&seq));
     }
     Reader rd2;
-    int fd2 = open_session(r, rd2);
+    int fd2 = open_connection(r, rd2);
     std::vector<hl_arcos_sip_t> again = run(r, rd2, fd2, 12);
     assert_true(again.size() >= 8);
     assert_int_equal(again.back().type, HL_ARCOS_SIP_STOPPED);
@@ -246,7 +246,7 @@ static void test_drop_every(void **state)
     assert_int_equal(r.server.counts().drops, 0);
     for (uint64_t round = 1; round <= 3; round++) {
         Reader rd;
-        int fd = open_session(r, rd);
+        int fd = open_connection(r, rd);
         uint64_t before = r.server.counts().sips;
         // 15 SIP periods of 100 ms from the connection: the drop comes at the 16th step
         // (the handshake took no robot time), so 15 SIPs get out each time.

@@ -333,7 +333,7 @@ static void test_stall_fault_and_motors(void **state)
     assert_true(r.logged("wheels do not turn"));
 }
 
-static void test_seto_and_session_end(void **state)
+static void test_seto_and_connection_end(void **state)
 {
     (void)state;
     Rig r;
@@ -355,7 +355,7 @@ static void test_seto_and_session_end(void **state)
     r.cmd(HL_ARCOS_SONAR, 1);
     r.cmd(HL_ARCOS_VEL, 200);
     r.robot.step();
-    r.robot.session_end();
+    r.robot.connection_end();
     s = r.robot.step();
     assert_int_equal(s.type, HL_ARCOS_SIP_STOPPED);
     assert_int_equal(s.flags, 0);
@@ -397,7 +397,7 @@ int main(void)
         cmocka_unit_test(test_sonar_values),
         cmocka_unit_test(test_wall_stall),
         cmocka_unit_test(test_stall_fault_and_motors),
-        cmocka_unit_test(test_seto_and_session_end),
+        cmocka_unit_test(test_seto_and_connection_end),
         cmocka_unit_test(test_motion_noise),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -7,7 +7,7 @@
 # path; recipes, expanded later, may use the variables.
 
 HLSIMR_SRCS := tools/houghloc-sim/motion.cpp tools/houghloc-sim/simrobot.cpp \
-               tools/houghloc-sim/session.cpp tools/houghloc-sim/server.cpp \
+               tools/houghloc-sim/connection.cpp tools/houghloc-sim/server.cpp \
                tools/houghloc-sim/options.cpp tools/houghloc-sim/teleport.cpp
 HLSIMR_OBJS      := $(call obj,$(HLSIMR_SRCS) tools/houghloc-sim/main.cpp)
 HLSIMR_ASAN_OBJS := $(patsubst %.cpp,$(BUILD)/asan/%.o,$(HLSIMR_SRCS))
@@ -38,7 +38,7 @@ $(BUILD)/bin/houghloc-sim: $(HLSIMR_OBJS) $(HLSIMR_SIM_LIB) $(ROBOT_LIB) $(BUS_L
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $(HLSIMR_OBJS) $(SIM_LIB) $(ROBOT_LIB) $(BUS_LIB) $(BUS_LDLIBS)
 
-# The tests link the sanitized model, session, server and options with the sanitized
+# The tests link the sanitized model, connection, server and options with the sanitized
 # simulator, codec, bus (channel names) and core.
 $(BUILD)/tests/houghloc-sim/%: $(BUILD)/asan/tests/houghloc-sim/%.o $(HLSIMR_ASAN_OBJS) \
                                $(HLSIMR_SIM_ASAN_LIB) $(ROBOT_ASAN_LIB) $(BUS_ASAN_LIB) \

@@ -1,6 +1,6 @@
 // log.hpp - houghloc-sim's event log: one line per event, "houghloc-sim: " in front.
 //
-// The robot model and the session are pure (no I/O), so they report events through a
+// The robot model and the connection are pure (no I/O), so they report events through a
 // Log whose sink the program points at stderr and the tests at a vector. Events that a
 // misbehaving client could repeat at every packet are logged once per kind and counted
 // by the caller.

@@ -1,5 +1,5 @@
 // main.cpp - houghloc-sim: a simulated ARCOS robot on TCP for houghlocd (README, section
-// "Simulated robot"; docs/arcos.md for the protocol subset).
+// "Simulated robot"; docs/manual/arcos.md for the protocol subset).
 //
 // One thread, one poll loop: the listening socket, the client, a signalfd for SIGINT and
 // SIGTERM, and the SIP clock. Robot time runs --speed times wall time: a SIP is due every
@@ -92,7 +92,7 @@ int signal_fd()
     return signalfd(-1, &set, SFD_NONBLOCK | SFD_CLOEXEC);
 }
 
-void summary(const Server &server, const Session &session, const SimRobot &robot)
+void summary(const Server &server, const Connection &connection, const SimRobot &robot)
 {
     const ServerCounts &c = server.counts();
     std::fprintf(stderr,
@@ -101,9 +101,9 @@ void summary(const Server &server, const Session &session, const SimRobot &robot
                  "%llu, stall %llu, teleport %llu) clients=%llu refused=%llu "
                  "robot_time_s=%.1f\n",
                  static_cast<unsigned long long>(c.sips),
-                 static_cast<unsigned long long>(session.commands()),
-                 static_cast<unsigned long long>(session.bad_commands()),
-                 static_cast<unsigned long long>(session.garbage_bytes()),
+                 static_cast<unsigned long long>(connection.commands()),
+                 static_cast<unsigned long long>(connection.bad_commands()),
+                 static_cast<unsigned long long>(connection.garbage_bytes()),
                  static_cast<unsigned long long>(c.faults()),
                  static_cast<unsigned long long>(c.drops),
                  static_cast<unsigned long long>(c.garbage),
@@ -161,6 +161,9 @@ int main(int argc, char **argv)
     case ParseResult::Help:
         print_usage(stdout);
         return 0;
+    case ParseResult::Version:
+        std::printf("%s\n", version_line().c_str());
+        return 0;
     case ParseResult::Error:
         std::fprintf(stderr, "houghloc-sim: %s\n", err.c_str());
         return 2;
@@ -187,9 +190,10 @@ int main(int argc, char **argv)
 
     Log log;
     SimRobot robot(world, cfg, start, log);
-    Session session(robot, log);
-    Server server(robot, session, log, o.faults, o.seed);
-    if (!server.listen(o.bind, o.port, &err)) {
+    Connection connection(robot, log);
+    Server server(robot, connection, log, o.faults, o.seed);
+    if (!server.listen(o.bind, o.port, &err) ||
+        (!o.capture.empty() && !server.capture(o.capture, &err))) {
         std::fprintf(stderr, "houghloc-sim: %s\n", err.c_str());
         return 1;
     }
@@ -215,7 +219,7 @@ int main(int argc, char **argv)
              rad2deg(start.theta), o.truth ? truth.channel : "no GROUND_TRUTH");
     int rc = run(server, robot, truth, log, sigfd, o.speed);
     server.shutdown();
-    summary(server, session, robot);
+    summary(server, connection, robot);
     close(sigfd);
     if (truth.lcm)
         lcm_destroy(truth.lcm);

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "houghloc/bus.h"
+#include "houghloc/version.h"
 #include "simrobot.hpp"
 #include "world.hpp"
 
@@ -24,7 +25,7 @@ void print_usage(FILE *f)
     std::fprintf(f,
         "usage: houghloc-sim [options]\n"
         "A simulated Pioneer-style robot for houghlocd: the server side of the ARCOS\n"
-        "subset (docs/arcos.md) over TCP, one client at a time. Motion commands move a\n"
+        "subset (docs/manual/arcos.md) over TCP, one client at a time. Motion commands move a\n"
         "noisy true pose in the world; SIPs (one per 100 ms of robot time) report the\n"
         "drifting odometry and sonar readings; the true pose goes out on LCM.\n"
         "  --port N            TCP port, 0..65535 (default 8101; 0: any free port, logged)\n"
@@ -42,6 +43,8 @@ void print_usage(FILE *f)
         "  --no-truth          publish nothing on LCM\n"
         "  --watchdog S        the robot stops after S s of robot time without a client\n"
         "                      packet, 0..60; 0: never (default 2, as ARCOS)\n"
+        "  --capture FILE      write every byte sent to the first client to FILE, as sent\n"
+        "                      (houghlocd replays it with robot.link = file:FILE)\n"
         "Fault injection (each logged when it happens and counted in the summary):\n"
         "  --drop-after S      close the client's connection at S s of robot time, once\n"
         "  --drop-every S      close each client's connection S s of robot time after it\n"
@@ -58,8 +61,14 @@ void print_usage(FILE *f)
         "                      (default: a random pose 0.6 m clear of the walls, 2 m or\n"
         "                      more away, any heading, drawn from --seed)\n"
         "  --help              this text\n"
+        "  --version           the version\n"
         "Log lines go to stderr; SIGINT or SIGTERM ends it with a summary line, exit 0.\n"
         "Exit status: 0 done, 1 runtime failure (port in use, LCM), 2 bad option.\n");
+}
+
+std::string version_line()
+{
+    return std::string("houghloc-sim ") + HL_VERSION;
 }
 
 bool parse_number(const char *s, double *out)
@@ -172,6 +181,10 @@ bool take(const std::string &a, const char *v, SimOptions *o, std::string *err)
         if (!*v)
             return bad(err, a, "an LCM URL", v);
         o->lcm_url = v;
+    } else if (a == "--capture") {
+        if (!*v)
+            return bad(err, a, "a file name", v);
+        o->capture = v;
     } else if (a == "--prefix") {
         char ch[HL_BUS_CHANNEL_MAX];
         if (!hl_bus_channel(v, HL_CHANNEL_GROUND_TRUTH, ch))
@@ -210,6 +223,8 @@ ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err
         std::string a = argv[i];
         if (a == "--help" || a == "-h")
             return ParseResult::Help;
+        if (a == "--version")
+            return ParseResult::Version;
         if (a == "--no-truth") {
             o->truth = false;
             continue;
@@ -218,7 +233,8 @@ ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err
             "--port", "--bind", "--speed", "--seed", "--world", "--profile",
             "--sonar-model", "--start", "--lcm-url", "--prefix", "--drop-after",
             "--drop-every", "--stall-after", "--garbage-every", "--corrupt-every",
-            "--watchdog", "--teleport-after", "--teleport-every", "--teleport-to"};
+            "--watchdog", "--teleport-after", "--teleport-every", "--teleport-to",
+            "--capture"};
         bool known = false;
         for (const char *name : with_value)
             known = known || a == name;

@@ -25,17 +25,20 @@ struct SimOptions {
     std::string prefix;              // channel prefix
     bool truth = true;               // publish GROUND_TRUTH
     double watchdog_s = 2.0;         // robot time without a client packet; 0: none
+    std::string capture;             // --capture: the first client's bytes go here too
     Faults faults;
     TeleportPlan teleport;           // --teleport-after, --teleport-every, --teleport-to
 };
 
-enum class ParseResult { Run, Help, Error };
+enum class ParseResult { Run, Help, Version, Error };
 
 /** Parses argv. On Error, @p err holds one line naming the option. */
 ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err);
 
 /** The --help text. */
 void print_usage(FILE *f);
+/** The --version line, "houghloc-sim <version>" as every houghloc program prints it. */
+std::string version_line();
 
 /** A strict decimal number: no spaces, no hex, no inf or nan, all of @p s used. */
 bool parse_number(const char *s, double *out);

@@ -22,9 +22,9 @@ std::string peer_name(const struct sockaddr_in &a)
 
 }  // namespace
 
-Server::Server(SimRobot &robot, Session &session, Log &log, const Faults &faults,
+Server::Server(SimRobot &robot, Connection &connection, Log &log, const Faults &faults,
                uint64_t seed)
-    : robot_(robot), session_(session), log_(log), faults_(faults),
+    : robot_(robot), connection_(connection), log_(log), faults_(faults),
       rng_(seed ^ 0x6761726261676521ULL)
 {
 }
@@ -32,6 +32,30 @@ Server::Server(SimRobot &robot, Session &session, Log &log, const Faults &faults
 Server::~Server()
 {
     shutdown();
+    end_capture();
+}
+
+bool Server::capture(const std::string &path, std::string *err)
+{
+    capture_ = std::fopen(path.c_str(), "wb");
+    if (!capture_) {
+        *err = "--capture: " + path + ": " + std::strerror(errno);
+        return false;
+    }
+    capture_path_ = path;
+    return true;
+}
+
+// The capture ends with its connection: a replay is one connection, from the handshake.
+void Server::end_capture()
+{
+    if (!capture_)
+        return;
+    if (std::fclose(capture_) != 0)
+        log_.line("--capture: %s: %s", capture_path_.c_str(), std::strerror(errno));
+    else
+        log_.line("--capture: %s written", capture_path_.c_str());
+    capture_ = nullptr;   // later clients are not captured
 }
 
 bool Server::listen(const std::string &addr, int port, std::string *err)
@@ -113,7 +137,7 @@ void Server::accept_client()
     accepted_utime_ = robot_.utime();
     out_.clear();
     counts_.clients++;
-    session_.begin();
+    connection_.begin();
     log_.line("client connected from %s", peer_name(a).c_str());
 }
 
@@ -123,8 +147,8 @@ void Server::read_client()
     for (;;) {
         ssize_t r = recv(client_, buf, sizeof buf, 0);
         if (r > 0) {
-            session_.feed(buf, static_cast<std::size_t>(r), &out_);
-            if (session_.closed()) {
+            connection_.feed(buf, static_cast<std::size_t>(r), &out_);
+            if (connection_.closed()) {
                 flush();
                 close_client("the client sent CLOSE");
                 return;
@@ -149,6 +173,13 @@ void Server::flush()
         ssize_t w = send(client_, out_.data() + off, out_.size() - off,
                          MSG_NOSIGNAL | MSG_DONTWAIT);
         if (w > 0) {
+            if (capture_ && std::fwrite(out_.data() + off, 1, static_cast<std::size_t>(w),
+                                        capture_) != static_cast<std::size_t>(w)) {
+                log_.line("--capture: %s: write failed; the capture stops here",
+                          capture_path_.c_str());
+                std::fclose(capture_);
+                capture_ = nullptr;
+            }
             off += static_cast<std::size_t>(w);
         } else if (w < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) {
             break;
@@ -170,7 +201,8 @@ void Server::close_client(const char *why)
     close(client_);
     client_ = -1;
     out_.clear();
-    session_.end();
+    connection_.end();
+    end_capture();
     log_.line("%s: connection closed; the robot is stopped and keeps its pose", why);
 }
 
@@ -234,7 +266,7 @@ bool Server::step(uint64_t *seq)
     }
     hl_arcos_sip_t sip = robot_.step();
     counts_.teleports = robot_.teleports();   // the robot schedules those: they wait for it
-    if (client_ < 0 || !session_.streaming())
+    if (client_ < 0 || !connection_.streaming())
         return false;
     *seq = counts_.sips;
     bool queued = queue_sip(sip);

@@ -1,4 +1,4 @@
-// server.hpp - houghloc-sim's TCP side: one client at a time, its ARCOS session, the SIP
+// server.hpp - houghloc-sim's TCP side: one client at a time, its ARCOS connection, the SIP
 // stream, and the injected faults.
 //
 // Non-blocking sockets for the caller's poll() loop: pollfds() says what to wait for,
@@ -11,12 +11,13 @@
 #include <poll.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "log.hpp"
 #include "rng.hpp"
-#include "session.hpp"
+#include "connection.hpp"
 #include "simrobot.hpp"
 
 namespace hlsim {
@@ -47,8 +48,9 @@ public:
     /** A client that has this much output unread is dropped. */
     static constexpr std::size_t kMaxBacklog = 256 * 1024;
 
-    /** @p robot, @p session and @p log must outlive the server. */
-    Server(SimRobot &robot, Session &session, Log &log, const Faults &faults, uint64_t seed);
+    /** @p robot, @p connection and @p log must outlive the server. */
+    Server(SimRobot &robot, Connection &connection, Log &log, const Faults &faults,
+           uint64_t seed);
     ~Server();
     Server(const Server &) = delete;
     Server &operator=(const Server &) = delete;
@@ -58,6 +60,13 @@ public:
     bool listen(const std::string &addr, int port, std::string *err);
     /** The port listened on. */
     uint16_t port() const { return port_; }
+
+    /**
+     * Writes every byte sent to the first client to @p path as well, in the order sent,
+     * until that client's connection ends: a capture of one ARCOS connection, which
+     * houghlocd replays with robot.link = file:PATH. @return false with one line in @p err.
+     */
+    bool capture(const std::string &path, std::string *err);
 
     /** Fills up to 2 pollfds (listening socket, client) and returns how many. */
     std::size_t pollfds(struct pollfd *pfd) const;
@@ -82,10 +91,11 @@ private:
     void read_client();
     void flush();
     void close_client(const char *why);
+    void end_capture();
     bool queue_sip(const hl_arcos_sip_t &sip);
 
     SimRobot &robot_;
-    Session &session_;
+    Connection &connection_;
     Log &log_;
     Faults faults_;
     Rng rng_;          // garbage bytes only: the robot's stream stays seed-determined
@@ -94,6 +104,8 @@ private:
     std::vector<uint8_t> out_;
     bool dropped_ = false, stalled_ = false;
     int64_t accepted_utime_ = 0;    // robot time the client connected (--drop-every)
+    FILE *capture_ = nullptr;       // --capture, while the first client is connected
+    std::string capture_path_;
     ServerCounts counts_;
 };
 

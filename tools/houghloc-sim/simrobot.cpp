@@ -72,7 +72,7 @@ void SimRobot::heard()
     last_heard_us_ = now_us_;
 }
 
-void SimRobot::session_end()
+void SimRobot::connection_end()
 {
     base_.halt();
     motors_ = false;

@@ -2,7 +2,7 @@
 // SIP periods, SIPs out (no sockets, no clock, no global state).
 //
 // It is the server side of the ARCOS subset of include/houghloc/arcos.h, less the
-// connection (session.hpp): motion commands drive a Base (motion.hpp), the sonar ring
+// connection (connection.hpp): motion commands drive a Base (motion.hpp), the sonar ring
 // fires one transducer per sonar cycle from the true pose into the world (tools/sim's
 // sonar_ping), and every 100 ms of robot time it reports a standard SIP with the
 // odometry and the readings fired since the previous one. A watchdog stops the robot
@@ -54,7 +54,7 @@ public:
 
     /**
      * Carries out one command of the subset that acts on the robot (everything but
-     * SYNCn/PULSE/OPEN/CLOSE, which are the session's). @return false, with one log
+     * SYNCn/PULSE/OPEN/CLOSE, which are the connection's). @return false, with one log
      * line per kind, for a command the robot does not take (unsupported, or a motion
      * command while the motors are off); the caller counts those.
      */
@@ -64,7 +64,7 @@ public:
     void heard();
     /** The client is gone (CLOSE, disconnect): the robot stops at once, motors and
      *  sonar off, the watchdog disarmed. Pose and odometry are kept. */
-    void session_end();
+    void connection_end();
     /** Fault injection: the wheels stop turning for good. */
     void stall_wheels();
 

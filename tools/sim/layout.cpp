@@ -87,7 +87,7 @@ bool draw_positions(const World &w, int count, Rng &rng, std::vector<Position> *
     // (its 8 neighbours, when any is free; an obstacle may split the floor, and then the
     // cluster jumps to the nearest free one beyond it), the one nearest the first, ties
     // drawn at random. Growing towards the first keeps the cluster a blob: a snake's
-    // ends lie outside the map the others make, and are always wild (issue 11).
+    // ends lie outside the map the others make, and are always wild.
     std::size_t first = static_cast<std::size_t>(
         rng.uniform_int(0, static_cast<int64_t>(free.size()) - 1));
     std::vector<Vec2> cluster{free[first]};

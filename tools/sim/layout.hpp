@@ -1,6 +1,6 @@
 // layout.hpp - where the experiments put the robot in a world: Table 1's positions drawn
 // per seed on the open floor's tile intersections, and the orientation square and tour
-// start the world file declares (docs/simulator.md, "Data sets").
+// start the world file declares (docs/manual/houghloc-sim.md, "Data sets").
 #ifndef HLSIM_LAYOUT_HPP
 #define HLSIM_LAYOUT_HPP
 

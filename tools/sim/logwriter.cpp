@@ -122,29 +122,65 @@ void LogWriter::sounding(const Sounding &s, int32_t seq, const hl_calib_t &calib
         stats_.sentinel += r.sonar.raw >= calib.sentinel_raw ? 1 : 0;
         stats_.multipath += r.sonar.kind == Echo::Multipath ? 1 : 0;
     }
+    scan_message(m.get(), s.utime, channel);
+    ground_truth(s.utime, seq, s.truth);
+}
+
+void LogWriter::laser(const LaserScan &s, int32_t seq, const LaserParams &p)
+{
+    std::size_t n = s.range_mm.size();
+    if (n > HL_SCAN_MAX_READINGS) {
+        ok_ = false;
+        return;
+    }
+    auto m = std::make_unique<hl_bus_scan_t>();
+    m->utime = s.utime;
+    m->seq = seq;
+    m->odometry = to_pose(s.odom);
+    m->scan.count = static_cast<uint32_t>(n);
+    for (std::size_t i = 0; i < n; i++) {
+        hl_reading_t &out = m->scan.readings[i];
+        int32_t r = s.range_mm[i];
+        out.transducer = -1;
+        out.bearing = hl_bam_from_deg(laser_bearing_deg(p, static_cast<int>(i)));
+        out.valid = r >= 0 && r <= HL_RANGE_MAX_MM;
+        out.range_mm = out.valid ? r : 0;
+        stats_.readings++;
+        stats_.valid += out.valid ? 1 : 0;
+        stats_.sentinel += out.valid ? 0 : 1;
+    }
+    scan_message(m.get(), s.utime, "SONAR");
+    ground_truth(s.utime, seq, s.truth);
+}
+
+void LogWriter::scan_message(const void *scan, int64_t utime, const std::string &channel)
+{
     std::vector<uint8_t> buf(HL_BUS_SCAN_MAX_BYTES);
-    int len = hl_bus_encode_scan(m.get(), buf.data(), buf.size());
+    int len = hl_bus_encode_scan(static_cast<const hl_bus_scan_t *>(scan), buf.data(), buf.size());
     if (len < 0) {
         ok_ = false;
         return;
     }
     buf.resize(static_cast<std::size_t>(len));
-    write(channel, s.utime, buf);
+    write(channel, utime, buf);
     stats_.scans++;
+}
 
+void LogWriter::ground_truth(int64_t utime, int32_t seq, const Pose &truth)
+{
     hl_bus_pose_t g{};
-    g.utime = s.utime;
+    g.utime = utime;
     g.scan_seq = seq;
-    g.pose = to_pose(s.truth);
+    g.pose = to_pose(truth);
     g.status = HL_SLAM_ACCEPTED;
     std::vector<uint8_t> gbuf(HL_BUS_POSE_BYTES);
-    len = hl_bus_encode_pose(&g, gbuf.data(), gbuf.size());
+    int len = hl_bus_encode_pose(&g, gbuf.data(), gbuf.size());
     if (len < 0) {
         ok_ = false;
         return;
     }
     gbuf.resize(static_cast<std::size_t>(len));
-    write(HL_CHANNEL_GROUND_TRUTH, s.utime, gbuf);
+    write(HL_CHANNEL_GROUND_TRUTH, utime, gbuf);
 }
 
 }  // namespace hlsim

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "houghloc/calib.h"
+#include "laser.hpp"
 #include "robot.hpp"
 
 extern "C" {
@@ -48,9 +49,18 @@ public:
     void sounding(const Sounding &s, int32_t seq, const hl_calib_t &calib,
                   const std::string &channel = "SONAR");
 
+    /**
+     * A laser scan on SONAR as houghloc_scan_t: one reading per beam at its bearing,
+     * transducer -1, a lost return an invalid reading; then its true pose on
+     * GROUND_TRUTH as for a sounding.
+     */
+    void laser(const LaserScan &s, int32_t seq, const LaserParams &p);
+
     const LogStats &stats() const { return stats_; }
 
 private:
+    void scan_message(const void *scan, int64_t utime, const std::string &channel);
+    void ground_truth(int64_t utime, int32_t seq, const Pose &truth);
     void write(const std::string &channel, int64_t utime, const std::vector<uint8_t> &data);
 
     lcm_eventlog_t *log_ = nullptr;

@@ -27,13 +27,16 @@ void Robot::place(const Pose &truth, const Pose &odom)
 }
 
 // Emits odometry samples at the report period while moving from @p from to @p to,
-// then one "stopped" sample; advances the clock by the motion's duration.
-void Robot::report_motion(const Pose &from, const Pose &to, double seconds, double speed)
+// then one "stopped" sample; advances the clock by the motion's duration. The true pose
+// of each sample runs the same way from @p truth_from to the (already moved) truth_.
+void Robot::report_motion(const Pose &from, const Pose &to, const Pose &truth_from,
+                          double seconds, double speed)
 {
     int64_t start = utime_;
     int64_t dur = seconds_to_us(seconds);
     int64_t period = seconds_to_us(params_.odometry_period_s);
     double dth = wrap_pi(to.theta - from.theta);
+    double true_dth = wrap_pi(truth_.theta - truth_from.theta);
     for (int64_t t = period; t < dur; t += period) {
         double f = static_cast<double>(t) / static_cast<double>(dur);
         OdoSample s;
@@ -42,6 +45,9 @@ void Robot::report_motion(const Pose &from, const Pose &to, double seconds, doub
                   wrap_pi(from.theta + f * dth)};
         s.velocity_mm_s = speed;
         s.stopped = false;
+        s.truth = {truth_from.x + f * (truth_.x - truth_from.x),
+                   truth_from.y + f * (truth_.y - truth_from.y),
+                   wrap_pi(truth_from.theta + f * true_dth)};
         odo_.push_back(s);
     }
     utime_ = start + dur;
@@ -50,21 +56,23 @@ void Robot::report_motion(const Pose &from, const Pose &to, double seconds, doub
     s.odom = to;
     s.velocity_mm_s = 0.0;
     s.stopped = true;
+    s.truth = truth_;
     odo_.push_back(s);
 }
 
 void Robot::turn(double dtheta)
 {
-    Pose from = odom_;
+    Pose from = odom_, truth_from = truth_;
     odom_.theta = wrap_pi(odom_.theta + dtheta);
     double err = rng_.normal(0.0, params_.odo_turn_frac * std::fabs(dtheta));
     truth_.theta = wrap_pi(truth_.theta + dtheta + err);
-    report_motion(from, odom_, std::fabs(rad2deg(dtheta)) / params_.turn_rate_deg_s, 0.0);
+    report_motion(from, odom_, truth_from, std::fabs(rad2deg(dtheta)) / params_.turn_rate_deg_s,
+                  0.0);
 }
 
 void Robot::drive(double dist_mm)
 {
-    Pose from = odom_;
+    Pose from = odom_, truth_from = truth_;
     odom_.x += dist_mm * std::cos(odom_.theta);
     odom_.y += dist_mm * std::sin(odom_.theta);
     double d = std::fabs(dist_mm);
@@ -77,7 +85,7 @@ void Robot::drive(double dist_mm)
     truth_.y += fwd * std::sin(mid) + lat * std::cos(mid);
     truth_.theta = wrap_pi(truth_.theta + dth);
     double speed = dist_mm < 0.0 ? -params_.speed_mm_s : params_.speed_mm_s;
-    report_motion(from, odom_, d / params_.speed_mm_s, speed);
+    report_motion(from, odom_, truth_from, d / params_.speed_mm_s, speed);
 }
 
 void Robot::go_to(Vec2 target)

@@ -49,12 +49,15 @@ struct Sounding {
     std::vector<RingReading> readings;
 };
 
-/** An odometry report, as the base sends it while moving and once when it stops. */
+/** An odometry report, as the base sends it while moving and once when it stops; with
+ *  the true pose at that instant, for the sensors that sample while the robot moves
+ *  (the continuous sonar ring, the laser). */
 struct OdoSample {
     int64_t utime = 0;
     Pose odom;
     double velocity_mm_s = 0.0;
     bool stopped = true;
+    Pose truth;
 };
 
 class Robot {
@@ -96,7 +99,8 @@ public:
     const RobotParams &params() const { return params_; }
 
 private:
-    void report_motion(const Pose &from, const Pose &to, double seconds, double speed);
+    void report_motion(const Pose &from, const Pose &to, const Pose &truth_from,
+                       double seconds, double speed);
 
     const World &world_;
     SonarParams sonar_;

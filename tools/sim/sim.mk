@@ -1,12 +1,11 @@
-# tools/sim/sim.mk - the sonar world simulator (library, calibration tool, data-set
-# generator, world drawing) and its tests. Included by the top Makefile.
-#
-#   make logs    rebuild logs/lab28.lcmlog, logs/orientation.lcmlog, logs/tour.lcmlog
-#                (deterministic: byte-identical every time)
+# tools/sim/sim.mk - the sonar world simulator library (worlds, sonar, laser, robot, tours,
+# log writer), on which houghloc-sim is built, and its tests. Included by the top Makefile.
+# The lab's programs on it (hl-sim-logs, hl-calibrate, hl-sim-draw, `make logs`) are in
+# tools/lab/sim-logs/sim_logs.mk.
 
 SIM_SRCS := tools/sim/world.cpp tools/sim/sonar.cpp tools/sim/robot.cpp \
             tools/sim/calib_fit.cpp tools/sim/tour.cpp tools/sim/logwriter.cpp \
-            tools/sim/layout.cpp
+            tools/sim/layout.cpp tools/sim/laser.cpp
 SIM_WORLD_SRC := $(BUILD)/gen/sim_lab_world.cpp
 
 SIM_LIB      := $(BUILD)/lib/libhoughloc_sim.a
@@ -18,15 +17,8 @@ SIM_ASAN_OBJS := $(patsubst %.cpp,$(BUILD)/asan/%.o,$(SIM_SRCS)) $(BUILD)/asan/g
 SIM_LDLIBS := $(BUS_LIB) $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) -lm
 
 SIM_TESTS := $(patsubst tests/sim/%.cpp,$(BUILD)/tests/sim/%,$(wildcard tests/sim/test_*.cpp))
-SIM_LOGS  := logs/lab28.lcmlog logs/orientation.lcmlog logs/tour.lcmlog
 
-BINS      += $(BUILD)/bin/hl-sim-logs $(BUILD)/bin/hl-calibrate $(BUILD)/bin/hl-sim-draw
 TEST_BINS += $(SIM_TESTS)
-
-.PHONY: logs
-logs: $(BUILD)/bin/hl-sim-logs
-	@mkdir -p logs
-	$(Q)$(BUILD)/bin/hl-sim-logs --seed 1 --out-dir logs
 
 # The default world is compiled in, so the tools work from any directory: each line
 # of the world file becomes one string literal.
@@ -60,21 +52,6 @@ $(BUILD)/asan/tests/sim/%.o: tests/sim/%.cpp | $(LCM_STAMP)
 
 $(SIM_LIB): $(SIM_OBJS)
 $(SIM_ASAN_LIB): $(SIM_ASAN_OBJS)
-
-$(BUILD)/bin/hl-sim-logs: $(call obj,tools/sim/make_logs.cpp) $(SIM_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
-	@mkdir -p $(@D)
-	@echo "  LD      $@"
-	$(Q)$(CXX) -o $@ $^ $(PKG_LIBS) -lm
-
-$(BUILD)/bin/hl-calibrate: $(call obj,tools/sim/calibrate.cpp) $(SIM_LIB) $(CORE_LIB)
-	@mkdir -p $(@D)
-	@echo "  LD      $@"
-	$(Q)$(CXX) -o $@ $^ -lm
-
-$(BUILD)/bin/hl-sim-draw: $(call obj,tools/sim/draw_world.cpp) $(SIM_LIB) $(CORE_LIB)
-	@mkdir -p $(@D)
-	@echo "  LD      $@"
-	$(Q)$(CXX) -o $@ $^ $(CAIRO_LIBS) -lm
 
 $(BUILD)/tests/sim/%: $(BUILD)/asan/tests/sim/%.o $(SIM_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)

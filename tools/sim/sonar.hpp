@@ -5,7 +5,7 @@
 // pattern, spreading and absorption, and what was struck: a smooth wall reflects the
 // sound away unless it faces the sensor, a rough one scatters some back at any angle,
 // a concave corner returns it from wide angles, a chair leg or an edge only weakly
-// (docs/simulator.md, "Echo model"; the older hard-cone model stays selectable). A few
+// (docs/manual/houghloc-sim.md, "Echo model"; the older hard-cone model stays selectable). A few
 // readings take a longer bounced path; ranges are noisy; and the robot's own cables and
 // lost echoes give garbage raw values. The result is a raw reading, through the inverse
 // of a simulated linear calibration, as the robot's sonar board would report it.
@@ -25,7 +25,7 @@ namespace hlsim {
 struct SonarParams {
     enum class Model : uint8_t {
         Cone,      // every surface in a hard 22-degree cone echoes (the first simulator)
-        Physical,  // echo levels against a threshold (docs/simulator.md, "Echo model")
+        Physical,  // echo levels against a threshold (docs/manual/houghloc-sim.md, "Echo model")
     };
     Model model = Model::Physical;
     double cone_deg = 22.0;          // Cone: full width of the beam

@@ -1,5 +1,5 @@
 // world.hpp - the simulated 2-D world: wall and obstacle segments, round obstacles,
-// and named sounding positions, loaded from a line-based text file (docs/simulator.md).
+// and named sounding positions, loaded from a line-based text file (docs/manual/houghloc-sim.md).
 #ifndef HLSIM_WORLD_HPP
 #define HLSIM_WORLD_HPP
 
@@ -12,7 +12,7 @@
 
 namespace hlsim {
 
-/** How a surface returns sound (docs/simulator.md, "Echo model"). A shape line in a
+/** How a surface returns sound (docs/manual/houghloc-sim.md, "Echo model"). A shape line in a
  *  world file may end with one of the words smooth, rough, thin; the default is smooth. */
 enum class Surface : uint8_t {
     Smooth,  // painted wall, desk side, metal cabinet: a mirror at sonar wavelengths
@@ -64,7 +64,7 @@ public:
     std::vector<Circle> circles;
     std::vector<Position> positions;
 
-    /* The experiments' layout, declared in the world file (docs/simulator.md), so that
+    /* The experiments' layout, declared in the world file (docs/manual/houghloc-sim.md), so that
      * hl-sim-logs works for any world: */
     double tile_mm = 609.6;     // `tiles MM`: floor tiles; positions are drawn on their
                                 // intersections (multiples of tile_mm on both axes)

@@ -1,15 +1,15 @@
-// session.hpp - one client's ARCOS session with the simulated robot, pure: client bytes
+// connection.hpp - one client's ARCOS connection with the simulated robot, pure: client bytes
 // in, reply bytes out (no sockets).
 //
-// A session starts at the SYNC handshake: SYNC0 and SYNC1 are echoed, SYNC2 is answered
+// A connection starts at the SYNC handshake: SYNC0 and SYNC1 are echoed, SYNC2 is answered
 // with the robot's name, class and subclass. After it, command numbers 0, 1 and 2 mean
 // PULSE, OPEN and CLOSE; OPEN starts the SIP stream (the server asks streaming()), CLOSE
-// ends the session (the robot stops; the server hangs up). Every other command of the
+// ends the connection (the robot stops; the server hangs up). Every other command of the
 // subset goes to the robot. Bytes are reassembled by arcos.h's parser, so packets may
 // arrive cut anywhere. Malformed, unsupported and out-of-order packets are logged once
 // per kind, counted and ignored; every well-framed packet feeds the robot's watchdog.
-#ifndef HLSIMROBOT_SESSION_HPP
-#define HLSIMROBOT_SESSION_HPP
+#ifndef HLSIMROBOT_CONNECTION_HPP
+#define HLSIMROBOT_CONNECTION_HPP
 
 #include <cstdint>
 #include <vector>
@@ -20,7 +20,7 @@
 
 namespace hlsim {
 
-class Session {
+class Connection {
 public:
     enum class State {
         Idle,     // no client
@@ -32,17 +32,17 @@ public:
         Closed,   // CLOSE received
     };
 
-    /** @p robot and @p log must outlive the session. */
-    Session(SimRobot &robot, Log &log);
+    /** @p robot and @p log must outlive the connection. */
+    Connection(SimRobot &robot, Log &log);
 
     /** A client connected: the handshake starts over with an empty parser. */
     void begin();
     /**
      * Takes @p n bytes from the client and appends any reply (SYNC echoes, the SYNC2
-     * answer) to @p out. Does nothing unless a session is under way.
+     * answer) to @p out. Does nothing unless a connection is under way.
      */
     void feed(const uint8_t *in, std::size_t n, std::vector<uint8_t> *out);
-    /** The client is gone (or CLOSE came): the robot stops; the session is Idle. */
+    /** The client is gone (or CLOSE came): the robot stops; the connection is Idle. */
     void end();
 
     State state() const { return state_; }

@@ -1,5 +1,6 @@
-// session.cpp - the ARCOS session: SYNC handshake, OPEN/CLOSE/PULSE, commands to the robot.
-#include "session.hpp"
+// connection.cpp - one client's ARCOS connection: SYNC handshake, OPEN/CLOSE/PULSE,
+// commands to the robot.
+#include "connection.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -27,7 +28,7 @@ void append_echo(uint8_t b, std::vector<uint8_t> *out)
 
 }  // namespace
 
-Session::Session(SimRobot &robot, Log &log) : robot_(robot), log_(log)
+Connection::Connection(SimRobot &robot, Log &log) : robot_(robot), log_(log)
 {
     copy_id(id_.name, "houghloc-sim");
     copy_id(id_.cls, "Pioneer");
@@ -35,25 +36,25 @@ Session::Session(SimRobot &robot, Log &log) : robot_(robot), log_(log)
     hl_arcos_parser_init(&parser_);
 }
 
-void Session::begin()
+void Connection::begin()
 {
     hl_arcos_parser_discard(&parser_);
-    // The parser's counters run on across sessions; remember where this one starts.
+    // The parser's counters run on across connections; remember where this one starts.
     seen_checksums_ = parser_.bad_checksums;
     seen_lengths_ = parser_.bad_lengths;
     seen_garbage_ = parser_.garbage_bytes;
     state_ = State::Sync0;
 }
 
-void Session::end()
+void Connection::end()
 {
     if (state_ == State::Idle)
         return;
-    robot_.session_end();
+    robot_.connection_end();
     state_ = State::Idle;
 }
 
-void Session::bad(const std::string &kind, const char *what, unsigned number)
+void Connection::bad(const std::string &kind, const char *what, unsigned number)
 {
     bad_++;
     log_.once(kind, "ignored from the client: %s (command %u); such packets are counted, "
@@ -61,7 +62,7 @@ void Session::bad(const std::string &kind, const char *what, unsigned number)
 }
 
 // Turns the parser's rejected candidates and skipped bytes into counts and log lines.
-void Session::count_parser()
+void Connection::count_parser()
 {
     uint64_t cs = parser_.bad_checksums - seen_checksums_;
     uint64_t len = parser_.bad_lengths - seen_lengths_;
@@ -82,7 +83,7 @@ void Session::count_parser()
     seen_garbage_ = parser_.garbage_bytes;
 }
 
-void Session::feed(const uint8_t *in, std::size_t n, std::vector<uint8_t> *out)
+void Connection::feed(const uint8_t *in, std::size_t n, std::vector<uint8_t> *out)
 {
     if (state_ == State::Idle || state_ == State::Closed)
         return;
@@ -100,7 +101,7 @@ void Session::feed(const uint8_t *in, std::size_t n, std::vector<uint8_t> *out)
 // The handshake: SYNC0, SYNC1, SYNC2 in order, each answered; a SYNC0 at any point
 // starts it over (a client retrying). @return false for a packet that is not the next
 // step.
-bool Session::handshake(const hl_arcos_packet_t &pkt, std::vector<uint8_t> *out)
+bool Connection::handshake(const hl_arcos_packet_t &pkt, std::vector<uint8_t> *out)
 {
     if (pkt.len != 1 || pkt.data[0] > HL_ARCOS_SYNC2)
         return false;
@@ -127,7 +128,7 @@ bool Session::handshake(const hl_arcos_packet_t &pkt, std::vector<uint8_t> *out)
     return false;
 }
 
-void Session::packet(const hl_arcos_packet_t &pkt, std::vector<uint8_t> *out)
+void Connection::packet(const hl_arcos_packet_t &pkt, std::vector<uint8_t> *out)
 {
     robot_.heard();
     if (state_ == State::Sync0 || state_ == State::Sync1 || state_ == State::Sync2) {
@@ -150,7 +151,7 @@ void Session::packet(const hl_arcos_packet_t &pkt, std::vector<uint8_t> *out)
     take(cmd);
 }
 
-void Session::take(const hl_arcos_cmd_t &cmd)
+void Connection::take(const hl_arcos_cmd_t &cmd)
 {
     switch (cmd.number) {
     case HL_ARCOS_PULSE:
@@ -161,8 +162,8 @@ void Session::take(const hl_arcos_cmd_t &cmd)
         state_ = State::Open;
         break;
     case HL_ARCOS_CLOSE:
-        log_.line("CLOSE: the session ends; the robot stops");
-        robot_.session_end();
+        log_.line("CLOSE: the connection ends; the robot stops");
+        robot_.connection_end();
         state_ = State::Closed;
         break;
     default:

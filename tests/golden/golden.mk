@@ -1,0 +1,19 @@
+# tests/golden/golden.mk - the goldens (tests/golden/check.sh): houghlocd's POSE streams
+# for each sensor profile (and loop closure) on the simulated logs, and the SONAR and
+# ODOMETRY it publishes from a captured ARCOS byte stream; make test compares them byte
+# for byte.
+#
+#   make golden          regenerate them (only when a change of output is intended: commit
+#                        it with the reason) and print which changed
+#   make golden-capture  record tests/golden/arcos.capture anew with houghloc-sim (only when
+#                        the robot's side of the protocol changed; then make golden)
+# Their inputs: logs/*.lcmlog (make logs) and tests/golden/arcos.capture.
+
+INTEGRATION_TESTS += tests/golden/check.sh tests/golden/bad_capture.sh
+
+.PHONY: golden golden-capture
+golden: $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval
+	$(Q)BUILD=$(BUILD) sh tests/golden/check.sh --regenerate
+
+golden-capture: $(BUILD)/bin/houghlocd $(BUILD)/bin/houghloc-sim
+	$(Q)BUILD=$(BUILD) sh tests/golden/capture.sh
