@@ -1,5 +1,5 @@
 /*
- * arcos.h - the ARCOS packet codec: bytes in, structs out, and back (docs/arcos.md).
+ * arcos.h - the ARCOS packet codec: bytes in, structs out, and back (docs/manual/arcos.md).
  *
  * ARCOS (AROS, P2OS before it) is the client-server protocol of the Pioneer family. Both
  * directions use one frame:
@@ -109,7 +109,7 @@ hl_status_t hl_arcos_parse(hl_arcos_parser_t *p, const uint8_t *in, size_t n,
 
 /* ---- client commands ---------------------------------------------------------------- */
 
-/* Command numbers of the supported subset (docs/arcos.md has the table). SYNC0..2 and
+/* Command numbers of the supported subset (docs/manual/arcos.md has the table). SYNC0..2 and
  * PULSE/OPEN/CLOSE share 0..2: before a connection they are the handshake. */
 enum {
     HL_ARCOS_SYNC0 = 0,

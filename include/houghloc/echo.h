@@ -21,8 +21,7 @@
  * so a real surface that far would have shown in them too.
  *
  * Within the range noise a wall's flank near its foot looks flat, so readings there move
- * only part of the way: measured on the simulated lab (docs/experiments.md), the median
- * bearing error falls from 11 degrees (on the axis) to 2.5, the 90th percentile to 11.
+ * only part of the way (the bearing errors before and after: docs/design/localizer.md).
  *
  * Integer arithmetic only; no allocation; O(n * k * s) for n readings, k neighbours
  * within a cone width and s candidate bearings (128 x 16 x 45 for the paper's ring).

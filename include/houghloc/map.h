@@ -85,7 +85,7 @@ hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm
  * square of @p square_mm (0: its density-bound place and the 8 squares around it), seen
  * from the same side. The capacity then spreads over every surface seen rather than over
  * how often each was seen, so a corridor driven once keeps its walls in a map of a whole
- * building (a laser's: the global search needs every place, docs/kidnap.md). In the 3 x 3
+ * building (a laser's: the global search needs every place). In the 3 x 3
  * places every wall held at the density bound is equally crowded, so ties go at random
  * and a place seen once still thins out as fast as one seen always; a square a few
  * places wide tells a thinned wall from a full one, and the capacity spreads evenly.

@@ -8,7 +8,7 @@
  * normal, which changes from scan to scan as the robot moves. The normal gate then pairs
  * readings with map vectors by where they were seen from rather than by which way the
  * surface faces, and the global search's heading histogram (reloc.h) ranks headings at
- * random (docs/kidnap.md).
+ * random (docs/design/relocalization.md).
  *
  * A laser's neighbouring readings lie on the same surface: a line fitted through a reading
  * and its neighbours within reach gives the surface's direction, and the reading's normal
@@ -17,7 +17,7 @@
  * Readings that do not lie on a line (corners, clutter, a lone return) or whose surface is
  * seen at grazing incidence are marked invalid: they have no tangent to offer. Tracking
  * wants them kept, square to their beams (keep_unfitted: the global search is better
- * without them, tracking worse; docs/kidnap.md).
+ * without them, tracking worse).
  *
  * Readings are taken to be in bearing order, as a scanner gives them. No allocation;
  * O(n * w) for n readings and a window of w.

@@ -94,12 +94,11 @@ typedef struct hl_reloc_params {
                                    echo, counts against like one whose beam passed through
                                    a surface: something unmapped stood in front of a wall
                                    the map holds, which at a wrong pose is the rule and at
-                                   the right one the exception (a laser: docs/kidnap.md);
+                                   the right one the exception (a laser);
                                    0 (the default) or 301..10000 */
     double max_ratio;           /* found when runner-up score <= max_ratio x score;
-                                   default 0.7 (chosen on 32 simulated lab tours' maps:
-                                   0.6 found 93.0 % with 0.8 % wrong, 0.7 95.2 and 0.9,
-                                   0.75 95.5 and 1.0; docs/kidnap.md) */
+                                   default 0.7 (its choice:
+                                   docs/design/relocalization.md) */
     double min_explained_pct;   /* found only when the answer explains at least this
                                    share of the valid readings; default 35 */
     double max_edge_ratio;      /* also found when the readings that favour the

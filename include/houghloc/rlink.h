@@ -1,5 +1,5 @@
 /*
- * rlink.h - an ARCOS session over any byte stream: the SYNC handshake, OPEN, motors and
+ * rlink.h - an ARCOS connection over any byte stream: the SYNC handshake, OPEN, motors and
  * sonar on, keep-alive pulses, and the silence that means the link is lost.
  *
  * Pure, like the codec under it (arcos.h): bytes and the time come in, standard SIPs go
@@ -10,9 +10,9 @@
  * exception: the robot's watchdog counts its own time, so they follow robot time
  * (hl_rlink_keepalive).
  *
- * Handshake (docs/arcos.md): SYNC0, SYNC1 and SYNC2 each echoed by the robot, SYNC2's
+ * Handshake (docs/manual/arcos.md): SYNC0, SYNC1 and SYNC2 each echoed by the robot, SYNC2's
  * echo carrying its name, class and subclass; then OPEN, ENABLE 1 and SONAR 1. A robot
- * that is already streaming SIPs from an earlier session is sent CLOSE first.
+ * that is already streaming SIPs from an earlier connection is sent CLOSE first.
  */
 #ifndef HOUGHLOC_RLINK_H
 #define HOUGHLOC_RLINK_H
@@ -95,7 +95,7 @@ void hl_rlink_sent_at(hl_rlink_t *l, int64_t robot_ms);
 bool hl_rlink_send(hl_rlink_t *l, uint8_t number, int64_t now_ms);
 bool hl_rlink_send_int(hl_rlink_t *l, uint8_t number, int32_t arg, int64_t now_ms);
 
-/** Queues CLOSE (motors stop, the robot ends the session) and marks the link DOWN. */
+/** Queues CLOSE (motors stop, the robot ends the connection) and marks the link DOWN. */
 void hl_rlink_close(hl_rlink_t *l, const char *why, int64_t now_ms);
 
 /** Bytes waiting to be written, and how many the transport took. */

@@ -61,7 +61,7 @@ hl_status_t hl_scan_add(hl_scan_t *scan, hl_bam_t bearing, int32_t range_mm,
  *  heading @p heading: the beam's reverse turned by the reading's tilt. */
 static inline hl_bam_t hl_reading_normal(const hl_reading_t *r, hl_bam_t heading)
 {
-    return (hl_bam_t)(heading + r->bearing + HL_BAM_HALF_TURN + r->tilt);
+    return (hl_bam_t)(heading + r->bearing + (int32_t)HL_BAM_HALF_TURN + r->tilt);
 }
 
 /** Number of valid readings. */

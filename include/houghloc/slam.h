@@ -6,76 +6,36 @@
  *  - paper:    every localization is accepted and extends the map (the paper's method);
  *  - guarded:  the search is centred on the odometry prediction, and a pose is rejected
  *              when it lands farther than wild_mm from it, when its peak is not distinct
- *              from the best separate peak (after the prior: hl_loc_confidence), or when
- *              its peak (before the prior) is far lower than the recent ones (the scan
- *              matches the map much worse than scans usually do: a sign that the odometry
- *              misled the search window). A rejected scan falls back to the prediction
- *              and does not extend the map (section 9's proposal for eliminating wild
- *              errors).
+ *              (min_confidence, min_votes), or when its peak (before the prior) is below
+ *              min_peak_ratio of the recent-peak average. A rejected scan falls back to
+ *              the prediction and does not extend the map (the paper's section 9).
+ * The recent-peak average moves a quarter of the way to each accepted peak and to the
+ * geometric mean of itself and a rejected one, so a peak that falls and stays low (the
+ * robot entering unmapped space) passes at the next scan when it fell by up to 16 times,
+ * at the one after by up to 256. A scan with nothing to vote against is added to the map
+ * at the prediction, as the first scan is: this is how the map follows the robot.
  *
- * Entering space the map does not cover (docs/experiments.md, "Entering unmapped
- * space"). The peak falls there because fewer readings find map vectors, often by four
- * to six times from one scan to the next, and further as the robot goes on. Two rules
- * keep the map following the robot:
- *  - the recent-peak average moves a quarter of the way to each accepted peak, but to the
- *    geometric mean of itself and a rejected one. A single peak far below the others is
- *    still rejected; a peak that falls and stays low passes at the next scan when it fell
- *    by up to 16 times (1 / min_peak_ratio squared), at the one after when by up to 256
- *    times;
- *  - a scan with nothing to vote against (no vote, or none near enough to the
- *    prediction to score) is added to the map at the prediction, as the first scan is:
- *    the robot is where the map has nothing, and this is how the map gets there.
- * A scan rejected by the guard still adds nothing: its readings disagree with the map.
- * On the five real buildings at most 4 laser scans in a row (6 pseudo-sonar) are now
- * rejected or not localized; before these rules the average came down a quarter of the
- * way a scan, the peaks fell faster, the map stopped at the edge of what it held, and
- * the robot ran on odometry alone for up to 270 laser scans in a row (csail, of 406;
- * intel 83, freiburg-101 24, aces 16).
+ * Around the vote, in either mode when the parameters ask: readings moved to their
+ * estimated echo bearings (echo.h; default on), surface normals fitted (normals.h; a
+ * laser), the Hough pose polished (refine.h; default on). The scan added to the map is
+ * the prepared one.
  *
- * Around the vote, in either mode when the parameters ask (the defaults do): each scan's
- * readings are moved to their estimated echo bearings first (echo.h; for a sonar cone,
- * off for a thin beam), and the Hough pose is polished by refinement after (refine.h).
- * The scan added to the map is the echo-placed one.
- *
- * Loop closure (close_loops; not in the paper). The paper's tracker has no way to take
- * back a localization's error: each goes into the map the next scan is matched against,
- * and the simulated tours bend even with the motion known exactly. With close_loops each
- * accepted or mapped stop is remembered (its pose and its scan, closure_stops of them).
- * When the robot comes within 1.5 m of a stop made at least 5 stops before, the scan is
- * also localized, as the tracker localizes it, against a map of that stop and its
- * neighbours alone; a confident match within 500 mm and 8 degrees of the estimate ties
- * the two stops. Every remembered stop is then fitted to its steps and matches at once
- * (least squares, each match under a robust kernel so that one at odds with the rest
- * bends the fit little), and the map is drawn again at the fitted poses. On 24 simulated
- * lab tours the mean tour error went 387 -> 235 mm (docs/kidnap.md, "Tenth session" to
- * "Twelfth session"); in a corridor, where a sonar cannot tell one stretch from the
- * next, it does little good.
- * Stops forgotten (more than closure_stops ago) and vectors from a loaded map stay where
- * they are. A restore, a reset or a pose set from outside starts the record afresh.
- *
- * Square walls (square_walls, with close_loops). Loop closure ties the stops to each
- * other, and only the first sounding ties them to the world, so a map can come out
- * turned as a whole by a degree or several. In a building whose walls run square to one
- * another along a known axis, each stop's readings also say which way the robot faced
- * within a quarter turn (their normals folded four times round), and the fit weighs that
- * too. On 72 simulated lab tours the mean tour error went 206.7 -> 118.5 mm and the mean
- * heading offset of a map 1.46 -> 0.41 degrees; on 16 corridor tours the heading offset
- * 6.8 -> 0.5 degrees (docs/kidnap.md, "Thirteenth session"). Where walls meet at other
- * angles, leave it off.
- *
- * Long drives (long_drive_mm; not in the paper). Odometry's heading drifts a degree or two
- * a metre, and the drift swings the whole drive about where it started: after 5.6 m the
- * simulated lab robot was once 12.5 degrees and 976 mm off, beyond the heading search and
- * where the odometry prior weighs the true place at half a per cent, and the tracker took
- * a wrong peak near the prediction; every stop mapped after it inherited the error. After
- * a drive of long_drive_mm or more the scan is localized again, as usual, from the drive
- * turned about the last estimate by +-1 .. +-long_drive_turns multiples of
- * long_drive_turn, and each answer is judged as the global search judges a pose (readings
- * explained less readings contradicted, reloc.h): a turned drive's answer replaces the
- * tracker's when it scores 1.2 times as high and 3 more. It costs 2 x long_drive_turns
- * more localizations on such a scan only. On 72 simulated lab tours (2 m, 2 x 6 degrees)
- * the mean tour error went 118.5 -> 102.3 mm, and the six tours that had slipped by 0.5-1
- * m no longer do (docs/kidnap.md, "Fourteenth session").
+ * Not in the paper, each off by default:
+ *  - loop closure (close_loops): each stop is remembered (closure_stops of them); a stop
+ *    that comes back near an earlier one is also matched against that stop's own map,
+ *    every remembered stop is fitted to its steps and matches at once, and the map is
+ *    drawn again at the fitted poses. Forgotten stops and a loaded map's vectors stay
+ *    put; a restore, a reset or a pose set from outside starts the record afresh;
+ *  - square walls (square_walls, with close_loops): in a building whose walls run along
+ *    wall_axis and square to it, each stop's readings also tie its heading to the world
+ *    in that fit. Leave it off where walls meet at other angles;
+ *  - long drives (long_drive_mm): after such a drive the scan is also localized from the
+ *    drive turned about the last estimate by +-1 .. +-long_drive_turns multiples of
+ *    long_drive_turn, and a turned answer replaces the tracker's when the global search's
+ *    judge (reloc.h) scores it 1.2 times as high and 3 more; 2 x long_drive_turns more
+ *    localizations on such a scan only.
+ * Why, and the measurements behind the defaults: docs/design/cycle.md,
+ * docs/design/localizer.md, docs/design/loop-closure.md.
  */
 #ifndef HOUGHLOC_SLAM_H
 #define HOUGHLOC_SLAM_H
@@ -150,9 +110,7 @@ typedef struct hl_slam_params {
                                    mapping, after the echo bearings; default false */
     hl_normals_params_t normals;
     bool refine;                /* polish the Hough pose (refine.h); default true */
-    bool refine_heading;        /* ... in heading too; default true (over 24 simulated
-                                   tours: RMSE 328 mm against 405 with the Hough's
-                                   heading, docs/experiments.md) */
+    bool refine_heading;        /* ... in heading too; default true */
     hl_refine_params_t refine_params;
     bool close_loops;           /* loop closure (not in the paper): match each stop against
                                    the earlier stops near it and fit every stop to all the

@@ -2,6 +2,6 @@
 #ifndef HOUGHLOC_VERSION_H
 #define HOUGHLOC_VERSION_H
 
-#define HL_VERSION "0.2.0"
+#define HL_VERSION "0.3.0"
 
 #endif

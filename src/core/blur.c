@@ -33,7 +33,7 @@ void hl_kernel_gaussian(hl_kernel_t *k, double sigma_cells)
 }
 
 /*
- * Speed (docs/performance.md). Each output cell is a sum of tap * input products in
+ * Speed (docs/results/performance.md). Each output cell is a sum of tap * input products in
  * uint32 arithmetic, which is exact modulo 2^32 in any order or grouping (and the sums
  * stay below 2^32, blur.h): so the passes below give the integers of the plain
  * one-tap-at-a-time loops. They sum a block of LANES neighbouring output cells in

@@ -249,7 +249,7 @@ bool hl_closure_match(hl_closure_t *c, uint32_t stamp, hl_pose_t found)
  * simulated lab tours: moving each vector with its stop kept what the culls had decided
  * at the drifted poses (a wall drawn twice, the drifted copy the better confirmed; tours
  * 1-8, 364 mm mean RMSE against 226); drawing again with the generator where it was
- * made every fit cull other vectors (tours 1-24, 289 mm against 237). docs/kidnap.md. */
+ * made every fit cull other vectors (tours 1-24, 289 mm against 237). docs/results/relocalization.md. */
 static void redraw(hl_closure_t *c, hl_map_t *map)
 {
     const hl_vector_t *v = hl_map_vectors(map);

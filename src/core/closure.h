@@ -4,13 +4,12 @@
  * matched against, and the fit of every stop to its steps and matches (posegraph.h),
  * after which the map is drawn again at the fitted poses (map.h, stamps).
  *
- * Not in the paper. Its tracker matches each scan against a map drawn by the scans before
- * it, so every localization's error goes into the map the next one is matched against,
- * and nothing takes it back: the simulated tours bend even with the motion known exactly
- * (docs/kidnap.md, "Ninth session"). Here, when the robot comes back within
- * HL_CLOSURE_RADIUS_MM of a stop made at least HL_CLOSURE_GAP stops before, the new scan
- * is matched against that stop and its neighbours alone, and all the stops are fitted to
- * all such matches at once (docs/kidnap.md, "Tenth session").
+ * Not in the paper: its tracker puts every localization's error into the map the next
+ * scan is matched against, and nothing takes it back. Here, when the robot comes back
+ * within HL_CLOSURE_RADIUS_MM of a stop made at least HL_CLOSURE_GAP stops before, the new
+ * scan is matched against that stop and its neighbours alone, and all the stops are
+ * fitted to all such matches at once. The study and the figures behind the constants
+ * below: docs/design/loop-closure.md.
  *
  * The record holds `stops` stops (each with its scan: about 12 KB a stop); when full, the
  * oldest is forgotten with its matches, and the oldest left is held where it is. Vectors
@@ -30,23 +29,16 @@
 #include "houghloc/rng.h"
 #include "houghloc/scan.h"
 
-/* Chosen on simulated lab tours with the study that preceded this code (docs/kidnap.md,
- * "Tenth session"); one at a time over tours 1-24, a gap of 3 or 10, a radius of 2.5 m or
- * two neighbours did worse (268-309 mm mean tour error against 233). */
+/* Which stops are matched, and when a match counts. */
 #define HL_CLOSURE_GAP 5            /* stops between a stop and those it is matched with */
 #define HL_CLOSURE_RADIUS_MM 1500   /* ... whose poses lie this near */
 #define HL_CLOSURE_SIDE 1           /* the matched stop's neighbours drawn with it */
 #define HL_CLOSURE_MAX_MATCHES 16   /* matches sought a stop, oldest stops first */
 #define HL_CLOSURE_MIN_CONFIDENCE 0.3 /* a match's peak at least this distinct
                                        (hl_loc_confidence), far above the guard's 0.05 as
-                                       a match moves every stop; 0.15 and 0.5 were within
-                                       the tours' scatter */
-/* A match is weighed down by a Cauchy kernel of 1 standard deviation (posegraph.h), so one
- * that disagrees with the rest bends the fit little, and the gate can let a tour's larger
- * drifts be taken back. Over 72 tours the mean tour error went 261.5 -> 206.6 mm against
- * the plain fit with a gate of 250 mm and 4 degrees (better on 51); the kernel alone
- * 223.5, the wide gate alone 269.0, a kernel of 0.5 or 2 sigmas 208.1 and 222.9; a gate
- * of 1000 mm and 15 degrees took no other match (docs/kidnap.md, "Eleventh session"). */
+                                       a match moves every stop */
+/* The fit. A match is weighed down by a Cauchy kernel (posegraph.h), so one that
+ * disagrees with the rest bends the fit little and the gate can be wide. */
 #define HL_CLOSURE_GATE_MM 500      /* a match moving the stop farther is not taken ... */
 #define HL_CLOSURE_GATE_DEG 8.0     /* ... nor one turning it more */
 #define HL_CLOSURE_KERNEL 1.0       /* a match's Cauchy kernel, in standard deviations */
@@ -58,20 +50,15 @@
 /* Square walls (hl_closure_square_walls). A stop's readings, their normals folded four
  * times round (a wall and the walls square to it alike), point along the building's axis
  * in the robot's frame: with the stop's heading, a heading of the stop against the
- * world, good to within a quarter turn. On 24 simulated lab tours, each scan at its true
- * pose, this errs 3.0-3.9 degrees rms when the folded normals' mean resultant length R is
- * 0.2 or more and 9.5 below (its share of corners and clutter): about 1 / R degrees. Each
- * stop's heading is weighed with a sigma of HL_CLOSURE_WALL_SIGMA_R / R degrees, within
- * the bounds below (no kernel, posegraph.h); over 72 lab tours 1 / R gave 126.0 mm mean
- * RMSE, 0.5 / R 118.5 and 0.25 / R 134.2, against 206.7 without (docs/kidnap.md,
- * "Thirteenth session"). */
+ * world, good to within a quarter turn. Its error grows as the folded normals' mean
+ * resultant length R falls (corners and clutter), so each stop's heading is weighed with
+ * a sigma of HL_CLOSURE_WALL_SIGMA_R / R degrees, within the bounds below (no kernel). */
 #define HL_CLOSURE_WALL_SIGMA_R 0.5
 #define HL_CLOSURE_WALL_SIGMA_MIN_DEG 1.5
 #define HL_CLOSURE_WALL_SIGMA_MAX_DEG 7.5
 #define HL_CLOSURE_WALL_MIN_READINGS 8  /* a stop with fewer says nothing of the walls ... */
-#define HL_CLOSURE_WALL_MIN_R 0.1       /* ... nor one whose R is less: below, the lab's
-                                           scans err 12-21 degrees rms, near a uniform
-                                           spread's 26 */
+#define HL_CLOSURE_WALL_MIN_R 0.1       /* ... nor one whose R is less (its heading is
+                                           near a uniform spread's) */
 
 typedef struct hl_closure hl_closure_t;
 

@@ -7,7 +7,7 @@ void hl_echo_params_default(hl_echo_params_t *p)
 {
     /* Not the 22-degree cone's 11: an echo must clear the receiver's threshold, and off
      * the axis the beam loses it; 7 degrees is about where a Polaroid-type piston's
-     * two-way response is 12 dB down (docs/simulator.md, "Echo model"). */
+     * two-way response is 12 dB down (docs/manual/houghloc-sim.md, "Echo model"). */
     p->half_beam = hl_bam_from_deg(7.0);
     p->step = hl_bam_from_deg(0.5);
     p->noise_mm = 10;
@@ -156,7 +156,7 @@ hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_s
         least_contradicted(p, score, ncand, &first, &last);
         /* The middle of the least contradicted bearings. On a flank the echo is at the
          * span's outer edge, not its middle, but taking the edge when the span touches
-         * one end of the cone did worse on noisy soundings (docs/experiments.md). */
+         * one end of the cone did worse on noisy soundings (docs/results/experiments.md). */
         out->readings[order[a] & 0xFFFF].bearing =
             (hl_bam_t)(ri->bearing - p->half_beam + (first + last) * p->step / 2);
     }

@@ -1,6 +1,6 @@
 /*
  * judge.h (private) - how well a scan placed at a pose agrees with the map: the global
- * search's judge (reloc.c, docs/kidnap.md "Judging a pose").
+ * search's judge (reloc.c; docs/design/relocalization.md).
  *
  * Votes are a poor score across a whole map: a place crowded with map vectors (a
  * cluttered corner) collects many for any heading, since a reading votes once per

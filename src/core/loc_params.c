@@ -17,7 +17,7 @@ void hl_loc_params_default(hl_loc_params_t *p)
     p->peak_separation_mm = 500;
     p->prior_sigma_mm = 300;
     /* Loose on purpose: odometry drifts in heading, and a tight prior pins the estimate
-     * to that drift, which the map then inherits (docs/experiments.md). */
+     * to that drift, which the map then inherits (docs/results/experiments.md). */
     p->prior_sigma_theta = hl_bam_from_deg(15.0);
     p->max_cells = 1u << 20;
     p->group_mm = 0;   /* a sparse map gains nothing, and 48 mm cost 20 % on the tours */

@@ -1,6 +1,6 @@
 /* peak.c - peak finding and sub-cell interpolation (see peak.h).
  *
- * Speed (docs/performance.md): both searches go row by row (one row = the nx cells of
+ * Speed (docs/results/performance.md): both searches go row by row (one row = the nx cells of
  * one iy and it), so that a row's prior weight wy[iy] * wt[it] is taken once and the
  * inner loop is a plain max over a contiguous run that the compiler vectorizes. The
  * first search keeps each row's best score (in the caller's scratch, when it gives one);

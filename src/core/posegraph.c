@@ -426,7 +426,7 @@ uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
      * go at once (worst first); the fit of the rest is near, a few steps away. On 72
      * simulated lab tours that gave the same mean error as one at a time (206.7 mm
      * against 206.6), in a quarter of the corridor's worst time a stop
-     * (docs/performance.md). */
+     * (docs/results/performance.md). */
     const uint32_t batch = kernel > 0 ? MAX_DROPS : 1;
     const int steps_after = kernel > 0 ? GN_STEPS_AFTER_DROP : GN_STEPS;
     solve(g, poses, n, edges, *n_edges, &pb, GN_STEPS);

@@ -12,10 +12,11 @@
  * and sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
  * reweighted: each Gauss-Newton step weighs it by 1 / (1 + e / kernel^2), e its squared
  * error in standard deviations at the poses the step starts from). A pose may also carry
- * a heading of its own (hl_pg_heading_t), weighed by its own sigma alone: the walls'
- * headings (closure.h) are many and each weak, and under the kernel a stretch of stops
- * turned as a whole could not be turned back (72 lab tours: 142.3 mm mean RMSE with it,
- * 118.5 without). Pose 0 is held where it is. Memory: the workspace, from create only.
+ * a heading of its own (hl_pg_heading_t), weighed by its own sigma alone, never under the
+ * kernel: the walls' headings (closure.h) are many and each weak, and under the kernel a
+ * stretch of stops turned as a whole could not be turned back. Pose 0 is held where it
+ * is. Memory: the workspace, from create only. Design and figures:
+ * docs/design/loop-closure.md.
  */
 #ifndef HOUGHLOC_CORE_POSEGRAPH_H
 #define HOUGHLOC_CORE_POSEGRAPH_H

@@ -10,7 +10,7 @@
 #define TWO_PI 6.28318530717958647692
 
 /*
- * Speed (docs/performance.md). The results are those of the plain method: estimate every
+ * Speed (docs/results/performance.md). The results are those of the plain method: estimate every
  * map vector's surface normal from its neighbours, then for each reading scan the 3 x 3
  * hash cells of normal_radius_mm around it for the nearest facing vector. Two things
  * make it cheaper without changing a bit of them:

@@ -41,7 +41,7 @@ void hl_reloc_params_default(hl_reloc_params_t *p)
     /* A sonar's normals agree with the map's almost as well at any heading (the lab: the
      * best window's correlation within 5 % of the worst's), so the true heading's window
      * ranks anywhere in the first 9 of 18: 12 windows found 5 points more than 8 on the
-     * lab's held-out soundings at 1.3 times the time (docs/kidnap.md). */
+     * lab's held-out soundings at 1.3 times the time (docs/results/relocalization.md). */
     p->headings = 12;
     p->heading_smooth = hl_bam_from_deg(4.0);
     p->coarse_cell_mm = 100;

@@ -6,7 +6,7 @@
 
 /* ---- client commands ---------------------------------------------------------------- */
 
-/* The supported subset (docs/arcos.md). A constant table, not state. Integer limits are
+/* The supported subset (docs/manual/arcos.md). A constant table, not state. Integer limits are
  * what the manuals and ARIA give for each command; +-32767 where a command takes any
  * signed 16-bit value. POLLING's string length counts sonar numbers: up to 16 for each of
  * four arrays; an empty string disables the sonar, as SONAR 0 does. */

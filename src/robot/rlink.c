@@ -1,4 +1,4 @@
-/* rlink.c - the ARCOS session: handshake, keep-alive, silence (see rlink.h). */
+/* rlink.c - the ARCOS connection: handshake, keep-alive, silence (see rlink.h). */
 #include "houghloc/rlink.h"
 
 #include <stdio.h>
@@ -101,7 +101,7 @@ void hl_rlink_lost(hl_rlink_t *l, const char *why)
 static void on_handshake(hl_rlink_t *l, const hl_arcos_packet_t *pkt, int64_t now_ms)
 {
     if (hl_arcos_is_sip(pkt)) {
-        /* still open from an earlier client: end that session, then start again */
+        /* still open from an earlier client: end that connection, then start again */
         queue_none(l, HL_ARCOS_CLOSE, now_ms);
         l->sync_stage = 0;
         l->tries = 0;

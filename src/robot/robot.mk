@@ -1,4 +1,4 @@
-# src/robot/robot.mk - the robot link library: the ARCOS packet codec (docs/arcos.md).
+# src/robot/robot.mk - the robot link library: the ARCOS packet codec (docs/manual/arcos.md).
 # Pure C11 like the core: compiled with $(CORE_CPPFLAGS) only, so it sees include/ and
 # nothing else (no LCM, no generated headers); its tests likewise.
 

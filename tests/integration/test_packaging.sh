@@ -1,63 +1,33 @@
 #!/bin/sh
 # Integration test of `make install` / `make uninstall` (packaging/packaging.mk) into a
 # staging folder, as a distribution package build does it: the files land where
-# docs/service.md says with the right modes, the unit names the installed programs and
+# docs/manual/service.md says with the right modes, the unit names the installed programs and
 # passes systemd-analyze (verify, and a security exposure of at most 2.0), a changed
 # configuration survives a second install and an uninstall, uninstall removes the rest,
 # and nothing needs root. The programs must be built (`make test` builds everything first):
-# make's -o keeps this test from rebuilding them.
+# make's -o keeps this test from rebuilding them. test_install.sh checks the installed
+# tree of PREFIX=/usr/local as its users meet it.
 set -u
 BUILD=${BUILD:-build}
 CONF_SRC=${CONF_SRC:-packaging/houghlocd.conf}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-fail=0
-check() {   # check DESCRIPTION COMMAND...: the command must succeed
-    desc=$1; shift
-    if "$@"; then echo "ok: $desc"; else echo "FAIL: $desc"; fail=1; fi
-}
-PROGS="houghlocd houghloc-goto houghloc-ctl houghloc-map houghloc-import-carmen houghloc-eval"
-# make's -o for each program: the install must not rebuild what make test built
-keep_built() { for p in $PROGS; do printf ' -o %s' "$1/bin/$p"; done; }
-hl_make() { # hl_make LOG TARGET VAR=VALUE...: make quietly, the output in LOG
-    log=$1; shift
-    # shellcheck disable=SC2046
-    make --no-print-directory -s BUILD="$BUILD" $(keep_built "$BUILD") "$@" >"$log" 2>&1
-    rc=$?
-    [ $rc -eq 0 ] || { echo "make $*:"; head -20 "$log"; }
-    return $rc
-}
-mode_is() { # mode_is MODE FILE
-    [ "$(stat -c %a "$2" 2>/dev/null)" = "$1" ] || { echo "  $2: mode $(stat -c %a "$2" 2>&1)"; return 1; }
-}
-files_in() { (cd "$1" && find . -type f | sed 's|^\./||' | sort); }
+# PROGS, expected_files, check, hl_make, mode_is, files_in, have_java:
+. tests/integration/install_layout.sh
+MULTIARCH=$(${CC:-cc} -print-multiarch 2>/dev/null)
 
 for p in $PROGS; do
     check "$BUILD/bin/$p is built" test -x "$BUILD/bin/$p"
 done
 [ $fail -eq 0 ] || exit 1
 
-have_java=
-if command -v javac >/dev/null 2>&1 && command -v jar >/dev/null 2>&1 &&
-    [ -f /usr/share/java/lcm.jar ]; then
-    have_java=yes
-fi
-
 # ---- install with PREFIX=/usr --------------------------------------------------------
 root=$tmp/root
 check "make install DESTDIR=... PREFIX=/usr succeeds" \
     hl_make "$tmp/install.log" install DESTDIR="$root" PREFIX=/usr
 
-{
-    echo etc/houghloc/houghlocd.conf
-    echo lib/systemd/system/houghlocd.service
-    for p in $PROGS; do echo "usr/bin/$p"; done
-    [ -n "$have_java" ] && echo usr/share/houghloc/java/houghloc_lcmtypes.jar
-    echo usr/share/houghloc/python/houghloc/__init__.py
-    for f in lcmtypes/houghloc_*.lcm; do
-        echo "usr/share/houghloc/python/houghloc/$(basename "$f" .lcm | sed 's/^houghloc_//').py"
-    done
-} | sort >"$tmp/expected"
+expected_files /usr "/usr/lib${MULTIARCH:+/$MULTIARCH}" /usr/lib/python3/dist-packages \
+    /lib/systemd/system >"$tmp/expected"
 files_in "$root" >"$tmp/got"
 check "install lays out exactly the expected files" cmp -s "$tmp/expected" "$tmp/got"
 cmp -s "$tmp/expected" "$tmp/got" || diff "$tmp/expected" "$tmp/got" | head -20
@@ -68,7 +38,11 @@ check "houghloc-ctl is 0755" mode_is 755 "$root/usr/bin/houghloc-ctl"
 check "houghloc-map is 0755" mode_is 755 "$root/usr/bin/houghloc-map"
 check "the unit is 0644" mode_is 644 "$root/lib/systemd/system/houghlocd.service"
 check "the configuration is 0644" mode_is 644 "$root/etc/houghloc/houghlocd.conf"
-check "the Python types are 0644" mode_is 644 "$root/usr/share/houghloc/python/houghloc/pose_t.py"
+check "the Python types are 0644" mode_is 644 "$root/usr/lib/python3/dist-packages/houghloc/pose_t.py"
+check "PREFIX=/usr: the library in the multiarch folder /usr/lib/$MULTIARCH" \
+    test -f "$root/usr/lib/$MULTIARCH/libhoughloc.so.$LIB_VERSION"
+check "PREFIX=/usr: houghloc.pc names libdir \${prefix}/lib/$MULTIARCH" \
+    grep -qx "libdir=\${prefix}/lib/$MULTIARCH" "$root/usr/lib/$MULTIARCH/pkgconfig/houghloc.pc"
 if [ -n "$have_java" ]; then
     check "the jar is 0644" mode_is 644 "$root/usr/share/houghloc/java/houghloc_lcmtypes.jar"
 fi

@@ -1,4 +1,4 @@
-/* Tests for src/robot/rlink.c: the ARCOS session against a scripted robot that answers
+/* Tests for src/robot/rlink.c: the ARCOS connection against a scripted robot that answers
  * with the codec's server side. */
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,6 +1,6 @@
 # tools/carmen/carmen.mk - houghloc-import-carmen: CARMEN laser logs (plain or gzip) to
 # LCM event logs of SONAR, ODOMETRY and GROUND_TRUTH that houghlocd replays
-# (docs/real-data.md). Included by the top Makefile.
+# (docs/manual/real-data.md). Included by the top Makefile.
 #
 # Like the daemon it sees include/ and never the generated LCM headers: messages are
 # encoded and checked by src/bus. zlib reads the gzip logs.

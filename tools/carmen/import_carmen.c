@@ -2,7 +2,7 @@
  * import_carmen.c - houghloc-import-carmen: a CARMEN laser log (the Radish building
  * data sets) as an LCM event log of SONAR, ODOMETRY and GROUND_TRUTH messages that
  * houghlocd replays. A thin main: options (carmen_args.c), the import
- * (carmen_import.c), the text dump (carmen_dump.c). docs/real-data.md tells the rules.
+ * (carmen_import.c), the text dump (carmen_dump.c). docs/manual/real-data.md tells the rules.
  */
 #include <stdio.h>
 
