@@ -95,20 +95,31 @@ void LogWriter::odometry(const std::vector<OdoSample> &samples, const std::strin
     }
 }
 
+// A SCAN message of n readings taken at utime from odometry pose odom, its readings still
+// to fill; null (and the writer failed) when n is more than a scan holds. hl_bus_scan_t
+// holds HL_SCAN_MAX_READINGS readings: too large for the stack.
+std::unique_ptr<hl_bus_scan> LogWriter::scan_header(int64_t utime, int32_t seq, const Pose &odom,
+                                                      std::size_t n)
+{
+    if (n > HL_SCAN_MAX_READINGS) {
+        ok_ = false;
+        return nullptr;
+    }
+    auto m = std::make_unique<hl_bus_scan_t>();
+    m->utime = utime;
+    m->seq = seq;
+    m->odometry = to_pose(odom);
+    m->scan.count = static_cast<uint32_t>(n);
+    return m;
+}
+
 void LogWriter::sounding(const Sounding &s, int32_t seq, const hl_calib_t &calib,
                          const std::string &channel)
 {
     std::size_t n = s.readings.size();
-    if (n > HL_SCAN_MAX_READINGS) {
-        ok_ = false;
+    auto m = scan_header(s.utime, seq, s.odom, n);
+    if (!m)
         return;
-    }
-    // hl_bus_scan_t holds HL_SCAN_MAX_READINGS readings: too large for the stack.
-    auto m = std::make_unique<hl_bus_scan_t>();
-    m->utime = s.utime;
-    m->seq = seq;
-    m->odometry = to_pose(s.odom);
-    m->scan.count = static_cast<uint32_t>(n);
     for (std::size_t i = 0; i < n; i++) {
         const RingReading &r = s.readings[i];
         hl_reading_t &out = m->scan.readings[i];
@@ -129,15 +140,9 @@ void LogWriter::sounding(const Sounding &s, int32_t seq, const hl_calib_t &calib
 void LogWriter::laser(const LaserScan &s, int32_t seq, const LaserParams &p)
 {
     std::size_t n = s.range_mm.size();
-    if (n > HL_SCAN_MAX_READINGS) {
-        ok_ = false;
+    auto m = scan_header(s.utime, seq, s.odom, n);
+    if (!m)
         return;
-    }
-    auto m = std::make_unique<hl_bus_scan_t>();
-    m->utime = s.utime;
-    m->seq = seq;
-    m->odometry = to_pose(s.odom);
-    m->scan.count = static_cast<uint32_t>(n);
     for (std::size_t i = 0; i < n; i++) {
         hl_reading_t &out = m->scan.readings[i];
         int32_t r = s.range_mm[i];

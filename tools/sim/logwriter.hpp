@@ -4,12 +4,15 @@
 #define HLSIM_LOGWRITER_HPP
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "houghloc/calib.h"
 #include "laser.hpp"
 #include "robot.hpp"
+
+struct hl_bus_scan;  // houghloc/bus.h
 
 extern "C" {
 typedef struct _lcm_eventlog_t lcm_eventlog_t;
@@ -59,6 +62,8 @@ public:
     const LogStats &stats() const { return stats_; }
 
 private:
+    std::unique_ptr<hl_bus_scan> scan_header(int64_t utime, int32_t seq, const Pose &odom,
+                                             std::size_t n);
     void scan_message(const void *scan, int64_t utime, const std::string &channel);
     void ground_truth(int64_t utime, int32_t seq, const Pose &truth);
     void write(const std::string &channel, int64_t utime, const std::vector<uint8_t> &data);
