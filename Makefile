@@ -83,10 +83,11 @@ INTEGRATION_TESTS := tests/integration/test_tools.sh
 .DEFAULT_GOAL := all
 
 # The layers in their order, each seeing the libraries of those before it: src/bus/bus.mk
-# the bus library, src/robot/robot.mk the robot link's, src/daemon/daemon.mk houghlocd;
-# then tools/*/*.mk the separate programs and packaging/packaging.mk `make install`;
+# the bus library, src/robot/robot.mk the robot link's, src/daemon/daemon.mk houghlocd,
+# src/solve/solve.mk the sparse solver on Eigen (C++, Eigen's include path its own); then tools/*/*.mk the separate programs and packaging/packaging.mk `make install`;
 # last the laboratory, tools/lab/lab.mk, which builds on all of them.
 include src/bus/bus.mk src/robot/robot.mk src/daemon/daemon.mk
+include src/solve/solve.mk
 -include $(sort $(filter-out tools/lab/%,$(wildcard tools/*/*.mk tests/*/*.mk packaging/*.mk)))
 include tools/lab/lab.mk
 

@@ -1,0 +1,82 @@
+/*
+ * solve.h - a sparse symmetric positive definite solver for systems made of 3 x 3 blocks
+ * (the normal equations of a pose graph: one block per pose, one per edge between its two
+ * poses), on Eigen's sparse Cholesky (SimplicialLDLT) behind a C interface. The layer
+ * lives in src/solve (C++17); nothing of Eigen or C++ crosses this header, so the pure-C
+ * core may call it through a function pointer without seeing either.
+ *
+ * The matrix is given as a list of 3 x 3 blocks of its UPPER block triangle: block (row,
+ * col) with row <= col, values row-major. Of a diagonal block (row == col) only its upper
+ * triangle is read (its lower is ignored, as it mirrors it); an off-diagonal block is read
+ * whole and stands for itself and its transpose at (col, row). Blocks naming the same
+ * (row, col) are summed, so a caller may hand in each edge's contribution as it comes.
+ * Unknown block i is unknowns 3i, 3i + 1, 3i + 2.
+ *
+ * The symbolic analysis (the fill-reducing ordering and the factor's pattern) is kept
+ * across calls: a call whose block list names the same (row, col) in the same order as
+ * the one analyzed before only refills the values and factors again (each Gauss-Newton
+ * step of one fit shares the pattern), and says so in *pattern_reused.
+ *
+ * Memory: create reserves the matrix, the block-to-value map and the pattern's copy for
+ * the largest system; Eigen's own work (the ordering, the factor, its permuted copy of the
+ * matrix) is allocated by Eigen inside the calls (docs/results/pose-graph-solver.md).
+ * No call throws; every failure is a status.
+ */
+#ifndef HOUGHLOC_SOLVE_H
+#define HOUGHLOC_SOLVE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum hl_solve_status {
+    HL_SOLVE_OK = 0,
+    HL_SOLVE_BAD_ARGUMENT,              /* a NULL, a size beyond the limits, a block below
+                                           the diagonal or past the last unknown block, a
+                                           value not a number */
+    HL_SOLVE_NOT_POSITIVE_DEFINITE,     /* a pivot not positive: singular or indefinite */
+    HL_SOLVE_NO_MEMORY,
+} hl_solve_status_t;
+
+/* One 3 x 3 block of the matrix, at block row `row` and block column `col`. */
+typedef struct hl_solve_block {
+    uint32_t row, col;
+    double v[9];                        /* row-major */
+} hl_solve_block_t;
+
+typedef struct hl_sparse_ldlt hl_sparse_ldlt_t;
+
+/** A solver for up to @p max_block_rows unknown blocks (3 unknowns each) and up to
+ * @p max_blocks blocks in a list; NULL on no memory or a zero limit. */
+hl_sparse_ldlt_t *hl_sparse_ldlt_create(uint32_t max_block_rows, uint32_t max_blocks);
+void hl_sparse_ldlt_destroy(hl_sparse_ldlt_t *s);      /* accepts NULL */
+
+/**
+ * The symbolic analysis of the pattern of @p blocks (@p n_blocks of them, over
+ * @p n_block_rows unknown blocks), kept for the solves that follow with the same pattern.
+ * hl_sparse_ldlt_solve calls it itself when the pattern changes; a caller calls it
+ * beforehand only to pay for it at a time of its choosing (or to time it).
+ */
+hl_solve_status_t hl_sparse_ldlt_analyze(hl_sparse_ldlt_t *s, uint32_t n_block_rows,
+                                         const hl_solve_block_t *blocks, uint32_t n_blocks);
+
+/**
+ * Solves A x = @p rhs for @p x (both 3 * @p n_block_rows long; they may be the same
+ * array), A the symmetric matrix of @p blocks. *@p pattern_reused (if not NULL) is set
+ * to whether the analysis of the call before served. On an error @p x is left as it was.
+ */
+hl_solve_status_t hl_sparse_ldlt_solve(hl_sparse_ldlt_t *s, uint32_t n_block_rows,
+                                       const hl_solve_block_t *blocks, uint32_t n_blocks,
+                                       const double *rhs, double *x, bool *pattern_reused);
+
+/* The status as a few words, for an error line. */
+const char *hl_solve_status_name(hl_solve_status_t status);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
