@@ -1,8 +1,8 @@
 # tools/lab/bench/bench.mk - hl-bench, the localization benchmark on synthetic scenes, and
 # `make bench`: every benchmark at -O2 (docs/results/performance.md).
 #
-#   make bench    hl-bench (one line per workload), hl-bench-posegraph on 256 and 4096
-#                 stops, then houghlocd replaying logs/tour.lcmlog (bench_daemon.sh)
+#   make bench    hl-bench (one line per workload), hl-bench-posegraph and hl-bench-solve
+#                 on 256 and 4096 stops, then houghlocd replaying logs/tour.lcmlog (bench_daemon.sh)
 
 LAB_BINS += $(BUILD)/bin/hl-bench
 
@@ -13,8 +13,10 @@ $(BUILD)/bin/hl-bench: $(call obj,tools/lab/bench/bench_localize.c) $(TESTKIT_LI
 .PHONY: bench
 bench: deps
 	$(Q)$(MAKE) --no-print-directory $(BUILD)/bin/hl-bench $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval \
-	    $(BUILD)/bin/hl-bench-posegraph OPT="-O2 -g"
+	    $(BUILD)/bin/hl-bench-posegraph $(BUILD)/bin/hl-bench-solve OPT="-O2 -g"
 	$(Q)$(BUILD)/bin/hl-bench
 	$(Q)$(BUILD)/bin/hl-bench-posegraph --stops 256
 	$(Q)$(BUILD)/bin/hl-bench-posegraph --stops 4096
+	$(Q)$(BUILD)/bin/hl-bench-solve --stops 256
+	$(Q)$(BUILD)/bin/hl-bench-solve --stops 4096
 	$(Q)BUILD=$(BUILD) sh tools/lab/bench/bench_daemon.sh
