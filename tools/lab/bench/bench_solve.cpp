@@ -42,68 +42,31 @@
 #include "houghloc/solve.h"
 #include "timing.h"
 
+#include "../testkit/corridor.h"
 extern "C" {
-#include "../../../src/core/posegraph.h"
-#include "houghloc/rng.h"
-double sr_gauss_rng(hl_rng_t *rng);     /* tools/lab/testkit/synthroom.h */
+#include "../../../src/core/closure.h"
 }
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kNoiseMm = 30.0, kNoiseRad = 0.02;
-/* closure.h's rules and sigmas (HL_CLOSURE_*), which bench_posegraph.c uses. */
-constexpr uint32_t kMaxStops = 4096, kGap = 5, kMaxMatches = 16;
-constexpr double kRadiusMm = 1500, kSigmaMm = 50.0, kSigmaRad = 1.5 * kPi / 180;
-constexpr double kWrongPct = 5;
+constexpr uint32_t kMaxStops = HL_CLOSURE_MAX_STOPS;
+constexpr double kSigmaMm = HL_CLOSURE_SIGMA_MM, kSigmaRad = HL_CLOSURE_SIGMA_DEG * kPi / 180;
+constexpr double kWrongPct = 5;     /* hl-bench-posegraph's default */
 
 struct Graph {
     std::vector<hl_pg_pose_t> truth, chained;
     std::vector<hl_pg_edge_t> edges;
 };
 
-hl_pg_pose_t measured(hl_rng_t *rng, hl_pg_pose_t from, hl_pg_pose_t to)
-{
-    hl_pg_pose_t rel = hl_pg_between(from, to);
-    rel.x += kNoiseMm * sr_gauss_rng(rng);
-    rel.y += kNoiseMm * sr_gauss_rng(rng);
-    rel.theta += kNoiseRad * sr_gauss_rng(rng);
-    return rel;
-}
-
-/* bench_posegraph.c's corridor tour, edge for edge. */
+/* hl-bench-posegraph's corridor tour, edge for edge (tools/lab/testkit/corridor.h). */
 Graph corridor(uint32_t n)
 {
     Graph g;
     g.truth.resize(n);
     g.chained.resize(n);
-    hl_rng_t rng;
-    hl_rng_seed(&rng, 1);
-    double x = 0, dir = 1;
-    for (uint32_t i = 0; i < n; i++) {
-        x += dir * 600;
-        if (x > 28000 || x < 0) {
-            dir = -dir;
-            x += 2 * dir * 600;
-        }
-        g.truth[i] = hl_pg_pose_t{ x, 1000 * std::sin(i * 0.37), dir > 0 ? 0 : kPi };
-    }
-    g.chained[0] = g.truth[0];
-    for (uint32_t i = 1; i < n; i++) {
-        g.edges.push_back(hl_pg_edge_t{ i - 1, i, measured(&rng, g.truth[i - 1], g.truth[i]), false });
-        g.chained[i] = hl_pg_compose(g.chained[i - 1], g.edges.back().rel);
-    }
-    for (uint32_t k = 0; k < n; k++)
-        for (uint32_t j = 0, m = 0; j + kGap <= k && m < kMaxMatches; j++)
-            if (std::hypot(g.truth[j].x - g.truth[k].x, g.truth[j].y - g.truth[k].y) <= kRadiusMm) {
-                hl_pg_pose_t rel = measured(&rng, g.truth[j], g.truth[k]);
-                if (hl_rng_below(&rng, 10000) < kWrongPct * 100) {
-                    rel.x += 2000;
-                    rel.theta += 0.5;
-                }
-                g.edges.push_back(hl_pg_edge_t{ j, k, rel, true });
-                m++;
-            }
+    g.edges.resize(sr_corridor_max_edges(n));
+    g.edges.resize(sr_corridor(n, kWrongPct, g.truth.data(), g.chained.data(), g.edges.data()));
     return g;
 }
 
