@@ -44,6 +44,10 @@ LCMGEN_CPPFLAGS := -I$(BUILD)/lcmtypes
 CPPFLAGS := $(CORE_CPPFLAGS) $(LCMGEN_CPPFLAGS)
 CFLAGS   := -std=c11 $(CWARN) $(OPT)
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(EIGEN_CFLAGS)
+# What every program linking the core needs besides: the math library, and the C++
+# runtime of the solve layer (src/solve: the pose-graph fit's sparse Cholesky on Eigen,
+# which the core's library carries and calls through the C interface of solve.h).
+SYS_LIBS := -lstdc++ -lm
 
 # ---- core library (pure C11, no I/O) -------------------------------------------------
 CORE_SRCS := $(sort $(wildcard src/core/*.c))
@@ -63,8 +67,12 @@ LCM_STAMP  := $(BUILD)/lcmtypes/.stamp
 obj     = $(patsubst %.c,$(BUILD)/obj/%.o,$(patsubst %.cpp,$(BUILD)/obj/%.o,$(1)))
 asanobj = $(patsubst %.c,$(BUILD)/asan/%.o,$(1))
 
-CORE_OBJS      := $(call obj,$(CORE_SRCS)) $(BUILD)/obj/gen/trig_table.o
-CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(BUILD)/asan/gen/trig_table.o
+# The core's library carries the solve layer (src/solve/solve.mk): C++ on Eigen, compiled
+# with Eigen's include path alone, called by the core through include/houghloc/solve.h.
+SOLVE_SRCS := $(sort $(wildcard src/solve/*.cpp))
+CORE_OBJS      := $(call obj,$(CORE_SRCS) $(SOLVE_SRCS)) $(BUILD)/obj/gen/trig_table.o
+CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(patsubst %.cpp,$(BUILD)/asan/%.o,$(SOLVE_SRCS)) \
+                  $(BUILD)/asan/gen/trig_table.o
 LCM_OBJS       := $(call obj,$(LCM_C_SRCS:$(BUILD)/%=%))
 LCM_ASAN_OBJS  := $(call asanobj,$(LCM_C_SRCS:$(BUILD)/%=%))
 
@@ -103,7 +111,7 @@ deps:
 # ---- generated sources ----------------------------------------------------------------
 $(BUILD)/bin/gen_trig_table: tools/build/gen_trig_table.c
 	@mkdir -p $(@D)
-	$(Q)$(CC) -std=c11 -O1 -o $@ $< -lm
+	$(Q)$(CC) -std=c11 -O1 -o $@ $< $(SYS_LIBS)
 
 $(TRIG_SRC): $(BUILD)/bin/gen_trig_table
 	@mkdir -p $(@D)
@@ -170,7 +178,7 @@ $(LCM_LIB): $(LCM_OBJS)
 $(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TESTKIT_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) -lm
+	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(SYS_LIBS)
 
 unit-test: $(TEST_BINS)
 	$(Q)sh tests/run-unit.sh $(TEST_BINS)

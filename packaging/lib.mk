@@ -53,6 +53,10 @@ $(BUILD)/pic/gen/%.o: $(BUILD)/gen/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-PIC  $<"
 	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) -fPIC -c -o $@ $<
+$(BUILD)/pic/src/solve/%.o: src/solve/%.cpp
+	@mkdir -p $(@D)
+	@echo "  CXX-PIC $<"
+	$(Q)$(CXX) $(CORE_CPPFLAGS) $(CXXFLAGS) -fPIC -c -o $@ $<
 $(patsubst %.c,$(BUILD)/pic/%.o,$(KERNEL_SRCS)): CFLAGS += $(VECTOR_FLAGS)
 
 # The static library: the programs' own core objects (the generic $(BUILD)/lib/%.a rule).
@@ -75,7 +79,7 @@ $(HL_LIB_SO): $(CORE_PIC_OBJS) $(HL_LIB_MAP)
 	@mkdir -p $(@D)
 	@echo "  LD-SO   $@"
 	$(Q)$(CC) -shared -Wl,-soname,$(HL_LIB_SONAME) -Wl,--version-script=$(HL_LIB_MAP) \
-	    -Wl,-z,defs $(LDFLAGS) -o $@ $(CORE_PIC_OBJS) -lm
+	    -Wl,-z,defs $(LDFLAGS) -o $@ $(CORE_PIC_OBJS) $(SYS_LIBS)
 
 .PHONY: lib install-lib uninstall-lib
 lib: $(HL_LIB_A) $(HL_LIB_SO)

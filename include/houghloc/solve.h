@@ -26,6 +26,7 @@
 #define HOUGHLOC_SOLVE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -53,6 +54,10 @@ typedef struct hl_sparse_ldlt hl_sparse_ldlt_t;
  * @p max_blocks blocks in a list; NULL on no memory or a zero limit. */
 hl_sparse_ldlt_t *hl_sparse_ldlt_create(uint32_t max_block_rows, uint32_t max_blocks);
 void hl_sparse_ldlt_destroy(hl_sparse_ldlt_t *s);      /* accepts NULL */
+
+/** What create reserves for those limits, in bytes (Eigen's own work in the calls, the
+ * ordering and the factor, comes on top). */
+size_t hl_sparse_ldlt_mem_bytes(uint32_t max_block_rows, uint32_t max_blocks);
 
 /**
  * The symbolic analysis of the pattern of @p blocks (@p n_blocks of them, over

@@ -9,7 +9,7 @@ BUS_ASAN_OBJS := $(call asanobj,$(BUS_SRCS))
 BUS_LIB       := $(BUILD)/lib/libhoughloc_bus.a
 BUS_ASAN_LIB  := $(BUILD)/lib/libhoughloc_bus_asan.a
 # What a program linking $(BUS_LIB) also needs after it.
-BUS_LDLIBS    := $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) $(SODIUM_LIBS) -lm
+BUS_LDLIBS    := $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) $(SODIUM_LIBS) $(SYS_LIBS)
 
 BUS_TESTS := $(patsubst tests/bus/%.c,$(BUILD)/tests/bus/%,$(wildcard tests/bus/test_*.c))
 TEST_BINS += $(BUS_TESTS)
@@ -22,4 +22,4 @@ $(BUS_ASAN_LIB): $(BUS_ASAN_OBJS)
 $(BUILD)/tests/bus/%: $(BUILD)/asan/tests/bus/%.o $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) -lm
+	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) $(SYS_LIBS)

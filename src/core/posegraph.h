@@ -3,19 +3,18 @@
  * between them (a pose graph): what loop closure (closure.h) asks of the stops when a
  * new match says where one stop lies from another.
  *
- * Gauss-Newton; each step's normal equations are solved by conjugate gradients over the
- * system's 3 x 3 blocks, each pose's own and each edge's between its two poses (one pass
- * over the edges a product), so the cost grows with the edges, not with the square of
- * the poses: a chain of stops and its matches is sparse. The preconditioner is the
- * chain's part of the system (each pose's block and the blocks between consecutive
- * poses) factored exactly. Every edge weighs the same (one localization's error, sigma_mm
+ * Gauss-Newton; each step's normal equations, 3 x 3 blocks (each pose's own and each
+ * edge's between its two poses), are solved exactly by the solve layer's sparse Cholesky
+ * factorization (houghloc/solve.h: Eigen's SimplicialLDLT behind a C interface), whose
+ * ordering serves every step of one fit. Every edge weighs the same (one localization's error, sigma_mm
  * and sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
  * reweighted: each Gauss-Newton step weighs it by 1 / (1 + e / kernel^2), e its squared
  * error in standard deviations at the poses the step starts from). A pose may also carry
  * a heading of its own (hl_pg_heading_t), weighed by its own sigma alone, never under the
  * kernel: the walls' headings (closure.h) are many and each weak, and under the kernel a
  * stretch of stops turned as a whole could not be turned back. Pose 0 is held where it
- * is. Memory: the workspace, from create only. Design and figures:
+ * is. Memory: the workspace from create; the factorization's own from Eigen, in the
+ * calls (docs/results/pose-graph-solver.md). Design and figures:
  * docs/design/loop-closure.md.
  */
 #ifndef HOUGHLOC_CORE_POSEGRAPH_H

@@ -15,8 +15,8 @@ DAEMON_ASAN_OBJS := $(patsubst %.c,$(BUILD)/asan/%.o,$(DAEMON_LIB_SRCS))
 DAEMON_LIB       := $(BUILD)/lib/libhoughloc_daemon.a
 DAEMON_ASAN_LIB  := $(BUILD)/lib/libhoughloc_daemon_asan.a
 # What a program linking $(DAEMON_LIB) also needs after it.
-DAEMON_LDLIBS    := $(ROBOT_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB) $(DAEMON_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) -lm
-DAEMON_ASAN_LDLIBS := $(ROBOT_ASAN_LIB) $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB) $(DAEMON_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) -lm
+DAEMON_LDLIBS    := $(ROBOT_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB) $(DAEMON_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) $(SYS_LIBS)
+DAEMON_ASAN_LDLIBS := $(ROBOT_ASAN_LIB) $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB) $(DAEMON_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) $(SYS_LIBS)
 
 DAEMON_TESTS := $(patsubst tests/daemon/%.c,$(BUILD)/tests/daemon/%,$(wildcard tests/daemon/test_*.c))
 TEST_BINS += $(DAEMON_TESTS)

@@ -30,7 +30,7 @@ $(ROBOT_ASAN_LIB): $(ROBOT_ASAN_OBJS)
 $(BUILD)/tests/robot/%: $(BUILD)/asan/tests/robot/%.o $(ROBOT_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) -lm
+	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(SYS_LIBS)
 
 # Nothing links the plain library yet (the daemon will); build it with everything so the
 # unsanitized compile is checked too.

@@ -211,6 +211,15 @@ void hl_sparse_ldlt_destroy(hl_sparse_ldlt_t *s)
     delete s;
 }
 
+size_t hl_sparse_ldlt_mem_bytes(uint32_t max_block_rows, uint32_t max_blocks)
+{
+    size_t entries = 9 * static_cast<size_t>(max_blocks) + 3 * static_cast<size_t>(max_block_rows);
+    return sizeof(hl_sparse_ldlt) +
+           entries * (sizeof(double) + sizeof(int) + sizeof(Eigen::Triplet<double, int>)) +
+           9 * static_cast<size_t>(max_blocks) * sizeof(int) + max_blocks * sizeof(uint64_t) +
+           (3 * static_cast<size_t>(max_block_rows) + 1) * (sizeof(double) + sizeof(int));
+}
+
 hl_solve_status_t hl_sparse_ldlt_analyze(hl_sparse_ldlt_t *s, uint32_t n_block_rows,
                                          const hl_solve_block_t *blocks, uint32_t n_blocks)
 {

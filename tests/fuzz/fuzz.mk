@@ -73,13 +73,13 @@ $(call fuzz_replay,$(FUZZ_ROBOT_NAMES)): $(BUILD)/tests/fuzz/replay_%: $(FUZZ_RE
         $(ROBOT_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CC) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(ROBOT_ASAN_LIB) $(CORE_ASAN_LIB) -lm
+	$(Q)$(CC) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(ROBOT_ASAN_LIB) $(CORE_ASAN_LIB) $(SYS_LIBS)
 $(call fuzz_replay,$(FUZZ_BUS_NAMES)): $(BUILD)/tests/fuzz/replay_%: $(FUZZ_REPLAY_PREREQS) \
         $(BUS_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(BUS_ASAN_LIB) $(CORE_ASAN_LIB) $(PKG_LIBS) \
-	    $(SODIUM_LIBS) -lm
+	    $(SODIUM_LIBS) $(SYS_LIBS)
 $(call fuzz_replay,$(FUZZ_DAEMON_NAMES)): $(BUILD)/tests/fuzz/replay_%: $(FUZZ_REPLAY_PREREQS) \
         $(DAEMON_ASAN_LIB) $(ROBOT_ASAN_LIB) $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
@@ -89,12 +89,12 @@ $(call fuzz_replay,$(FUZZ_CARMEN_NAMES)): $(BUILD)/tests/fuzz/replay_%: $(FUZZ_R
         $(FUZZ_CARMEN_ASAN_OBJ)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CC) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(FUZZ_CARMEN_ASAN_OBJ) $(ZLIB_LIBS) -lm
+	$(Q)$(CC) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(FUZZ_CARMEN_ASAN_OBJ) $(ZLIB_LIBS) $(SYS_LIBS)
 $(call fuzz_replay,$(FUZZ_SIM_NAMES)): $(BUILD)/tests/fuzz/replay_%: $(FUZZ_REPLAY_PREREQS) \
         $(FUZZ_SIM_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CXX) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(FUZZ_SIM_ASAN_LIB) -lm
+	$(Q)$(CXX) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(FUZZ_SIM_ASAN_LIB) $(SYS_LIBS)
 
 # ---- libFuzzer builds: clang ---------------------------------------------------------
 FUZZ_OUT := $(BUILD)/fuzz
@@ -104,7 +104,7 @@ FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fra
 FUZZ_OPT ?= -O1 -g
 FUZZ_CPPFLAGS = $(CPPFLAGS) $(FUZZ_INC) $(PKG_CFLAGS) $(DAEMON_CFLAGS)
 FUZZ_CFLAGS   = -std=c11 $(CWARN) $(FUZZ_OPT) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
-FUZZ_CXXFLAGS = -std=c++17 $(WARN) $(FUZZ_OPT) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+FUZZ_CXXFLAGS = -std=c++17 $(WARN) $(FUZZ_OPT) $(FUZZ_SAN) -fsanitize=fuzzer-no-link $(EIGEN_CFLAGS)
 FUZZ_LDFLAGS  = -fsanitize=fuzzer $(FUZZ_SAN)
 
 fuzz_obj = $(patsubst %.c,$(FUZZ_OUT)/obj/%.o,$(patsubst %.cpp,$(FUZZ_OUT)/obj/%.o,$(1)))
@@ -118,7 +118,7 @@ FUZZ_CARMEN_OBJ := $(call fuzz_obj,tools/carmen/carmen_log.c)
 FUZZ_SIM_OBJS   := $(call fuzz_obj,tools/sim/world.cpp $(BUILD)/gen/sim_lab_world.cpp)
 FUZZ_MEMFILE    := $(call fuzz_obj,tests/fuzz/memfile.c)
 
-$(FUZZ_CORE_LIB): $(call fuzz_obj,$(CORE_SRCS) $(TRIG_SRC))
+$(FUZZ_CORE_LIB): $(call fuzz_obj,$(CORE_SRCS) $(SOLVE_SRCS) $(TRIG_SRC))
 $(FUZZ_ROBOT_LIB): $(call fuzz_obj,$(ROBOT_SRCS))
 $(FUZZ_BUS_LIB): $(call fuzz_obj,$(BUS_SRCS) $(LCM_C_SRCS))
 $(FUZZ_DAEMON_LIB): $(call fuzz_obj,$(DAEMON_LIB_SRCS))
@@ -146,28 +146,28 @@ $(call fuzz_bin,$(FUZZ_ROBOT_NAMES)): $(FUZZ_OUT)/fuzz_%: $(FUZZ_OBJ_PREREQS) $(
         $(FUZZ_CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-FUZZ $@"
-	$(Q)$(FUZZ_CC) $(FUZZ_LDFLAGS) -o $@ $(FUZZ_OBJS) $(FUZZ_ROBOT_LIB) $(FUZZ_CORE_LIB) -lm
+	$(Q)$(FUZZ_CC) $(FUZZ_LDFLAGS) -o $@ $(FUZZ_OBJS) $(FUZZ_ROBOT_LIB) $(FUZZ_CORE_LIB) $(SYS_LIBS)
 $(call fuzz_bin,$(FUZZ_BUS_NAMES)): $(FUZZ_OUT)/fuzz_%: $(FUZZ_OBJ_PREREQS) $(FUZZ_BUS_LIB) \
         $(FUZZ_CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-FUZZ $@"
 	$(Q)$(FUZZ_CC) $(FUZZ_LDFLAGS) -o $@ $(FUZZ_OBJS) $(FUZZ_BUS_LIB) $(FUZZ_CORE_LIB) \
-	    $(PKG_LIBS) $(SODIUM_LIBS) -lm
+	    $(PKG_LIBS) $(SODIUM_LIBS) $(SYS_LIBS)
 $(call fuzz_bin,$(FUZZ_DAEMON_NAMES)): $(FUZZ_OUT)/fuzz_%: $(FUZZ_OBJ_PREREQS) $(FUZZ_DAEMON_LIB) \
         $(FUZZ_ROBOT_LIB) $(FUZZ_BUS_LIB) $(FUZZ_CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-FUZZ $@"
 	$(Q)$(FUZZ_CC) $(FUZZ_LDFLAGS) -o $@ $(FUZZ_OBJS) $(FUZZ_DAEMON_LIB) $(FUZZ_ROBOT_LIB) \
-	    $(FUZZ_BUS_LIB) $(FUZZ_CORE_LIB) $(DAEMON_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) -lm
+	    $(FUZZ_BUS_LIB) $(FUZZ_CORE_LIB) $(DAEMON_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) $(SYS_LIBS)
 $(call fuzz_bin,$(FUZZ_CARMEN_NAMES)): $(FUZZ_OUT)/fuzz_%: $(FUZZ_OBJ_PREREQS) $(FUZZ_CARMEN_OBJ)
 	@mkdir -p $(@D)
 	@echo "  LD-FUZZ $@"
-	$(Q)$(FUZZ_CC) $(FUZZ_LDFLAGS) -o $@ $(FUZZ_OBJS) $(FUZZ_CARMEN_OBJ) $(ZLIB_LIBS) -lm
+	$(Q)$(FUZZ_CC) $(FUZZ_LDFLAGS) -o $@ $(FUZZ_OBJS) $(FUZZ_CARMEN_OBJ) $(ZLIB_LIBS) $(SYS_LIBS)
 $(call fuzz_bin,$(FUZZ_SIM_NAMES)): $(FUZZ_OUT)/fuzz_%: $(FUZZ_OUT)/obj/tests/fuzz/fuzz_%.o \
         $(FUZZ_MEMFILE) $(FUZZ_SIM_OBJS)
 	@mkdir -p $(@D)
 	@echo "  LD-FUZZ $@"
-	$(Q)$(FUZZ_CXX) $(FUZZ_LDFLAGS) -o $@ $^ -lm
+	$(Q)$(FUZZ_CXX) $(FUZZ_LDFLAGS) -o $@ $^ $(SYS_LIBS)
 
 # ---- make fuzz -----------------------------------------------------------------------
 FUZZ_SECONDS ?= 30

@@ -62,7 +62,7 @@ $(BUILD)/bin/houghloc-console: $(CONSOLE_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 $(BUILD)/tests/console/%: $(BUILD)/asan/tests/console/%.o $(CONSOLE_ASAN_OBJS) $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) -lm
+	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) $(SYS_LIBS)
 
 # The browser test: houghlocd replaying logs/tour, the console, headless Chromium.
 test-console: $(BUILD)/bin/houghloc-console $(BUILD)/bin/houghlocd

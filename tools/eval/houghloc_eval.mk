@@ -29,4 +29,4 @@ $(BUILD)/tests/eval/test_houghloc_eval: $(BUILD)/asan/tests/eval/test_houghloc_e
                                         $(METRICS_ASAN_OBJ)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) -lm
+	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(SYS_LIBS)

@@ -45,4 +45,4 @@ $(BUILD)/tests/houghloc-sim/%: $(BUILD)/asan/tests/houghloc-sim/%.o $(HLSIMR_ASA
                                $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) -lm
+	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) $(SODIUM_LIBS) $(SYS_LIBS)

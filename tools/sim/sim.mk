@@ -14,7 +14,7 @@ SIM_OBJS      := $(call obj,$(SIM_SRCS)) $(BUILD)/obj/gen/sim_lab_world.o
 SIM_ASAN_OBJS := $(patsubst %.cpp,$(BUILD)/asan/%.o,$(SIM_SRCS)) $(BUILD)/asan/gen/sim_lab_world.o
 # What a program linking $(SIM_LIB) also needs, after it on the command line (the log
 # writer encodes through the bus codecs, src/bus/bus.mk).
-SIM_LDLIBS := $(BUS_LIB) $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) -lm
+SIM_LDLIBS := $(BUS_LIB) $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) $(SYS_LIBS)
 
 SIM_TESTS := $(patsubst tests/sim/%.cpp,$(BUILD)/tests/sim/%,$(wildcard tests/sim/test_*.cpp))
 
@@ -56,4 +56,4 @@ $(SIM_ASAN_LIB): $(SIM_ASAN_OBJS)
 $(BUILD)/tests/sim/%: $(BUILD)/asan/tests/sim/%.o $(SIM_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm
+	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) $(SYS_LIBS)

@@ -8,7 +8,7 @@ LAB_BINS += $(BUILD)/bin/hl-bench
 
 $(BUILD)/bin/hl-bench: $(call obj,tools/lab/bench/bench_localize.c) $(TESTKIT_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
-	$(Q)$(CC) -o $@ $^ -lm
+	$(Q)$(CC) -o $@ $^ $(SYS_LIBS)
 
 .PHONY: bench
 bench: deps

@@ -5,4 +5,4 @@ LAB_BINS += $(BUILD)/bin/hl-bench-posegraph
 
 $(BUILD)/bin/hl-bench-posegraph: $(call obj,tools/lab/bench/bench_posegraph.c) $(TESTKIT_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
-	$(Q)$(CC) -o $@ $^ -lm
+	$(Q)$(CC) -o $@ $^ $(SYS_LIBS)

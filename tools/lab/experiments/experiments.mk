@@ -20,7 +20,7 @@ $(BUILD)/bin/hl-experiments: $(call obj,$(EXP_SRCS)) $(BUILD)/lib/libhoughloc_re
                              $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CXX) -o $@ $^ $(CAIRO_LIBS) $(PKG_LIBS) -lm
+	$(Q)$(CXX) -o $@ $^ $(CAIRO_LIBS) $(PKG_LIBS) $(SYS_LIBS)
 
 .PHONY: experiments experiments-seeds
 experiments-seeds: deps

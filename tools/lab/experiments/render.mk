@@ -10,7 +10,7 @@ RENDER_LIB       := $(BUILD)/lib/libhoughloc_render.a
 RENDER_ASAN_LIB  := $(BUILD)/lib/libhoughloc_render_asan.a
 RENDER_OBJS      := $(call obj,$(RENDER_SRCS))
 RENDER_ASAN_OBJS := $(patsubst %.cpp,$(BUILD)/asan/%.o,$(RENDER_SRCS))
-RENDER_LDLIBS    := $(CORE_LIB) $(CAIRO_LIBS) -lm
+RENDER_LDLIBS    := $(CORE_LIB) $(CAIRO_LIBS) $(SYS_LIBS)
 
 RENDER_TESTS := $(BUILD)/tests/experiments/test_render
 TEST_BINS    += $(RENDER_TESTS)
@@ -35,4 +35,4 @@ $(BUILD)/tests/experiments/test_render: $(BUILD)/asan/tests/experiments/test_ren
                                         $(RENDER_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(CAIRO_LIBS) -lm
+	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(CAIRO_LIBS) $(SYS_LIBS)

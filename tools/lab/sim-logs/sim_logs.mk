@@ -18,14 +18,14 @@ $(BUILD)/bin/hl-sim-logs: $(call obj,tools/lab/sim-logs/make_logs.cpp) $(SIM_LIB
                           $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CXX) -o $@ $^ $(PKG_LIBS) -lm
+	$(Q)$(CXX) -o $@ $^ $(PKG_LIBS) $(SYS_LIBS)
 
 $(BUILD)/bin/hl-calibrate: $(call obj,tools/lab/sim-logs/calibrate.cpp) $(SIM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CXX) -o $@ $^ -lm
+	$(Q)$(CXX) -o $@ $^ $(SYS_LIBS)
 
 $(BUILD)/bin/hl-sim-draw: $(call obj,tools/lab/sim-logs/draw_world.cpp) $(SIM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CXX) -o $@ $^ $(CAIRO_LIBS) -lm
+	$(Q)$(CXX) -o $@ $^ $(CAIRO_LIBS) $(SYS_LIBS)
