@@ -117,6 +117,11 @@ typedef struct hl_slam_params {
                                    matches, moving the map with them (below); default
                                    false */
     uint32_t closure_stops;     /* ... the stops it remembers, 2..4096; default 256 */
+    hl_mm_t keyframe_mm;        /* ... a mapped scan is a stop of its own when the robot
+                                   has moved this far since the last stop, 0..100000 ... */
+    hl_bam_t keyframe_turn;     /* ... or turned this much; the scans between join the
+                                   stop before them. Both 0 (the default): every mapped
+                                   scan is a stop (a robot that sounds at stops) */
     bool square_walls;          /* ... and the building's walls run along wall_axis and
                                    square to it, so that each stop's readings tie its
                                    heading to the world (below); needs close_loops;

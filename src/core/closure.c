@@ -187,6 +187,56 @@ void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
                                                  false };
 }
 
+bool hl_closure_is_stop(const hl_closure_t *c, hl_pose_t pose, hl_mm_t mm, hl_bam_t turn)
+{
+    if (c->count == 0 || (mm == 0 && turn == 0))
+        return true;
+    hl_pose_t last = c->placed[c->count - 1];
+    double moved = hypot((double)pose.x_mm - last.x_mm, (double)pose.y_mm - last.y_mm);
+    int32_t turned = abs(hl_bam_diff(pose.theta, last.theta));
+    return (mm > 0 && moved >= mm) || (turn > 0 && turned >= turn);
+}
+
+/* Reading @p r of a scan taken at @p at, as the stop at @p key would have read it:
+ * the same point and surface normal, its range and bearing from the stop. false when
+ * it cannot be one (out of range, or a normal facing away from the stop). */
+static bool reading_from(hl_pose_t key, hl_pose_t at, const hl_reading_t *r, hl_reading_t *out)
+{
+    double world = hl_bam_to_rad((hl_bam_t)(at.theta + r->bearing));
+    double px = at.x_mm + r->range_mm * cos(world) - key.x_mm;
+    double py = at.y_mm + r->range_mm * sin(world) - key.y_mm;
+    double range = hypot(px, py);
+    if (!(range <= HL_RANGE_MAX_MM))
+        return false;
+    hl_bam_t bearing = (hl_bam_t)(hl_bam_from_rad(atan2(py, px)) - key.theta);
+    hl_bam_t normal = hl_reading_normal(r, at.theta);
+    int32_t tilt = hl_bam_diff(normal, (hl_bam_t)(key.theta + bearing + HL_BAM_HALF_TURN));
+    if (tilt > (int32_t)HL_BAM_QUARTER_TURN || tilt < -(int32_t)HL_BAM_QUARTER_TURN)
+        return false;
+    *out = *r;
+    out->range_mm = (int32_t)lround(range);
+    out->bearing = bearing;
+    out->tilt = (int16_t)tilt;
+    return true;
+}
+
+void hl_closure_append(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose)
+{
+    if (c->count == 0)
+        return;
+    uint32_t i = c->count - 1;
+    hl_scan_t *s = &c->scans[(c->first + i) % c->cap];
+    for (uint32_t k = 0; k < placed->count && s->count < HL_SCAN_MAX_READINGS; k++)
+        if (placed->readings[k].valid &&
+            reading_from(c->placed[i], pose, &placed->readings[k], &s->readings[s->count]))
+            s->count++;
+}
+
+uint32_t hl_closure_newest_stamp(const hl_closure_t *c)
+{
+    return c->first + c->count - 1;
+}
+
 hl_pose_t hl_closure_newest(const hl_closure_t *c)
 {
     return c->count ? c->placed[c->count - 1] : (hl_pose_t){ 0, 0, 0 };

@@ -86,6 +86,21 @@ uint32_t hl_closure_next_stamp(const hl_closure_t *c);
 void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
                        hl_rng_t rng_before);
 
+/** Whether a scan mapped at @p pose should be a stop of its own (hl_closure_record) rather
+ *  than join the newest stop (hl_closure_append): the first, or one at least @p mm from
+ *  the newest stop or turned at least @p turn from it. A robot that scans continuously
+ *  makes its stops this way (keyframes); with both 0, every scan is a stop (a robot that
+ *  sounds at stops). */
+bool hl_closure_is_stop(const hl_closure_t *c, hl_pose_t pose, hl_mm_t mm, hl_bam_t turn);
+
+/** Joins @p placed, mapped at @p pose, to the newest stop: its readings go into the
+ *  stop's scan, in the stop's frame, as far as the scan has room (HL_SCAN_MAX_READINGS),
+ *  so that a redraw draws them again with the stop. Nothing without a stop. */
+void hl_closure_append(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose);
+
+/** The newest stop's stamp (its vectors' and those of the scans joined to it). */
+uint32_t hl_closure_newest_stamp(const hl_closure_t *c);
+
 /** The newest stop's fitted pose (the recorded one until a fit moves it). */
 hl_pose_t hl_closure_newest(const hl_closure_t *c);
 

@@ -344,17 +344,26 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
 
     /* Commit. */
     hl_rng_t rng_before = hl_map_rng(s->map);
+    bool stop = false;      /* a stop of its own for loop closure, or joins the last */
     if (extend) {
-        if (s->closure)
-            hl_map_set_stamp(s->map, hl_closure_next_stamp(s->closure));
+        if (s->closure) {
+            stop = hl_closure_is_stop(s->closure, step.pose, s->p.keyframe_mm,
+                                      s->p.keyframe_turn);
+            hl_map_set_stamp(s->map, stop ? hl_closure_next_stamp(s->closure)
+                                          : hl_closure_newest_stamp(s->closure));
+        }
         st = hl_map_add_scan(s->map, scan, step.pose, &step.added);
         if (st != HL_OK)    /* unreachable (above); the map is unchanged if it happens */
             return st;
     }
     /* Loop closure cannot fail (its memory is its own, from create). A rejected scan is
      * not remembered: its pose is odometry's alone. */
-    if (s->closure && extend)
-        step.loops = close_loops(s, scan, &step.pose, rng_before);
+    if (s->closure && extend) {
+        if (stop)
+            step.loops = close_loops(s, scan, &step.pose, rng_before);
+        else
+            hl_closure_append(s->closure, scan, step.pose);
+    }
     s->started = true;
     s->odom = odometry;
     s->pose = step.pose;

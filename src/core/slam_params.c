@@ -34,6 +34,8 @@ void hl_slam_params_default(hl_slam_params_t *p)
     hl_refine_params_default(&p->refine_params);
     p->close_loops = false;
     p->closure_stops = 256;
+    p->keyframe_mm = 0;
+    p->keyframe_turn = 0;
     p->square_walls = false;
     p->wall_axis = 0;
     p->long_drive_mm = 0;
@@ -89,6 +91,10 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return hl_refine_params_error(&p->refine_params);
     if (p->closure_stops < 2 || p->closure_stops > HL_CLOSURE_MAX_STOPS)
         return "closure_stops must be in 2..4096";
+    if (p->keyframe_mm < 0 || p->keyframe_mm > 100000)
+        return "keyframe_mm must be in 0..100000";
+    if (p->keyframe_turn > HL_BAM_HALF_TURN)
+        return "keyframe_turn must be at most a half turn";
     if (p->square_walls && !p->close_loops)
         return "square_walls needs close_loops";
     if (p->long_drive_mm < 0 || p->long_drive_mm > 1000000)

@@ -16,6 +16,10 @@ static const hl_profile_key_t sonar_continuous[] = {
     { "echo.half_beam_deg", "11",
       "the nearest return anywhere in a hard 22-degree cone (half of it), not the 7 degrees "
       "of a Polaroid-type beam" },
+    { "slam.keyframe_mm", "500",
+      "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous drive, "
+      "the soundings between joining it, rather than a stop a sounding" },
+    { "slam.keyframe_deg", "20", "... or 20 degrees" },
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 46 x 45 m): the global search's coarse cell doubled, "
       "a quarter of the cells for as many answers" },
@@ -43,6 +47,10 @@ static const hl_profile_key_t laser[] = {
       "every second reading votes, which pins the peak as well (the refinement fits all)" },
     { "localize.group_mm", "48",
       "the map stays dense along walls: vectors of one 48 mm square vote together" },
+    { "slam.keyframe_mm", "500",
+      "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous drive, "
+      "the scans between joining it, rather than a stop a scan" },
+    { "slam.keyframe_deg", "20", "... or 20 degrees" },
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 56 x 84 m): the global search's coarse cell doubled, "
       "a quarter of the cells" },

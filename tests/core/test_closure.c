@@ -1,8 +1,8 @@
 /* Tests for src/core/closure.c and loop closure in the slam (slam.close_loops): a stop
  * back near an old one is matched with it, a match beyond the gate is refused, the fit
  * pulls a drifted stop back and the map is drawn again with it, forgotten stops are not
- * offered, square walls turn a turned map back, and the slam starts its record afresh
- * when its pose is set from outside. */
+ * offered, scans between stops (keyframes) join the last one, square walls turn a turned
+ * map back, and the slam starts its record afresh when its pose is set from outside. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -195,6 +195,53 @@ static double heading_after_fit(loop_t *l, bool square_walls, hl_scan_t *scan)
 /* A map turned as a whole about its first stop: the steps and the match agree with one
  * another, so the fit alone leaves it turned; told that the walls run along x and y, each
  * stop's readings turn it back. */
+static void test_scans_between_stops_join_the_last_one(void **state)
+{
+    (void)state;
+    loop_t *l = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_closure_t *c = hl_closure_create(16, CAP, 1);
+    hl_map_t *map = hl_map_create(CAP, 1), *alone = hl_map_create(CAP, 1);
+    assert_non_null(c);
+    hl_pose_t stop = l->truth[0], next = { stop.x_mm + 300, stop.y_mm + 100, hl_bam_from_deg(10) };
+    assert_true(hl_closure_is_stop(c, stop, 500, hl_bam_from_deg(20)));
+    sr_sound(&l->room, stop, 128, 8000, 5, scan);
+    hl_closure_record(c, scan, stop, hl_map_rng(map));
+    uint32_t own = scan->count;
+    /* 316 mm and 10 degrees on: not a stop under 500 mm / 20 degrees, one under 300 mm
+     * or 10 degrees, and always with both 0. */
+    assert_false(hl_closure_is_stop(c, next, 500, hl_bam_from_deg(20)));
+    assert_true(hl_closure_is_stop(c, next, 300, hl_bam_from_deg(20)));
+    assert_true(hl_closure_is_stop(c, next, 500, hl_bam_from_deg(10)));
+    assert_true(hl_closure_is_stop(c, next, 0, 0));
+    assert_int_equal(hl_closure_newest_stamp(c), 1);
+    /* The scan joined, and the stop drawn again: its readings land where the scan's own
+     * would (to within the rounding of range and bearing), in order, under the stop's
+     * stamp; only those whose surface faces away from the stop are left out (a grazing wall: 9 of
+     * 128 here). */
+    sr_sound(&l->room, next, 128, 8000, 5, scan);
+    hl_map_add_scan(alone, scan, next, NULL);
+    hl_closure_append(c, scan, next);
+    hl_map_set_stamp(map, hl_closure_newest_stamp(c));
+    hl_closure_fit(c, map);
+    uint32_t joined = hl_map_count(map) - own, want_n = hl_map_count(alone);
+    assert_true(joined <= want_n && joined >= want_n * 9 / 10);
+    const hl_vector_t *drawn = hl_map_vectors(map) + own, *want = hl_map_vectors(alone);
+    for (uint32_t i = 0, j = 0; i < joined; i++, j++) {
+        while (j < want_n && (abs(drawn[i].x_mm - want[j].x_mm) > 12 ||
+                              abs(drawn[i].y_mm - want[j].y_mm) > 12 ||
+                              abs(hl_bam_diff(drawn[i].normal, want[j].normal)) > 2))
+            j++;
+        assert_true(j < want_n);
+        assert_int_equal(hl_map_stamps(map)[own + i], 1);
+    }
+    hl_map_destroy(alone);
+    hl_map_destroy(map);
+    hl_closure_destroy(c);
+    free(scan);
+    free(l);
+}
+
 static void test_square_walls_turn_a_turned_map_back(void **state)
 {
     (void)state;
@@ -274,6 +321,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_a_stop_back_near_an_old_one_is_matched_and_pulled_back),
         cmocka_unit_test(test_forgotten_stops_are_not_offered),
+        cmocka_unit_test(test_scans_between_stops_join_the_last_one),
         cmocka_unit_test(test_square_walls_turn_a_turned_map_back),
         cmocka_unit_test(test_the_slam_closes_loops_and_starts_afresh_when_placed),
     };
