@@ -119,6 +119,13 @@ uint32_t hl_closure_next_stamp(const hl_closure_t *c)
     return c->next;
 }
 
+/* The record's scan of the stop @p i stops after the oldest recorded (its stamp is
+ * first + i; the scans are kept by stamp, round the record). */
+static hl_scan_t *scan_of(hl_closure_t *c, uint32_t i)
+{
+    return &c->scans[(c->first + i) % c->cap];
+}
+
 /* Forgets the oldest stop and its edges; the next oldest becomes pose 0, held. */
 static void forget_oldest(hl_closure_t *c)
 {
@@ -225,7 +232,7 @@ void hl_closure_append(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose)
     if (c->count == 0)
         return;
     uint32_t i = c->count - 1;
-    hl_scan_t *s = &c->scans[(c->first + i) % c->cap];
+    hl_scan_t *s = scan_of(c, i);
     for (uint32_t k = 0; k < placed->count && s->count < HL_SCAN_MAX_READINGS; k++)
         if (placed->readings[k].valid &&
             reading_from(c->placed[i], pose, &placed->readings[k], &s->readings[s->count]))
@@ -263,7 +270,7 @@ const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp)
     for (int32_t d = -HL_CLOSURE_SIDE; d <= HL_CLOSURE_SIDE; d++) {
         int64_t q = (int64_t)i + d;
         if (q >= 0 && q + HL_CLOSURE_GAP < c->count)
-            hl_map_add_scan(c->sub, &c->scans[(c->first + (uint32_t)q) % c->cap],
+            hl_map_add_scan(c->sub, scan_of(c, (uint32_t)q),
                             c->placed[q], NULL);
     }
     return c->sub;
@@ -312,7 +319,7 @@ static void redraw(hl_closure_t *c, hl_map_t *map)
     hl_map_restore(map, c->kept, n, hl_map_version(map) + 1, c->rng_before[0]);
     for (uint32_t i = 0; i < c->count; i++) {
         hl_map_set_stamp(map, c->first + i);
-        hl_map_add_scan(map, &c->scans[(c->first + i) % c->cap], c->placed[i], NULL);
+        hl_map_add_scan(map, scan_of(c, i), c->placed[i], NULL);
     }
 }
 

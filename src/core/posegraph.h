@@ -69,7 +69,9 @@ hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
  * are dropped from @p edges (*n_edges shrinks, the order kept), worst first, and the rest
  * fitted again, until none is that far off or 8 are dropped: under a kernel all such
  * edges at once, then a few steps from the fit before; without, one at a time, each time
- * a whole fit. n <= max_poses, *n_edges <= max_edges; edges must name poses below n.
+ * a whole fit. n <= max_poses, *n_edges <= max_edges; edges must name poses below n. A
+ * pose that no chain of edges ties to pose 0 makes the system singular: the solver
+ * refuses it and the poses stay as they are.
  * @return the number of loop edges dropped.
  */
 uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
