@@ -224,7 +224,8 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     c->n.rejected_wild += status == HL_SLAM_REJECTED_WILD;
     c->n.odometry_only += status == HL_SLAM_ODOMETRY_ONLY;
     publish_pose(c, in, &step, status, &found);
-    hl_cycle_record_compute(c, c->io.now_us(c->io.ctx) - t0);
+    int64_t compute_us = c->io.now_us(c->io.ctx) - t0;
+    hl_cycle_record_compute(c, compute_us);
     bool changed = hl_map_version(hl_slam_map(c->slam)) != version;
     if (step.turned)    /* slam.long_drive_mm: the odometry's heading had drifted */
         hl_log(HL_LOG_INFO, "scan %llu (seq %d): after a long drive, the drive turned about "
@@ -238,12 +239,14 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
                                              "RELOCALIZED", "LOST" };
         /* "changed": the scan went into the map, and counts towards daemon.save_every */
         /* "loops": matches with earlier stops (slam.close_loops): every stop was fitted
-         * again and the map drawn again with them */
+         * again and the map drawn again with them; then the scan's compute time, as
+         * STATUS's statistics count it */
         hl_log(HL_LOG_DEBUG, "scan %llu (seq %d): %s at (%.3f, %.3f) m, %.1f deg; map %u%s; "
-               "loops %u",
+               "loops %u; %lld us",
                (unsigned long long)c->scans_total, in->seq, names[status],
                step.pose.x_mm / 1000.0, step.pose.y_mm / 1000.0, hl_bam_to_sdeg(step.pose.theta),
-               hl_map_count(hl_slam_map(c->slam)), changed ? ", changed" : "", step.loops);
+               hl_map_count(hl_slam_map(c->slam)), changed ? ", changed" : "", step.loops,
+               (long long)compute_us);
     }
 
     if (changed) {
