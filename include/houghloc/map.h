@@ -137,6 +137,14 @@ hl_rng_t hl_map_rng(const hl_map_t *map);
 hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n,
                            uint32_t version, hl_rng_t rng);
 
+/**
+ * Exchanges the contents of @p a and @p b (vectors, stamps, culling state and indexes),
+ * maps made with the same capacity and settings (the caller's promise: a map drawn
+ * aside, in the background, then put in place at once). @p a's version then differs
+ * from both versions before, so that its readers see a change.
+ */
+void hl_map_swap(hl_map_t *a, hl_map_t *b);
+
 /*
  * Stamps. Each vector keeps the stamp the map had when it was added (a stop's number, for
  * loop closure: slam.h), so that a fit of the stops can tell which vectors it draws

@@ -122,6 +122,10 @@ typedef struct hl_slam_params {
     hl_bam_t keyframe_turn;     /* ... or turned this much; the scans between join the
                                    stop before them. Both 0 (the default): every mapped
                                    scan is a stop (a robot that sounds at stops) */
+    uint32_t closure_redraw_readings; /* ... after a fit, draw the map again aside, about
+                                   this many readings a scan, and put it in place when
+                                   done, so that no scan pays for a whole map; 0 (the
+                                   default): at once, in the scan that fitted */
     bool square_walls;          /* ... and the building's walls run along wall_axis and
                                    square to it, so that each stop's readings tie its
                                    heading to the world (below); needs close_loops;

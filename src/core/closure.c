@@ -35,6 +35,12 @@ struct hl_closure {
     hl_vector_t *kept;      /* [map_capacity] scratch: the vectors a fit does not redraw */
     uint32_t map_capacity;
     hl_map_t *sub;          /* the map a match is sought in */
+    /* A redraw spread over the scans that follow a fit (hl_closure_fit_spread): */
+    bool redrawing;
+    uint32_t next_drawn;    /* ... the stamp of the next stop to draw into the shadow map */
+    hl_pg_pose_t fit_before, fit_after; /* ... the newest stop fitted, before and after the
+                                           fit: the frame change the slam's pose and the
+                                           stops recorded meanwhile go through */
     hl_rng_t sub_rng;       /* ... started afresh each time */
 };
 
@@ -112,6 +118,7 @@ void hl_closure_reset(hl_closure_t *c)
     c->first = c->next;
     c->count = 0;
     c->n_edges = 0;
+    c->redrawing = false;
 }
 
 uint32_t hl_closure_next_stamp(const hl_closure_t *c)
@@ -183,7 +190,9 @@ void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
     memcpy(s->readings, placed->readings, placed->count * sizeof *placed->readings);
     uint32_t i = c->count++;
     c->next++;
-    c->poses[i] = hl_pg_from_pose(pose);
+    /* While a redraw is spread, the slam tracks in the frame before the fit (its map is
+     * still that one) and the fit's poses are in the frame after it. */
+    c->poses[i] = c->redrawing ? hl_pg_from_pose(hl_closure_carry(c, pose)) : hl_pg_from_pose(pose);
     c->placed[i] = pose;
     c->rng_before[i] = rng_before;
     c->wall_sigma[i] = 0;
@@ -338,15 +347,79 @@ static uint32_t wall_headings(hl_closure_t *c)
     return n;
 }
 
-uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map)
+/* Fits every stop to its steps and matches (the poses only). */
+static uint32_t fit_poses(hl_closure_t *c)
 {
     uint32_t n_headings = wall_headings(c);
-    uint32_t dropped = hl_posegraph_fit(c->graph, c->poses, c->count, c->edges, &c->n_edges,
-                                        c->headings, n_headings, HL_CLOSURE_SIGMA_MM,
-                                        HL_CLOSURE_SIGMA_DEG * (PI / 180), HL_CLOSURE_KERNEL,
-                                        HL_CLOSURE_OUTLIER);
+    return hl_posegraph_fit(c->graph, c->poses, c->count, c->edges, &c->n_edges, c->headings,
+                            n_headings, HL_CLOSURE_SIGMA_MM, HL_CLOSURE_SIGMA_DEG * (PI / 180),
+                            HL_CLOSURE_KERNEL, HL_CLOSURE_OUTLIER);
+}
+
+uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map)
+{
+    uint32_t dropped = fit_poses(c);
     for (uint32_t i = 0; i < c->count; i++)
         c->placed[i] = hl_pg_to_pose(c->poses[i]);
     redraw(c, map);
     return dropped;
+}
+
+uint32_t hl_closure_fit_spread(hl_closure_t *c, const hl_map_t *map, hl_map_t *shadow)
+{
+    if (c->count == 0 || c->redrawing)
+        return 0;
+    c->fit_before = c->poses[c->count - 1];
+    uint32_t dropped = fit_poses(c);
+    c->fit_after = c->poses[c->count - 1];
+    /* The shadow starts as the redraw does: the vectors of stops no longer recorded, and
+     * the culling generator before the oldest recorded stop was drawn. */
+    const hl_vector_t *v = hl_map_vectors(map);
+    const uint32_t *stamps = hl_map_stamps(map);
+    uint32_t n = 0, count = hl_map_count(map);
+    for (uint32_t i = 0; i < count && n < c->map_capacity; i++)
+        if (stamps[i] - c->first >= c->count)
+            c->kept[n++] = v[i];
+    hl_map_restore(shadow, c->kept, n, hl_map_version(map) + 1, c->rng_before[0]);
+    c->next_drawn = c->first;
+    c->redrawing = true;
+    return dropped;
+}
+
+bool hl_closure_redrawing(const hl_closure_t *c)
+{
+    return c->redrawing;
+}
+
+hl_pose_t hl_closure_carry(const hl_closure_t *c, hl_pose_t pose)
+{
+    hl_pg_pose_t rel = hl_pg_between(c->fit_before, hl_pg_from_pose(pose));
+    return hl_pg_to_pose(hl_pg_compose(c->fit_after, rel));
+}
+
+bool hl_closure_redraw_step(hl_closure_t *c, hl_map_t *map, hl_map_t *shadow, uint32_t readings)
+{
+    if (!c->redrawing)
+        return false;
+    if (c->next_drawn < c->first)   /* forgotten before they were drawn: theirs stay out */
+        c->next_drawn = c->first;
+    uint32_t drawn = 0, newest = c->first + c->count - 1;
+    /* The newest stop last, in the call that puts the shadow in place: scans still join
+     * it until then. */
+    while (c->next_drawn < newest && drawn < readings) {
+        uint32_t i = c->next_drawn - c->first;
+        hl_map_set_stamp(shadow, c->next_drawn);
+        hl_map_add_scan(shadow, scan_of(c, i), hl_pg_to_pose(c->poses[i]), NULL);
+        drawn += scan_of(c, i)->count;
+        c->next_drawn++;
+    }
+    if (c->next_drawn < newest || drawn >= readings)
+        return false;
+    hl_map_set_stamp(shadow, newest);
+    hl_map_add_scan(shadow, scan_of(c, c->count - 1), hl_pg_to_pose(c->poses[c->count - 1]), NULL);
+    for (uint32_t i = 0; i < c->count; i++)
+        c->placed[i] = hl_pg_to_pose(c->poses[i]);
+    hl_map_swap(map, shadow);
+    c->redrawing = false;
+    return true;
 }

@@ -133,4 +133,27 @@ bool hl_closure_match(hl_closure_t *c, uint32_t stamp, hl_pose_t found);
  */
 uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map);
 
+/**
+ * As hl_closure_fit, but the map is not drawn again at once: the stops are fitted now and
+ * drawn into @p shadow (a map made with @p map's capacity and settings) a few at a time
+ * by the hl_closure_redraw_step calls that follow, one a scan, so that no scan pays for a
+ * whole map. Until the last of them puts the shadow in place the slam keeps tracking in
+ * the frame before the fit (its map is still that one); the stops it records meanwhile
+ * are carried into the fit's frame (hl_closure_carry). Nothing while a redraw is under
+ * way. @return the matches dropped as outliers.
+ */
+uint32_t hl_closure_fit_spread(hl_closure_t *c, const hl_map_t *map, hl_map_t *shadow);
+
+/** Whether a spread redraw is under way (no new fit, no matching meanwhile). */
+bool hl_closure_redrawing(const hl_closure_t *c);
+
+/** Draws the next stops into @p shadow, about @p readings readings (at least one stop);
+ *  once every stop is drawn, swaps @p map and @p shadow (hl_map_swap) and ends the
+ *  redraw. @return whether it did: the slam's pose then goes through hl_closure_carry. */
+bool hl_closure_redraw_step(hl_closure_t *c, hl_map_t *map, hl_map_t *shadow, uint32_t readings);
+
+/** @p pose, tracked in the frame before the last fit, in the frame after it: moved as the
+ *  newest stop fitted then was moved by the fit. */
+hl_pose_t hl_closure_carry(const hl_closure_t *c, hl_pose_t pose);
+
 #endif

@@ -102,6 +102,15 @@ void hl_map_clear(hl_map_t *map)
     index_rebuild(map);
 }
 
+void hl_map_swap(hl_map_t *a, hl_map_t *b)
+{
+    uint32_t newer = (a->version > b->version ? a->version : b->version) + 1;
+    hl_map_t t = *a;
+    *a = *b;
+    *b = t;
+    a->version = newer;
+}
+
 hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm)
 {
     if (!map)

@@ -21,6 +21,7 @@ struct hl_slam {
     hl_refiner_t *refiner;  /* when the params ask for refinement */
     hl_reloc_t *reloc;      /* the global search (hl_slam_relocalize) */
     hl_closure_t *closure;  /* loop closure, when the params ask for it */
+    hl_map_t *shadow;       /* ... the map drawn again aside (closure_redraw_readings) */
 };
 
 hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
@@ -43,7 +44,10 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->reloc = hl_reloc_create(&p->reloc, &lp);
     s->closure = p->close_loops ? hl_closure_create(p->closure_stops, p->map_capacity, p->seed)
                                 : NULL;
+    bool spread = p->close_loops && p->closure_redraw_readings > 0;
+    s->shadow = spread ? hl_map_create(p->map_capacity, p->seed) : NULL;
     if (!s->map || hl_slam_setup_map(s->map, p) != HL_OK ||
+        (spread && (!s->shadow || hl_slam_setup_map(s->shadow, p) != HL_OK)) ||
         !s->loc || (p->echo_bearings && !s->echoed) ||
         (p->fit_normals && !s->fitted) || (p->refine && !s->refiner) ||
         !s->reloc || (p->close_loops && !s->closure)) {
@@ -60,6 +64,7 @@ void hl_slam_destroy(hl_slam_t *s)
     if (!s)
         return;
     hl_map_destroy(s->map);
+    hl_map_destroy(s->shadow);
     hl_loc_destroy(s->loc);
     free(s->echoed);
     free(s->fitted);
@@ -225,6 +230,8 @@ static uint32_t close_loops(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t *pose
                             hl_rng_t rng_before)
 {
     hl_closure_record(s->closure, scan, *pose, rng_before);
+    if (hl_closure_redrawing(s->closure))   /* the last fit's map is not in place yet */
+        return 0;
     uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
     uint32_t n = hl_closure_candidates(s->closure, stamps, HL_CLOSURE_MAX_MATCHES), taken = 0;
     for (uint32_t k = 0; k < n; k++) {
@@ -236,7 +243,9 @@ static uint32_t close_loops(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t *pose
             hl_closure_match(s->closure, stamps[k], found))
             taken++;
     }
-    if (taken) {
+    if (taken && s->shadow) {
+        hl_closure_fit_spread(s->closure, s->map, s->shadow);
+    } else if (taken) {
         hl_closure_fit(s->closure, s->map);
         *pose = hl_closure_newest(s->closure);
     }
@@ -364,6 +373,9 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
         else
             hl_closure_append(s->closure, scan, step.pose);
     }
+    if (s->shadow && hl_closure_redraw_step(s->closure, s->map, s->shadow,
+                                            s->p.closure_redraw_readings))
+        step.pose = hl_closure_carry(s->closure, step.pose);
     s->started = true;
     s->odom = odometry;
     s->pose = step.pose;

@@ -20,6 +20,9 @@ static const hl_profile_key_t sonar_continuous[] = {
       "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous drive, "
       "the soundings between joining it, rather than a stop a sounding" },
     { "slam.keyframe_deg", "20", "... or 20 degrees" },
+    { "slam.closure_redraw_readings", "50000",
+      "... and after a fit the map (a whole building's stops) drawn again aside, 50,000 "
+      "readings a scan (a few milliseconds), so that no scan waits for all of it" },
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 46 x 45 m): the global search's coarse cell doubled, "
       "a quarter of the cells for as many answers" },
@@ -51,6 +54,9 @@ static const hl_profile_key_t laser[] = {
       "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous drive, "
       "the scans between joining it, rather than a stop a scan" },
     { "slam.keyframe_deg", "20", "... or 20 degrees" },
+    { "slam.closure_redraw_readings", "50000",
+      "... and after a fit the map (a whole building's stops) drawn again aside, 50,000 "
+      "readings a scan (a few milliseconds), so that no scan waits for all of it" },
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 56 x 84 m): the global search's coarse cell doubled, "
       "a quarter of the cells" },

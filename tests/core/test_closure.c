@@ -1,7 +1,9 @@
 /* Tests for src/core/closure.c and loop closure in the slam (slam.close_loops): a stop
  * back near an old one is matched with it, a match beyond the gate is refused, the fit
  * pulls a drifted stop back and the map is drawn again with it, forgotten stops are not
- * offered, scans between stops (keyframes) join the last one, square walls turn a turned
+ * offered, scans between stops (keyframes) join the last one, a redraw spread over scans
+ * gives the map a redraw at once gives and carries the stops recorded meanwhile, square
+ * walls turn a turned
  * map back, and the slam starts its record afresh when its pose is set from outside. */
 #include <stdarg.h>
 #include <stddef.h>
@@ -242,6 +244,107 @@ static void test_scans_between_stops_join_the_last_one(void **state)
     free(l);
 }
 
+/* Two records of the same drifted loop (each from its own room, so that the soundings'
+ * noise is the same), each with its match: one fitted and drawn at once, the other
+ * fitted and drawn aside a stop or two a call. */
+static void drifted_loop(loop_t *l, hl_closure_t *c, hl_map_t *map, hl_scan_t *scan)
+{
+    hl_pose_t drifted = { l->truth[6].x_mm + 150, l->truth[6].y_mm, hl_bam_from_deg(2.0) };
+    record_loop(l, c, map, drifted, scan);
+    assert_true(hl_closure_match(c, 1, l->truth[6]));
+}
+
+static void test_a_redraw_spread_over_scans_gives_the_same_map(void **state)
+{
+    (void)state;
+    loop_t *l = make_loop(), *twin = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_closure_t *now = hl_closure_create(16, CAP, 1), *later = hl_closure_create(16, CAP, 1);
+    hl_map_t *map_now = hl_map_create(CAP, 1), *map = hl_map_create(CAP, 1);
+    hl_map_t *shadow = hl_map_create(CAP, 1);
+    drifted_loop(l, now, map_now, scan);
+    drifted_loop(twin, later, map, scan);
+    hl_closure_fit(now, map_now);
+
+    hl_pose_t tracked = hl_closure_newest(later);
+    hl_closure_fit_spread(later, map, shadow);
+    assert_true(hl_closure_redrawing(later));
+    /* Until the swap the map and the slam's frame are the old ones. */
+    uint32_t version = hl_map_version(map), calls = 0;
+    assert_pose_equal(hl_closure_newest(later), tracked);
+    while (!hl_closure_redraw_step(later, map, shadow, 200)) {  /* 128 readings a stop */
+        assert_int_equal(hl_map_version(map), version);
+        calls++;
+    }
+    assert_int_equal(calls, 3);     /* 2 stops a call, the newest in the last */
+    assert_false(hl_closure_redrawing(later));
+    assert_true(hl_map_version(map) != version);
+    assert_false(hl_closure_redraw_step(later, map, shadow, 200));
+
+    /* The same map as the redraw at once, vector for vector, and the same poses; the
+     * pose tracked before the fit carried to the fitted one. */
+    assert_int_equal(hl_map_count(map), hl_map_count(map_now));
+    for (uint32_t i = 0; i < hl_map_count(map); i++) {
+        assert_int_equal(hl_map_vectors(map)[i].x_mm, hl_map_vectors(map_now)[i].x_mm);
+        assert_int_equal(hl_map_vectors(map)[i].y_mm, hl_map_vectors(map_now)[i].y_mm);
+        assert_int_equal(hl_map_vectors(map)[i].normal, hl_map_vectors(map_now)[i].normal);
+        assert_int_equal(hl_map_stamps(map)[i], hl_map_stamps(map_now)[i]);
+    }
+    assert_pose_equal(hl_closure_newest(later), hl_closure_newest(now));
+    assert_pose_equal(hl_closure_carry(later, tracked), hl_closure_newest(now));
+
+    hl_map_destroy(shadow);
+    hl_map_destroy(map);
+    hl_map_destroy(map_now);
+    hl_closure_destroy(later);
+    hl_closure_destroy(now);
+    free(scan);
+    free(twin);
+    free(l);
+}
+
+static void test_a_stop_recorded_during_a_spread_redraw_is_carried(void **state)
+{
+    (void)state;
+    loop_t *l = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_closure_t *c = hl_closure_create(16, CAP, 1);
+    hl_map_t *map = hl_map_create(CAP, 1), *shadow = hl_map_create(CAP, 1);
+    drifted_loop(l, c, map, scan);
+    hl_pose_t before = hl_closure_newest(c);
+    hl_closure_fit_spread(c, map, shadow);
+    hl_pose_t fitted = hl_closure_carry(c, before);
+    /* The slam, still in the old frame, records a stop 1 m on: it is the newest, drawn
+     * (in the map in use) where the slam put it, and lands as far from the fitted pose
+     * once the shadow is in place. No match is sought meanwhile. */
+    hl_pose_t on = { before.x_mm + 1000, before.y_mm, before.theta };
+    sr_sound(&l->room, l->truth[6], 128, 8000, 5, scan);
+    hl_rng_t rng = hl_map_rng(map);
+    hl_map_set_stamp(map, hl_closure_next_stamp(c));
+    hl_map_add_scan(map, scan, on, NULL);
+    hl_closure_record(c, scan, on, rng);
+    assert_pose_equal(hl_closure_newest(c), on);
+    while (!hl_closure_redraw_step(c, map, shadow, 100000))
+        ;
+    hl_pose_t carried = hl_closure_newest(c);
+    assert_pose_equal(carried, hl_closure_carry(c, on));
+    /* 1 m along x before the fit: 1 m along x turned as the fit turned the stop. */
+    double turn = hl_bam_diff(fitted.theta, before.theta) * (2 * 3.14159265358979 / 65536);
+    double c0 = cos(turn), s0 = sin(turn);
+    assert_true(fabs(carried.x_mm - (fitted.x_mm + 1000 * c0)) <= 1);
+    assert_true(fabs(carried.y_mm - (fitted.y_mm + 1000 * s0)) <= 1);
+    /* Its vectors are in the map, under its stamp (8). */
+    uint32_t its = 0;
+    for (uint32_t i = 0; i < hl_map_count(map); i++)
+        its += hl_map_stamps(map)[i] == 8;
+    assert_true(its > 50);
+    hl_map_destroy(shadow);
+    hl_map_destroy(map);
+    hl_closure_destroy(c);
+    free(scan);
+    free(l);
+}
+
 static void test_square_walls_turn_a_turned_map_back(void **state)
 {
     (void)state;
@@ -322,6 +425,8 @@ int main(void)
         cmocka_unit_test(test_a_stop_back_near_an_old_one_is_matched_and_pulled_back),
         cmocka_unit_test(test_forgotten_stops_are_not_offered),
         cmocka_unit_test(test_scans_between_stops_join_the_last_one),
+        cmocka_unit_test(test_a_redraw_spread_over_scans_gives_the_same_map),
+        cmocka_unit_test(test_a_stop_recorded_during_a_spread_redraw_is_carried),
         cmocka_unit_test(test_square_walls_turn_a_turned_map_back),
         cmocka_unit_test(test_the_slam_closes_loops_and_starts_afresh_when_placed),
     };
