@@ -122,6 +122,10 @@ typedef struct hl_slam_params {
     hl_bam_t keyframe_turn;     /* ... or turned this much; the scans between join the
                                    stop before them. Both 0 (the default): every mapped
                                    scan is a stop (a robot that sounds at stops) */
+    uint32_t closure_matches_per_scan; /* ... seek this many of a stop's matches a scan,
+                                   in the scans after it, then fit in the next (a stop
+                                   made meanwhile seeks none); 0 (the default): all at
+                                   once, in the scan that made the stop */
     uint32_t closure_redraw_readings; /* ... after a fit, draw the map again aside, about
                                    this many readings a scan, and put it in place when
                                    done, so that no scan pays for a whole map; 0 (the

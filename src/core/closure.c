@@ -270,19 +270,31 @@ uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t *stamps, uint32_t
     return n;
 }
 
-const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp)
+const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp, uint32_t query)
 {
-    uint32_t i = stamp - c->first;
-    if (i >= c->count)
+    uint32_t i = stamp - c->first, k = query - c->first;
+    if (i >= c->count || k >= c->count)
         return NULL;
     hl_map_restore(c->sub, NULL, 0, 0, c->sub_rng);
     for (int32_t d = -HL_CLOSURE_SIDE; d <= HL_CLOSURE_SIDE; d++) {
         int64_t q = (int64_t)i + d;
-        if (q >= 0 && q + HL_CLOSURE_GAP < c->count)
+        if (q >= 0 && q + HL_CLOSURE_GAP <= k)
             hl_map_add_scan(c->sub, scan_of(c, (uint32_t)q),
                             c->placed[q], NULL);
     }
     return c->sub;
+}
+
+const hl_scan_t *hl_closure_scan(hl_closure_t *c, uint32_t stamp)
+{
+    uint32_t i = stamp - c->first;
+    return i < c->count ? scan_of(c, i) : NULL;
+}
+
+hl_pose_t hl_closure_pose(const hl_closure_t *c, uint32_t stamp)
+{
+    uint32_t i = stamp - c->first;
+    return i < c->count ? c->placed[i] : (hl_pose_t){ 0, 0, 0 };
 }
 
 bool hl_closure_counts(const hl_loc_result_t *loc, hl_pose_t found, hl_pose_t estimate,
@@ -293,18 +305,19 @@ bool hl_closure_counts(const hl_loc_result_t *loc, hl_pose_t found, hl_pose_t es
            dx * dx + dy * dy <= (int64_t)wild_mm * wild_mm;
 }
 
-bool hl_closure_match(hl_closure_t *c, uint32_t stamp, hl_pose_t found)
+bool hl_closure_match(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found)
 {
-    uint32_t i = stamp - c->first, newest = c->count - 1;
-    if (i >= c->count || i + HL_CLOSURE_GAP > newest || c->n_edges >= c->max_edges)
+    uint32_t i = stamp - c->first, k = query - c->first;
+    if (i >= c->count || k >= c->count || i + HL_CLOSURE_GAP > k ||
+        c->n_edges >= c->max_edges)
         return false;
-    hl_pg_pose_t now = hl_pg_between(c->poses[i], c->poses[newest]);
+    hl_pg_pose_t now = hl_pg_between(c->poses[i], c->poses[k]);
     hl_pg_pose_t said = hl_pg_between(c->poses[i], hl_pg_from_pose(found));
     double turn_deg = fabs(remainder(now.theta - said.theta, 2 * PI)) * (180 / PI);
     if (hypot(now.x - said.x, now.y - said.y) > HL_CLOSURE_GATE_MM ||
         turn_deg > HL_CLOSURE_GATE_DEG)
         return false;
-    c->edges[c->n_edges++] = (hl_pg_edge_t){ i, newest, said, true };
+    c->edges[c->n_edges++] = (hl_pg_edge_t){ i, k, said, true };
     return true;
 }
 
@@ -358,7 +371,9 @@ static uint32_t fit_poses(hl_closure_t *c)
 
 uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map)
 {
+    c->fit_before = c->poses[c->count - 1];
     uint32_t dropped = fit_poses(c);
+    c->fit_after = c->poses[c->count - 1];
     for (uint32_t i = 0; i < c->count; i++)
         c->placed[i] = hl_pg_to_pose(c->poses[i]);
     redraw(c, map);

@@ -108,9 +108,15 @@ hl_pose_t hl_closure_newest(const hl_closure_t *c);
  *  matched against. @return how many. */
 uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t *stamps, uint32_t max);
 
-/** A map of the stop stamped @p stamp and its neighbours at their fitted poses (those
- *  HL_CLOSURE_GAP before the newest), valid until the next call; NULL if not recorded. */
-const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp);
+/** A map of the stop stamped @p stamp and its neighbours at their poses in the map (those
+ *  at least HL_CLOSURE_GAP before the stop @p query, the one to be matched), valid until
+ *  the next call; NULL if either is not recorded. */
+const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp, uint32_t query);
+
+/** The scan of the stop stamped @p stamp as recorded (with the scans joined to it), and
+ *  where it lies in the map; NULL and the origin if it is not recorded. */
+const hl_scan_t *hl_closure_scan(hl_closure_t *c, uint32_t stamp);
+hl_pose_t hl_closure_pose(const hl_closure_t *c, uint32_t stamp);
 
 /** Whether a localization against a submap (@p loc, its pose @p found) is a match at
  *  all: as distinct as HL_CLOSURE_MIN_CONFIDENCE, with the guard's @p min_votes, within
@@ -120,11 +126,12 @@ bool hl_closure_counts(const hl_loc_result_t *loc, hl_pose_t found, hl_pose_t es
                        uint32_t min_votes, hl_mm_t wild_mm);
 
 /**
- * The newest stop found at @p found in stop @p stamp's submap. Taken as a match unless it
- * lies farther than the gate from the newest stop's fitted pose.
+ * The stop @p query found at @p found in stop @p stamp's submap. Taken as a match unless it
+ * lies farther than the gate from the query's fitted pose (or the two are nearer than
+ * HL_CLOSURE_GAP, or either is not recorded).
  * @return whether it was taken.
  */
-bool hl_closure_match(hl_closure_t *c, uint32_t stamp, hl_pose_t found);
+bool hl_closure_match(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found);
 
 /**
  * Fits every recorded stop to its steps and matches, and draws @p map again: its vectors
@@ -152,8 +159,8 @@ bool hl_closure_redrawing(const hl_closure_t *c);
  *  redraw. @return whether it did: the slam's pose then goes through hl_closure_carry. */
 bool hl_closure_redraw_step(hl_closure_t *c, hl_map_t *map, hl_map_t *shadow, uint32_t readings);
 
-/** @p pose, tracked in the frame before the last fit, in the frame after it: moved as the
- *  newest stop fitted then was moved by the fit. */
+/** @p pose, tracked in the frame before the last fit (at once or spread), in the frame
+ *  after it: moved as the newest stop fitted then was moved by the fit. */
 hl_pose_t hl_closure_carry(const hl_closure_t *c, hl_pose_t pose);
 
 #endif

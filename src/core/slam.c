@@ -6,23 +6,8 @@
 #include <string.h>
 
 #include "closure.h"
+#include "slam_internal.h"
 
-struct hl_slam {
-    hl_slam_params_t p;
-    hl_map_t *map;
-    hl_localizer_t *loc;
-    bool started;       /* a scan has been seen since the last reset */
-    hl_pose_t pose;     /* the last estimate (or the start pose) */
-    hl_pose_t odom;     /* the odometry that went with it */
-    uint32_t peak_avg;  /* average of recent peaks (votes x 256, before the prior), 0 = none
-                           yet: tracked_peak */
-    hl_scan_t *echoed;  /* the scan at its echo bearings, when the params ask for it */
-    hl_scan_t *fitted;  /* ... with its surface normals, when the params ask for them */
-    hl_refiner_t *refiner;  /* when the params ask for refinement */
-    hl_reloc_t *reloc;      /* the global search (hl_slam_relocalize) */
-    hl_closure_t *closure;  /* loop closure, when the params ask for it */
-    hl_map_t *shadow;       /* ... the map drawn again aside (closure_redraw_readings) */
-};
 
 hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
 {
@@ -81,7 +66,7 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start)
     s->pose = start;
     s->peak_avg = 0;
     if (s->closure)
-        hl_closure_reset(s->closure);
+        hl_slam_closure_reset(s);
 }
 
 static int64_t dist2(hl_pose_t a, hl_pose_t b)
@@ -157,8 +142,8 @@ static const hl_scan_t *prepared(hl_slam_t *s, const hl_scan_t *scan)
 
 /* Hough, then the optional refinement, against @p map (the slam's, or a loop closure's
  * map of one earlier stop). */
-static hl_status_t localize_in(hl_slam_t *s, const hl_map_t *map, const hl_scan_t *scan,
-                               hl_pose_t predicted, hl_loc_result_t *loc, hl_pose_t *pose)
+hl_status_t hl_slam_localize_in(hl_slam_t *s, const hl_map_t *map, const hl_scan_t *scan,
+                                hl_pose_t predicted, hl_loc_result_t *loc, hl_pose_t *pose)
 {
     hl_loc_query_t q = { .predicted = predicted, .window_mm = s->p.window_mm,
                          .search_theta = s->p.search_theta, .use_prior = s->p.use_prior };
@@ -175,7 +160,7 @@ static hl_status_t localize_in(hl_slam_t *s, const hl_map_t *map, const hl_scan_
 static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
                             hl_loc_result_t *loc, hl_pose_t *pose)
 {
-    return localize_in(s, s->map, scan, predicted, loc, pose);
+    return hl_slam_localize_in(s, s->map, scan, predicted, loc, pose);
 }
 
 /* A turned drive is taken only when the judge (reloc.h) explains this many times as many
@@ -220,36 +205,6 @@ static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
     *found = pose[best];
     *loc = res[best];
     return true;
-}
-
-/* Loop closure after a committed stop (slam.h): the stop remembered, matched against the
- * earlier stops near it (hl_closure_counts, then the gate), and, when any match is taken,
- * every stop fitted and the map drawn again with them. @return the matches taken; *pose
- * becomes the stop's fitted pose. */
-static uint32_t close_loops(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t *pose,
-                            hl_rng_t rng_before)
-{
-    hl_closure_record(s->closure, scan, *pose, rng_before);
-    if (hl_closure_redrawing(s->closure))   /* the last fit's map is not in place yet */
-        return 0;
-    uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
-    uint32_t n = hl_closure_candidates(s->closure, stamps, HL_CLOSURE_MAX_MATCHES), taken = 0;
-    for (uint32_t k = 0; k < n; k++) {
-        const hl_map_t *sub = hl_closure_submap(s->closure, stamps[k]);
-        hl_loc_result_t loc;
-        hl_pose_t found;
-        if (sub && localize_in(s, sub, scan, *pose, &loc, &found) == HL_OK &&
-            hl_closure_counts(&loc, found, *pose, s->p.min_votes, s->p.wild_mm) &&
-            hl_closure_match(s->closure, stamps[k], found))
-            taken++;
-    }
-    if (taken && s->shadow) {
-        hl_closure_fit_spread(s->closure, s->map, s->shadow);
-    } else if (taken) {
-        hl_closure_fit(s->closure, s->map);
-        *pose = hl_closure_newest(s->closure);
-    }
-    return taken;
 }
 
 hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
@@ -355,27 +310,17 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
     hl_rng_t rng_before = hl_map_rng(s->map);
     bool stop = false;      /* a stop of its own for loop closure, or joins the last */
     if (extend) {
-        if (s->closure) {
-            stop = hl_closure_is_stop(s->closure, step.pose, s->p.keyframe_mm,
-                                      s->p.keyframe_turn);
-            hl_map_set_stamp(s->map, stop ? hl_closure_next_stamp(s->closure)
-                                          : hl_closure_newest_stamp(s->closure));
-        }
+        if (s->closure)
+            stop = hl_slam_closure_stamp(s, step.pose);
         st = hl_map_add_scan(s->map, scan, step.pose, &step.added);
         if (st != HL_OK)    /* unreachable (above); the map is unchanged if it happens */
             return st;
     }
     /* Loop closure cannot fail (its memory is its own, from create). A rejected scan is
      * not remembered: its pose is odometry's alone. */
-    if (s->closure && extend) {
-        if (stop)
-            step.loops = close_loops(s, scan, &step.pose, rng_before);
-        else
-            hl_closure_append(s->closure, scan, step.pose);
-    }
-    if (s->shadow && hl_closure_redraw_step(s->closure, s->map, s->shadow,
-                                            s->p.closure_redraw_readings))
-        step.pose = hl_closure_carry(s->closure, step.pose);
+    if (s->closure)
+        step.loops = hl_slam_closure_stage(s, extend ? scan : NULL, stop, rng_before,
+                                           &step.pose);
     s->started = true;
     s->odom = odometry;
     s->pose = step.pose;
@@ -392,7 +337,7 @@ hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry)
         return HL_ERR_RANGE;
     s->pose = pose;
     if (s->closure)     /* no step joins the stops before to the ones after */
-        hl_closure_reset(s->closure);
+        hl_slam_closure_reset(s);
     /* Before the first scan there is no reference yet: the first scan's odometry
      * becomes it, at this pose. */
     if (s->started)
@@ -435,7 +380,7 @@ hl_status_t hl_slam_restore(hl_slam_t *s, const hl_slam_state_t *state,
     s->odom = state->odom;
     s->peak_avg = state->peak_avg;
     if (s->closure)     /* the stops are not saved: the restored vectors stay put */
-        hl_closure_reset(s->closure);
+        hl_slam_closure_reset(s);
     return HL_OK;
 }
 

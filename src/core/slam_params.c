@@ -36,6 +36,7 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->closure_stops = 256;
     p->keyframe_mm = 0;
     p->keyframe_turn = 0;
+    p->closure_matches_per_scan = 0;
     p->closure_redraw_readings = 0;
     p->square_walls = false;
     p->wall_axis = 0;

@@ -110,6 +110,8 @@ const hl_config_key_t hl_config_keys[] = {
     { "slam.keyframe_mm", HL_KEY_I32, S(keyframe_mm), 0, 100000,
       "... a mapped scan is a stop of its own (a node of the fit) when the robot has moved this far since the last stop (0 with keyframe_deg 0: every scan is a stop)" },
     { "slam.keyframe_deg", HL_KEY_DEG, S(keyframe_turn), 0, 180, "... or turned this much" },
+    { "slam.closure_matches_per_scan", HL_KEY_U32, S(closure_matches_per_scan), 0, 16,
+      "... seek this many of a stop's matches a scan, in the scans after it, then fit in the next (0: all at once, in the scan that made the stop)" },
     { "slam.closure_redraw_readings", HL_KEY_U32, S(closure_redraw_readings), 0, 100000000,
       "... after a fit, draw the map again aside, about this many readings a scan, and put it in place when done (0: at once, in the scan that fitted)" },
     { "slam.square_walls", HL_KEY_BOOL, S(square_walls), 0, 0,

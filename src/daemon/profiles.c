@@ -20,6 +20,8 @@ static const hl_profile_key_t sonar_continuous[] = {
       "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous drive, "
       "the soundings between joining it, rather than a stop a sounding" },
     { "slam.keyframe_deg", "20", "... or 20 degrees" },
+    { "slam.closure_matches_per_scan", "4",
+      "... and a stop's matches sought 4 a scan in the scans after it, its fit in the next" },
     { "slam.closure_redraw_readings", "50000",
       "... and after a fit the map (a whole building's stops) drawn again aside, 50,000 "
       "readings a scan (a few milliseconds), so that no scan waits for all of it" },
@@ -54,6 +56,8 @@ static const hl_profile_key_t laser[] = {
       "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous drive, "
       "the scans between joining it, rather than a stop a scan" },
     { "slam.keyframe_deg", "20", "... or 20 degrees" },
+    { "slam.closure_matches_per_scan", "4",
+      "... and a stop's matches sought 4 a scan in the scans after it, its fit in the next" },
     { "slam.closure_redraw_readings", "50000",
       "... and after a fit the map (a whole building's stops) drawn again aside, 50,000 "
       "readings a scan (a few milliseconds), so that no scan waits for all of it" },

@@ -69,16 +69,16 @@ static void test_a_stop_back_near_an_old_one_is_matched_and_pulled_back(void **s
     uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
     assert_int_equal(hl_closure_candidates(c, stamps, HL_CLOSURE_MAX_MATCHES), 1);
     assert_int_equal(stamps[0], 1);
-    const hl_map_t *sub = hl_closure_submap(c, stamps[0]);
+    const hl_map_t *sub = hl_closure_submap(c, stamps[0], 7);
     assert_non_null(sub);
     assert_true(hl_map_count(sub) > 150);   /* stop 0 and stop 1, its neighbour */
-    assert_null(hl_closure_submap(c, 99));
+    assert_null(hl_closure_submap(c, 99, 7));
 
     /* A match 600 mm from the estimate is beyond the gate (500 mm); the truth (150 mm, 2
      * deg) is not. */
     hl_pose_t far = { drifted.x_mm + 600, drifted.y_mm, drifted.theta };
-    assert_false(hl_closure_match(c, stamps[0], far));
-    assert_true(hl_closure_match(c, stamps[0], l->truth[6]));
+    assert_false(hl_closure_match(c, stamps[0], 7, far));
+    assert_true(hl_closure_match(c, stamps[0], 7, l->truth[6]));
 
     /* The step says "drifted", the match says "truth": the 150 mm and 2 degrees are spread
      * over the loop's seven edges, a seventh at each. The kernel weighs the match down
@@ -125,9 +125,9 @@ static void test_forgotten_stops_are_not_offered(void **state)
     /* Stop 0 (stamp 1) is forgotten; stop 1 (stamp 2) is 1.9 m away. */
     uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
     assert_int_equal(hl_closure_candidates(c, stamps, HL_CLOSURE_MAX_MATCHES), 0);
-    assert_null(hl_closure_submap(c, 1));
-    assert_false(hl_closure_match(c, 1, l->truth[6]));
-    assert_false(hl_closure_match(c, 7, l->truth[6]));   /* itself: too recent */
+    assert_null(hl_closure_submap(c, 1, 7));
+    assert_false(hl_closure_match(c, 1, 7, l->truth[6]));
+    assert_false(hl_closure_match(c, 7, 7, l->truth[6]));   /* itself: too recent */
     /* A reset forgets all, and stamps go on rising. */
     uint32_t next = hl_closure_next_stamp(c);
     hl_closure_reset(c);
@@ -186,7 +186,7 @@ static double heading_after_fit(loop_t *l, bool square_walls, hl_scan_t *scan)
         assert_int_equal(hl_map_add_scan(map, scan, turned_about_first(l, i, 4.0), NULL), HL_OK);
         hl_closure_record(c, scan, turned_about_first(l, i, 4.0), before);
     }
-    assert_true(hl_closure_match(c, 1, turned_about_first(l, 6, 4.0)));
+    assert_true(hl_closure_match(c, 1, 7, turned_about_first(l, 6, 4.0)));
     assert_int_equal(hl_closure_fit(c, map), 0);
     double deg = hl_bam_diff(hl_closure_newest(c).theta, 0) * (360.0 / 65536.0);
     hl_map_destroy(map);
@@ -251,7 +251,7 @@ static void drifted_loop(loop_t *l, hl_closure_t *c, hl_map_t *map, hl_scan_t *s
 {
     hl_pose_t drifted = { l->truth[6].x_mm + 150, l->truth[6].y_mm, hl_bam_from_deg(2.0) };
     record_loop(l, c, map, drifted, scan);
-    assert_true(hl_closure_match(c, 1, l->truth[6]));
+    assert_true(hl_closure_match(c, 1, 7, l->truth[6]));
 }
 
 static void test_a_redraw_spread_over_scans_gives_the_same_map(void **state)
@@ -419,6 +419,46 @@ static void test_the_slam_closes_loops_and_starts_afresh_when_placed(void **stat
     free(w);
 }
 
+/* A walk closed a share a scan: the slam takes its matches a few a scan
+ * (closure_matches_per_scan), fits in a scan of its own and draws the map aside, and stays
+ * as near the walk's truth as when it closes each stop at once. */
+static void test_the_slam_spreads_its_matches_and_redraws_over_scans(void **state)
+{
+    (void)state;
+    walk_t *w = make_walk(3);
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_slam_params_t p;
+    ray_sensor_defaults(&p);
+    p.close_loops = true;
+    p.closure_matches_per_scan = 2;
+    p.closure_redraw_readings = 2000;   /* 15 stops of 128 readings a scan */
+    hl_slam_t *s = hl_slam_create(&p);
+    assert_non_null(s);
+    hl_slam_reset(s, w->truth[0]);
+    uint32_t loops = 0, most = 0;
+    double worst = 0;
+    hl_slam_step_t step;
+    for (int i = 0; i < STEPS; i++) {
+        sr_sound(&w->room, w->truth[i], 128, 8000, 15, scan);
+        assert_int_equal(hl_slam_update(s, scan, w->odom[i], &step), HL_OK);
+        loops += step.loops;
+        most = step.loops > most ? step.loops : most;
+        worst = fmax(worst, dist(step.pose, w->truth[i]));
+    }
+    /* 11 matches (63 at once: a stop made while an earlier one's are sought, fitted or
+     * drawn seeks none), never more than 2 a scan; every pose within 17 mm of the truth
+     * (21 at once). */
+    assert_true(loops >= 8);
+    assert_true(most <= 2);
+    assert_true(worst < 50);
+    const uint32_t *st = hl_map_stamps(hl_slam_map(s));
+    for (uint32_t i = 0; i < hl_map_count(hl_slam_map(s)); i++)
+        assert_true(st[i] >= 1 && st[i] <= STEPS);
+    hl_slam_destroy(s);
+    free(scan);
+    free(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -429,6 +469,7 @@ int main(void)
         cmocka_unit_test(test_a_stop_recorded_during_a_spread_redraw_is_carried),
         cmocka_unit_test(test_square_walls_turn_a_turned_map_back),
         cmocka_unit_test(test_the_slam_closes_loops_and_starts_afresh_when_placed),
+        cmocka_unit_test(test_the_slam_spreads_its_matches_and_redraws_over_scans),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
