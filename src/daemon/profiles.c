@@ -5,6 +5,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Loop closure for a sensor that scans several times a second, should it be turned on
+ * (slam.close_loops): keyframes, and its work a share a scan (docs/design/loop-closure.md). */
+#define CONTINUOUS_CLOSURE_KEYS \
+    { "slam.keyframe_mm", "500", \
+      "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous " \
+      "drive, the scans between joining it, rather than a stop a scan" }, \
+    { "slam.keyframe_deg", "20", "... or 20 degrees" }, \
+    { "slam.closure_matches_per_scan", "4", \
+      "... and a stop's matches sought 4 a scan in the scans after it, its fit in the next" }, \
+    { "slam.closure_redraw_readings", "50000", \
+      "... and after a fit the map (a whole building's stops) drawn again aside, 50,000 " \
+      "readings a scan (a few milliseconds), so that no scan waits for all of it" },
+
 /* A sonar sounded at the laser's rate rather than at stops: the settings measured on the
  * pseudo-sonar ring of five real buildings (docs/results/real-buildings.md, "Pseudo-sonar"). */
 static const hl_profile_key_t sonar_continuous[] = {
@@ -16,15 +29,7 @@ static const hl_profile_key_t sonar_continuous[] = {
     { "echo.half_beam_deg", "11",
       "the nearest return anywhere in a hard 22-degree cone (half of it), not the 7 degrees "
       "of a Polaroid-type beam" },
-    { "slam.keyframe_mm", "500",
-      "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous drive, "
-      "the soundings between joining it, rather than a stop a sounding" },
-    { "slam.keyframe_deg", "20", "... or 20 degrees" },
-    { "slam.closure_matches_per_scan", "4",
-      "... and a stop's matches sought 4 a scan in the scans after it, its fit in the next" },
-    { "slam.closure_redraw_readings", "50000",
-      "... and after a fit the map (a whole building's stops) drawn again aside, 50,000 "
-      "readings a scan (a few milliseconds), so that no scan waits for all of it" },
+    CONTINUOUS_CLOSURE_KEYS
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 46 x 45 m): the global search's coarse cell doubled, "
       "a quarter of the cells for as many answers" },
@@ -52,15 +57,7 @@ static const hl_profile_key_t laser[] = {
       "every second reading votes, which pins the peak as well (the refinement fits all)" },
     { "localize.group_mm", "48",
       "the map stays dense along walls: vectors of one 48 mm square vote together" },
-    { "slam.keyframe_mm", "500",
-      "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous drive, "
-      "the scans between joining it, rather than a stop a scan" },
-    { "slam.keyframe_deg", "20", "... or 20 degrees" },
-    { "slam.closure_matches_per_scan", "4",
-      "... and a stop's matches sought 4 a scan in the scans after it, its fit in the next" },
-    { "slam.closure_redraw_readings", "50000",
-      "... and after a fit the map (a whole building's stops) drawn again aside, 50,000 "
-      "readings a scan (a few milliseconds), so that no scan waits for all of it" },
+    CONTINUOUS_CLOSURE_KEYS
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 56 x 84 m): the global search's coarse cell doubled, "
       "a quarter of the cells" },
