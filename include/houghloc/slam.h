@@ -122,6 +122,10 @@ typedef struct hl_slam_params {
     hl_bam_t keyframe_turn;     /* ... or turned this much; the scans between join the
                                    stop before them. Both 0 (the default): every mapped
                                    scan is a stop (a robot that sounds at stops) */
+    double closure_match_weight; /* ... a match counts this share of a step in the fit,
+                                   (0, 1]; default 1 (a continuous sensor's keyframes,
+                                   joined by many scans' tracking, are surer of their
+                                   steps than of a match against a few stops) */
     uint32_t closure_matches_per_scan; /* ... seek this many of a stop's matches a scan,
                                    in the scans after it, then fit in the next (a stop
                                    made meanwhile seeks none); 0 (the default): all at

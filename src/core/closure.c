@@ -109,6 +109,11 @@ void hl_closure_square_walls(hl_closure_t *c, double axis_rad)
     c->building_axis = axis_rad;
 }
 
+bool hl_closure_weigh_matches(hl_closure_t *c, double weight)
+{
+    return hl_posegraph_weigh_matches(c->graph, weight);
+}
+
 void hl_closure_reset(hl_closure_t *c)
 {
     /* Stamps go on rising, so that vectors of the stops forgotten are never taken for

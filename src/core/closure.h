@@ -74,6 +74,10 @@ size_t hl_closure_mem_bytes(const hl_closure_t *c);
  *  sounding ties to the world otherwise. For stops recorded from now on. */
 void hl_closure_square_walls(hl_closure_t *c, double axis_rad);
 
+/** Each match counts @p weight (0..1] of a step in the fits (hl_posegraph_weigh_matches).
+ *  @return false on a weight out of range. */
+bool hl_closure_weigh_matches(hl_closure_t *c, double weight);
+
 /** Forgets every stop (a new map, or a pose set from outside: no step joins them). */
 void hl_closure_reset(hl_closure_t *c);
 

@@ -29,6 +29,7 @@ struct hl_posegraph {
     uint32_t max_poses, max_edges;
     hl_sparse_ldlt_t *ldlt;
     hl_solve_block_t *blocks;       /* [max_poses + max_edges] */
+    double match_weight;            /* hl_posegraph_weigh_matches; 1 from create */
     double *g, *dx;                 /* [3 * max_poses] each */
 };
 
@@ -49,6 +50,7 @@ hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges)
         return NULL;
     g->max_poses = max_poses;
     g->max_edges = max_edges;
+    g->match_weight = 1;
     g->ldlt = hl_sparse_ldlt_create(max_poses - 1, max_poses + max_edges);
     g->blocks = calloc((size_t)max_poses + max_edges, sizeof *g->blocks);
     g->g = calloc(3 * (size_t)max_poses, sizeof *g->g);
@@ -181,6 +183,8 @@ static bool gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
         linearize(poses, &edges[k], &t);
         double robust = edges[k].loop && kernel > 0
                             ? 1 / (1 + squared_sigmas(&t, w) / (kernel * kernel)) : 1;
+        if (edges[k].loop)
+            robust *= g->match_weight;
         const double wk[3] = { w[0] * robust, w[1] * robust, w[2] * robust };
         add_jtw(&g->g[3 * i], &t.a, wk, t.r);
         add_jtw(&g->g[3 * j], &t.b, wk, t.r);
@@ -274,6 +278,14 @@ static bool headings_fit(const hl_pg_heading_t *headings, uint32_t n_headings, u
         if (headings[k].pose >= n || !isfinite(headings[k].theta) ||
             !(headings[k].sigma_rad > 0) || !isfinite(headings[k].sigma_rad))
             return false;
+    return true;
+}
+
+bool hl_posegraph_weigh_matches(hl_posegraph_t *g, double weight)
+{
+    if (!g || !(weight > 0 && weight <= 1))
+        return false;
+    g->match_weight = weight;
     return true;
 }
 

@@ -60,6 +60,13 @@ hl_pose_t hl_pg_to_pose(hl_pg_pose_t p);
 hl_pg_pose_t hl_pg_between(hl_pg_pose_t a, hl_pg_pose_t b);
 hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
 
+/** A loop edge (a match) counts @p weight (0 < weight <= 1) of a step in the fits from
+ *  now on, after its kernel (which, with the outlier gate, still reads its error in the
+ *  steps' sigmas): for matches less sure than the steps, as a continuous sensor's
+ *  keyframes are joined by many scans' tracking. 1 from create. @return false on a
+ *  weight out of range (nothing changed). */
+bool hl_posegraph_weigh_matches(hl_posegraph_t *g, double weight);
+
 /**
  * Moves @p poses[1 .. n - 1] to the least-squares fit of @p edges and of the @p n_headings
  * @p headings (pose 0 held: a heading of its own is ignored; a heading naming no pose,

@@ -36,6 +36,7 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->closure_stops = 256;
     p->keyframe_mm = 0;
     p->keyframe_turn = 0;
+    p->closure_match_weight = 1;
     p->closure_matches_per_scan = 0;
     p->closure_redraw_readings = 0;
     p->square_walls = false;
@@ -93,6 +94,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return hl_refine_params_error(&p->refine_params);
     if (p->closure_stops < 2 || p->closure_stops > HL_CLOSURE_MAX_STOPS)
         return "closure_stops must be in 2..4096";
+    if (!(p->closure_match_weight > 0 && p->closure_match_weight <= 1))
+        return "closure_match_weight must be in (0, 1]";
     if (p->keyframe_mm < 0 || p->keyframe_mm > 100000)
         return "keyframe_mm must be in 0..100000";
     if (p->keyframe_turn > HL_BAM_HALF_TURN)

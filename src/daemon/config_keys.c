@@ -110,6 +110,8 @@ const hl_config_key_t hl_config_keys[] = {
     { "slam.keyframe_mm", HL_KEY_I32, S(keyframe_mm), 0, 100000,
       "... a mapped scan is a stop of its own (a node of the fit) when the robot has moved this far since the last stop (0 with keyframe_deg 0: every scan is a stop)" },
     { "slam.keyframe_deg", HL_KEY_DEG, S(keyframe_turn), 0, 180, "... or turned this much" },
+    { "slam.closure_match_weight", HL_KEY_DOUBLE, S(closure_match_weight), 0.001, 1,
+      "... a match counts this share of a step in the fit (1: as much)" },
     { "slam.closure_matches_per_scan", HL_KEY_U32, S(closure_matches_per_scan), 0, 16,
       "... seek this many of a stop's matches a scan, in the scans after it, then fit in the next (0: all at once, in the scan that made the stop)" },
     { "slam.closure_redraw_readings", HL_KEY_U32, S(closure_redraw_readings), 0, 100000000,

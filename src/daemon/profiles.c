@@ -12,6 +12,9 @@
       "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous " \
       "drive, the scans between joining it, rather than a stop a scan" }, \
     { "slam.keyframe_deg", "20", "... or 20 degrees" }, \
+    { "slam.closure_match_weight", "0.1", \
+      "... a match counting a tenth of a step: keyframes joined by many scans' tracking " \
+      "are surer than a match against a few stops" }, \
     { "slam.closure_matches_per_scan", "4", \
       "... and a stop's matches sought 4 a scan in the scans after it, its fit in the next" }, \
     { "slam.closure_redraw_readings", "50000", \

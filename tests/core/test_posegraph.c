@@ -1,7 +1,7 @@
 /* Tests for src/core/posegraph.c: a loop's drift taken back by one match, a wrong match
  * dropped, a wrong match weighed down by the kernel, wrong matches under the kernel
- * dropped at once, steps given either way round, pose 0 held, a consistent graph left
- * alone, headings of the poses' own, bad calls refused. */
+ * dropped at once, a match weighed down pulls less, steps given either way round, pose 0
+ * held, a consistent graph left alone, headings of the poses' own, bad calls refused. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -82,6 +82,37 @@ static void test_one_match_takes_back_a_loops_drift(void **state)
     double turn = fabs(remainder(poses[N - 1].theta - t[N - 1].theta, 2 * PI));
     assert_true(turn > 4.0 * PI / 180 && turn < 5.2 * PI / 180);
     hl_posegraph_destroy(g);
+}
+
+/* A match weighed at a tenth of a step pulls the loop's end back less: the same loop as
+ * above, the last pose's heading error after the fit larger than with the match at full
+ * weight, the steps' share of the bias smaller. Weights out of (0, 1] are refused. */
+static void test_a_match_weighed_down_pulls_less(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], full[N], tenth[N];
+    hl_pg_edge_t edges[N + 2];
+    truth(t);
+    double end_off[2];
+    hl_pg_pose_t *poses[2] = { full, tenth };
+    for (int k = 0; k < 2; k++) {
+        uint32_t n = drifting_chain(t, 5.0 * PI / 180, poses[k], edges);
+        edges[n++] = (hl_pg_edge_t){ 0, N - 1, hl_pg_between(t[0], t[N - 1]), true };
+        hl_posegraph_t *g = hl_posegraph_create(N, N + 2);
+        assert_non_null(g);
+        assert_true(hl_posegraph_weigh_matches(g, k ? 0.1 : 1.0));
+        assert_int_equal(fit(g, poses[k], edges, &n, 0.0, 100.0), 0);
+        end_off[k] = hypot(poses[k][N - 1].x - t[N - 1].x, poses[k][N - 1].y - t[N - 1].y);
+        assert_false(hl_posegraph_weigh_matches(g, 0));
+        assert_false(hl_posegraph_weigh_matches(g, 1.5));
+        assert_false(hl_posegraph_weigh_matches(g, NAN));
+        assert_false(hl_posegraph_weigh_matches(NULL, 0.5));
+        hl_posegraph_destroy(g);
+    }
+    /* Full weight: the end within 9 mm of its truth; a tenth: 288 mm, the steps keeping
+     * more of their bias (the chain alone ends more than a metre off). */
+    assert_true(end_off[0] < 20);
+    assert_true(end_off[1] > 200 && end_off[1] < 400);
 }
 
 static void test_a_wrong_match_is_dropped(void **state)
@@ -305,6 +336,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_match_takes_back_a_loops_drift),
+        cmocka_unit_test(test_a_match_weighed_down_pulls_less),
         cmocka_unit_test(test_a_wrong_match_is_dropped),
         cmocka_unit_test(test_a_kernel_weighs_a_wrong_match_down),
         cmocka_unit_test(test_pose_zero_is_held_and_a_consistent_graph_stays),
