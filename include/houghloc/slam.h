@@ -130,6 +130,10 @@ typedef struct hl_slam_params {
                                    in the scans after it, then fit in the next (a stop
                                    made meanwhile seeks none); 0 (the default): all at
                                    once, in the scan that made the stop */
+    uint32_t closure_match_readings; /* ... a stop is matched with at most this many of its
+                                   readings, taken evenly through its scan (a keyframe's
+                                   holds up to 1,024, and a match's time grows with
+                                   them); 0..1024, 0 (the default): all */
     uint32_t closure_redraw_readings; /* ... after a fit, draw the map again aside, about
                                    this many readings a scan, and put it in place when
                                    done, so that no scan pays for a whole map; 0 (the

@@ -35,6 +35,7 @@ struct hl_closure {
     hl_vector_t *kept;      /* [map_capacity] scratch: the vectors a fit does not redraw */
     uint32_t map_capacity;
     hl_map_t *sub;          /* the map a match is sought in */
+    hl_scan_t *query;       /* the scan a match is sought for, thinned (hl_closure_query) */
     /* A redraw spread over the scans that follow a fit (hl_closure_fit_spread): */
     bool redrawing;
     uint32_t next_drawn;    /* ... the stamp of the next stop to draw into the shadow map */
@@ -65,9 +66,11 @@ hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t 
     c->map_capacity = map_capacity;
     c->kept = malloc((size_t)map_capacity * sizeof *c->kept);
     c->sub = hl_map_create(map_capacity, seed);
+    c->query = malloc(sizeof *c->query);
     hl_rng_seed(&c->sub_rng, seed);
     if (!c->scans || !c->poses || !c->placed || !c->rng_before || !c->wall_axis ||
-        !c->wall_sigma || !c->headings || !c->edges || !c->graph || !c->kept || !c->sub) {
+        !c->wall_sigma || !c->headings || !c->edges || !c->graph || !c->kept || !c->sub ||
+        !c->query) {
         hl_closure_destroy(c);
         return NULL;
     }
@@ -90,6 +93,7 @@ void hl_closure_destroy(hl_closure_t *c)
     free(c->kept);
     hl_posegraph_destroy(c->graph);
     hl_map_destroy(c->sub);
+    free(c->query);
     free(c);
 }
 
@@ -100,7 +104,8 @@ size_t hl_closure_mem_bytes(const hl_closure_t *c)
                              sizeof *c->rng_before + sizeof *c->wall_axis +
                              sizeof *c->wall_sigma + sizeof *c->headings) +
            (size_t)c->max_edges * sizeof *c->edges + (size_t)c->map_capacity * sizeof *c->kept +
-           hl_posegraph_mem_bytes(c->cap, c->max_edges) + hl_map_mem_bytes(c->sub);
+           hl_posegraph_mem_bytes(c->cap, c->max_edges) + hl_map_mem_bytes(c->sub) +
+           sizeof *c->query;
 }
 
 void hl_closure_square_walls(hl_closure_t *c, double axis_rad)
@@ -263,14 +268,15 @@ hl_pose_t hl_closure_newest(const hl_closure_t *c)
     return c->count ? c->placed[c->count - 1] : (hl_pose_t){ 0, 0, 0 };
 }
 
-uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t *stamps, uint32_t max)
+uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t query, uint32_t *stamps,
+                               uint32_t max)
 {
-    uint32_t n = 0;
-    if (c->count <= HL_CLOSURE_GAP)
+    uint32_t n = 0, k = query - c->first;
+    if (k >= c->count || k < HL_CLOSURE_GAP)
         return 0;
-    hl_pg_pose_t newest = c->poses[c->count - 1];
-    for (uint32_t i = 0; i + HL_CLOSURE_GAP < c->count && n < max; i++)
-        if (hypot(c->poses[i].x - newest.x, c->poses[i].y - newest.y) <= HL_CLOSURE_RADIUS_MM)
+    hl_pg_pose_t q = c->poses[k];
+    for (uint32_t i = 0; i + HL_CLOSURE_GAP <= k && n < max; i++)
+        if (hypot(c->poses[i].x - q.x, c->poses[i].y - q.y) <= HL_CLOSURE_RADIUS_MM)
             stamps[n++] = c->first + i;
     return n;
 }
@@ -294,6 +300,20 @@ const hl_scan_t *hl_closure_scan(hl_closure_t *c, uint32_t stamp)
 {
     uint32_t i = stamp - c->first;
     return i < c->count ? scan_of(c, i) : NULL;
+}
+
+const hl_scan_t *hl_closure_query(hl_closure_t *c, uint32_t stamp, uint32_t max_readings)
+{
+    const hl_scan_t *scan = hl_closure_scan(c, stamp);
+    if (!scan || max_readings == 0 || scan->count <= max_readings)
+        return scan;
+    /* Evenly through the scan, so that every joined scan keeps its share. */
+    c->query->count = 0;
+    for (uint32_t k = 0; k < scan->count; k++)
+        if ((uint64_t)(k + 1) * max_readings / scan->count >
+            (uint64_t)k * max_readings / scan->count)
+            c->query->readings[c->query->count++] = scan->readings[k];
+    return c->query;
 }
 
 hl_pose_t hl_closure_pose(const hl_closure_t *c, uint32_t stamp)

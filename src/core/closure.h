@@ -108,9 +108,10 @@ uint32_t hl_closure_newest_stamp(const hl_closure_t *c);
 /** The newest stop's fitted pose (the recorded one until a fit moves it). */
 hl_pose_t hl_closure_newest(const hl_closure_t *c);
 
-/** The earlier stops (their stamps, oldest first, at most @p max) that the newest should be
- *  matched against. @return how many. */
-uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t *stamps, uint32_t max);
+/** The earlier stops (their stamps, oldest first, at most @p max) that the stop stamped
+ *  @p query should be matched against. @return how many (0 if it is not recorded). */
+uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t query, uint32_t *stamps,
+                               uint32_t max);
 
 /** A map of the stop stamped @p stamp and its neighbours at their poses in the map (those
  *  at least HL_CLOSURE_GAP before the stop @p query, the one to be matched), valid until
@@ -121,6 +122,11 @@ const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp, uint32_t quer
  *  where it lies in the map; NULL and the origin if it is not recorded. */
 const hl_scan_t *hl_closure_scan(hl_closure_t *c, uint32_t stamp);
 hl_pose_t hl_closure_pose(const hl_closure_t *c, uint32_t stamp);
+
+/** The scan of the stop stamped @p stamp thinned to @p max_readings (0: all), readings
+ *  taken evenly through it, for matching: valid until the next call; NULL if the stop is
+ *  not recorded. */
+const hl_scan_t *hl_closure_query(hl_closure_t *c, uint32_t stamp, uint32_t max_readings);
 
 /** Whether a localization against a submap (@p loc, its pose @p found) is a match at
  *  all: as distinct as HL_CLOSURE_MIN_CONFIDENCE, with the guard's @p min_votes, within

@@ -33,6 +33,9 @@ static const hl_profile_key_t sonar_continuous[] = {
       "the nearest return anywhere in a hard 22-degree cone (half of it), not the 7 degrees "
       "of a Polaroid-type beam" },
     CONTINUOUS_CLOSURE_KEYS
+    { "slam.closure_match_readings", "256",
+      "... a keyframe matched with 256 of its readings (up to 1,024 joined), which keeps a "
+      "scan's matches within 50 ms" },
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 46 x 45 m): the global search's coarse cell doubled, "
       "a quarter of the cells for as many answers" },
@@ -61,6 +64,9 @@ static const hl_profile_key_t laser[] = {
     { "localize.group_mm", "48",
       "the map stays dense along walls: vectors of one 48 mm square vote together" },
     CONTINUOUS_CLOSURE_KEYS
+    { "slam.closure_match_readings", "512",
+      "... a keyframe matched with 512 of its readings (up to 1,024 joined), which keeps a "
+      "scan's matches within 50 ms" },
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 56 x 84 m): the global search's coarse cell doubled, "
       "a quarter of the cells" },

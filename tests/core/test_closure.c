@@ -1,7 +1,8 @@
 /* Tests for src/core/closure.c and loop closure in the slam (slam.close_loops): a stop
  * back near an old one is matched with it, a match beyond the gate is refused, the fit
  * pulls a drifted stop back and the map is drawn again with it, forgotten stops are not
- * offered, scans between stops (keyframes) join the last one, a redraw spread over scans
+ * offered, a stop's candidates are those near it (not the newest's), a stop's readings
+ * thinned for matching, scans between stops (keyframes) join the last one, a redraw spread over scans
  * gives the map a redraw at once gives and carries the stops recorded meanwhile, square
  * walls turn a turned
  * map back, and the slam starts its record afresh when its pose is set from outside. */
@@ -67,7 +68,8 @@ static void test_a_stop_back_near_an_old_one_is_matched_and_pulled_back(void **s
 
     /* Only stop 0 is 5 stops back and within 1.5 m: stamps count from 1. */
     uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
-    assert_int_equal(hl_closure_candidates(c, stamps, HL_CLOSURE_MAX_MATCHES), 1);
+    assert_int_equal(hl_closure_candidates(c, hl_closure_newest_stamp(c), stamps,
+                                           HL_CLOSURE_MAX_MATCHES), 1);
     assert_int_equal(stamps[0], 1);
     const hl_map_t *sub = hl_closure_submap(c, stamps[0], 7);
     assert_non_null(sub);
@@ -114,6 +116,66 @@ static void test_a_stop_back_near_an_old_one_is_matched_and_pulled_back(void **s
     free(l);
 }
 
+/* Candidates are sought for a given stop: with keyframes the slam asks for the stop before
+ * the newest, whose scan is complete. Stop 6 (stamp 7) is back near stop 0; a stop 8 m
+ * on is near nothing. */
+static void test_candidates_are_those_of_the_stop_asked_for(void **state)
+{
+    (void)state;
+    loop_t *l = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_closure_t *c = hl_closure_create(16, CAP, 1);
+    hl_map_t *map = hl_map_create(CAP, 1);
+    record_loop(l, c, map, l->truth[6], scan);
+    hl_pose_t away = { 9000, 7000, 0 };
+    sr_sound(&l->room, away, 128, 8000, 5, scan);
+    hl_closure_record(c, scan, away, hl_map_rng(map));
+    uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
+    assert_int_equal(hl_closure_newest_stamp(c), 8);
+    assert_int_equal(hl_closure_candidates(c, 8, stamps, HL_CLOSURE_MAX_MATCHES), 0);
+    assert_int_equal(hl_closure_candidates(c, 7, stamps, HL_CLOSURE_MAX_MATCHES), 1);
+    assert_int_equal(stamps[0], 1);
+    assert_int_equal(hl_closure_candidates(c, 5, stamps, HL_CLOSURE_MAX_MATCHES), 0);
+    assert_int_equal(hl_closure_candidates(c, 99, stamps, HL_CLOSURE_MAX_MATCHES), 0);
+    hl_map_destroy(map);
+    hl_closure_destroy(c);
+    free(scan);
+    free(l);
+}
+
+/* A stop is matched with at most so many of its readings, taken evenly through its scan
+ * (slam.closure_match_readings); 0, or a scan within the bound, gives the scan itself. */
+static void test_a_query_is_thinned_evenly(void **state)
+{
+    (void)state;
+    hl_closure_t *c = hl_closure_create(4, CAP, 1);
+    hl_scan_t *scan = calloc(1, sizeof *scan);
+    for (uint32_t k = 0; k < 1000; k++)
+        scan->readings[k] = (hl_reading_t){ .range_mm = (int32_t)(1000 + k), .valid = true };
+    scan->count = 1000;
+    hl_closure_record(c, scan, (hl_pose_t){ 0, 0, 0 }, (hl_rng_t){ 0 });
+    uint32_t stamp = hl_closure_newest_stamp(c);
+    assert_ptr_equal(hl_closure_query(c, stamp, 0), hl_closure_scan(c, stamp));
+    assert_ptr_equal(hl_closure_query(c, stamp, 1000), hl_closure_scan(c, stamp));
+    const hl_scan_t *q = hl_closure_query(c, stamp, 256);
+    assert_int_equal(q->count, 256);
+    for (uint32_t k = 1; k < q->count; k++) {   /* in order, 3 or 4 readings apart */
+        int32_t gap = q->readings[k].range_mm - q->readings[k - 1].range_mm;
+        assert_true(gap == 3 || gap == 4);
+    }
+    assert_true(q->readings[0].range_mm <= 1003 && q->readings[255].range_mm == 1999);
+    assert_null(hl_closure_query(c, stamp + 1, 256));
+    /* The slam's bound is a scan's at most. */
+    hl_slam_params_t p;
+    hl_slam_params_default(&p);
+    p.closure_match_readings = HL_SCAN_MAX_READINGS + 1;
+    assert_non_null(hl_slam_params_error(&p));
+    p.closure_match_readings = HL_SCAN_MAX_READINGS;
+    assert_null(hl_slam_params_error(&p));
+    hl_closure_destroy(c);
+    free(scan);
+}
+
 static void test_forgotten_stops_are_not_offered(void **state)
 {
     (void)state;
@@ -124,7 +186,8 @@ static void test_forgotten_stops_are_not_offered(void **state)
     record_loop(l, c, map, l->truth[6], scan);
     /* Stop 0 (stamp 1) is forgotten; stop 1 (stamp 2) is 1.9 m away. */
     uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
-    assert_int_equal(hl_closure_candidates(c, stamps, HL_CLOSURE_MAX_MATCHES), 0);
+    assert_int_equal(hl_closure_candidates(c, hl_closure_newest_stamp(c), stamps,
+                                           HL_CLOSURE_MAX_MATCHES), 0);
     assert_null(hl_closure_submap(c, 1, 7));
     assert_false(hl_closure_match(c, 1, 7, l->truth[6]));
     assert_false(hl_closure_match(c, 7, 7, l->truth[6]));   /* itself: too recent */
@@ -132,7 +195,8 @@ static void test_forgotten_stops_are_not_offered(void **state)
     uint32_t next = hl_closure_next_stamp(c);
     hl_closure_reset(c);
     assert_int_equal(hl_closure_next_stamp(c), next);
-    assert_int_equal(hl_closure_candidates(c, stamps, HL_CLOSURE_MAX_MATCHES), 0);
+    assert_int_equal(hl_closure_candidates(c, hl_closure_newest_stamp(c), stamps,
+                                           HL_CLOSURE_MAX_MATCHES), 0);
     assert_null(hl_closure_create(1, CAP, 1));
     assert_null(hl_closure_create(HL_CLOSURE_MAX_STOPS + 1, CAP, 1));
     hl_closure_destroy(NULL);
@@ -463,6 +527,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_a_stop_back_near_an_old_one_is_matched_and_pulled_back),
+        cmocka_unit_test(test_candidates_are_those_of_the_stop_asked_for),
+        cmocka_unit_test(test_a_query_is_thinned_evenly),
         cmocka_unit_test(test_forgotten_stops_are_not_offered),
         cmocka_unit_test(test_scans_between_stops_join_the_last_one),
         cmocka_unit_test(test_a_redraw_spread_over_scans_gives_the_same_map),
