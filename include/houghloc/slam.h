@@ -134,6 +134,10 @@ typedef struct hl_slam_params {
                                    readings, taken evenly through its scan (a keyframe's
                                    holds up to 1,024, and a match's time grows with
                                    them); 0..1024, 0 (the default): all */
+    hl_mm_t closure_redraw_mm;  /* ... with closure_redraw_readings, a fit is drawn only when
+                                   it moves some stop more than this from where its vectors
+                                   lie (or turns it as much at 5 m); 0..1000, 0 (the
+                                   default): every fit */
     uint32_t closure_redraw_readings; /* ... after a fit, draw the map again aside, about
                                    this many readings a scan, and put it in place when
                                    done, so that no scan pays for a whole map; 0 (the

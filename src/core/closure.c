@@ -10,6 +10,7 @@
 
 #define PI 3.14159265358979323846
 #define MAX_EDGES_A_STOP (1 + HL_CLOSURE_MAX_MATCHES)   /* its step and its matches */
+#define REDRAW_LEVER_MM 5000.0  /* a turn of a stop counts as its move of a wall this far */
 
 struct hl_closure {
     uint32_t cap;           /* stops recorded at most */
@@ -43,6 +44,9 @@ struct hl_closure {
                                            fit: the frame change the slam's pose and the
                                            stops recorded meanwhile go through */
     hl_rng_t sub_rng;       /* ... started afresh each time */
+    double redraw_mm;       /* a fit is drawn only when it moves a stop this far (0: always) */
+    bool undrawn;           /* the last fit was not drawn: the map (and the slam) are in the
+                               frame before it, the fit's poses after it */
 };
 
 hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t seed)
@@ -114,6 +118,11 @@ void hl_closure_square_walls(hl_closure_t *c, double axis_rad)
     c->building_axis = axis_rad;
 }
 
+void hl_closure_redraw_beyond(hl_closure_t *c, double mm)
+{
+    c->redraw_mm = mm;
+}
+
 bool hl_closure_weigh_matches(hl_closure_t *c, double weight)
 {
     return hl_posegraph_weigh_matches(c->graph, weight);
@@ -129,6 +138,7 @@ void hl_closure_reset(hl_closure_t *c)
     c->count = 0;
     c->n_edges = 0;
     c->redrawing = false;
+    c->undrawn = false;
 }
 
 uint32_t hl_closure_next_stamp(const hl_closure_t *c)
@@ -202,7 +212,8 @@ void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
     c->next++;
     /* While a redraw is spread, the slam tracks in the frame before the fit (its map is
      * still that one) and the fit's poses are in the frame after it. */
-    c->poses[i] = c->redrawing ? hl_pg_from_pose(hl_closure_carry(c, pose)) : hl_pg_from_pose(pose);
+    c->poses[i] = c->redrawing || c->undrawn ? hl_pg_from_pose(hl_closure_carry(c, pose))
+                                             : hl_pg_from_pose(pose);
     c->placed[i] = pose;
     c->rng_before[i] = rng_before;
     c->wall_sigma[i] = 0;
@@ -337,7 +348,10 @@ bool hl_closure_match(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t
         c->n_edges >= c->max_edges)
         return false;
     hl_pg_pose_t now = hl_pg_between(c->poses[i], c->poses[k]);
-    hl_pg_pose_t said = hl_pg_between(c->poses[i], hl_pg_from_pose(found));
+    /* found is where the submap, drawn at the stops' places in the map, has the query:
+     * their fitted poses but for the rounding, unless the last fit was not drawn */
+    hl_pg_pose_t at = c->undrawn ? hl_pg_from_pose(c->placed[i]) : c->poses[i];
+    hl_pg_pose_t said = hl_pg_between(at, hl_pg_from_pose(found));
     double turn_deg = fabs(remainder(now.theta - said.theta, 2 * PI)) * (180 / PI);
     if (hypot(now.x - said.x, now.y - said.y) > HL_CLOSURE_GATE_MM ||
         turn_deg > HL_CLOSURE_GATE_DEG)
@@ -405,13 +419,32 @@ uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map)
     return dropped;
 }
 
+/* Whether the fit moved some stop farther than redraw_mm from where its vectors lie, or
+ * turned it enough to move a wall 5 m away that far. */
+static bool moved_beyond(const hl_closure_t *c)
+{
+    for (uint32_t i = 0; i < c->count; i++) {
+        hl_pg_pose_t at = hl_pg_from_pose(c->placed[i]);
+        double turn = fabs(remainder(c->poses[i].theta - at.theta, 2 * PI));
+        if (hypot(c->poses[i].x - at.x, c->poses[i].y - at.y) > c->redraw_mm ||
+            turn * REDRAW_LEVER_MM > c->redraw_mm)
+            return true;
+    }
+    return false;
+}
+
 uint32_t hl_closure_fit_spread(hl_closure_t *c, const hl_map_t *map, hl_map_t *shadow)
 {
     if (c->count == 0 || c->redrawing)
         return 0;
-    c->fit_before = c->poses[c->count - 1];
+    /* The frame change the slam's pose and new stops go through: from the map's frame */
+    uint32_t newest = c->count - 1;
+    c->fit_before = c->undrawn ? hl_pg_from_pose(c->placed[newest]) : c->poses[newest];
     uint32_t dropped = fit_poses(c);
-    c->fit_after = c->poses[c->count - 1];
+    c->fit_after = c->poses[newest];
+    c->undrawn = c->redraw_mm > 0 && !moved_beyond(c);
+    if (c->undrawn)
+        return dropped;
     /* The shadow starts as the redraw does: the vectors of stops no longer recorded, and
      * the culling generator before the oldest recorded stop was drawn. */
     const hl_vector_t *v = hl_map_vectors(map);

@@ -161,6 +161,13 @@ uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map);
  */
 uint32_t hl_closure_fit_spread(hl_closure_t *c, const hl_map_t *map, hl_map_t *shadow);
 
+/** A spread fit is drawn only when it moves some stop more than @p mm from where its
+ *  vectors lie in the map (or turns it enough to move a wall 5 m away that far); until
+ *  then the map and the slam stay in the frame before the fits, the stops recorded are
+ *  carried into the fits' frame, and the next fit is measured from the map. 0 (from
+ *  create): every fit is drawn. */
+void hl_closure_redraw_beyond(hl_closure_t *c, double mm);
+
 /** Whether a spread redraw is under way (no new fit, no matching meanwhile). */
 bool hl_closure_redrawing(const hl_closure_t *c);
 

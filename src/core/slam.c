@@ -43,6 +43,8 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
         hl_closure_square_walls(s->closure, hl_bam_to_rad(p->wall_axis));
     if (s->closure)     /* cannot fail: the params were checked */
         hl_closure_weigh_matches(s->closure, p->closure_match_weight);
+    if (s->closure && s->shadow)
+        hl_closure_redraw_beyond(s->closure, p->closure_redraw_mm);
     return s;
 }
 

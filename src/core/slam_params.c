@@ -40,6 +40,7 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->closure_matches_per_scan = 0;
     p->closure_match_readings = 0;
     p->closure_redraw_readings = 0;
+    p->closure_redraw_mm = 0;
     p->square_walls = false;
     p->wall_axis = 0;
     p->long_drive_mm = 0;
@@ -99,6 +100,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "closure_match_weight must be in (0, 1]";
     if (p->closure_match_readings > HL_SCAN_MAX_READINGS)
         return "closure_match_readings must be in 0..1024";
+    if (p->closure_redraw_mm < 0 || p->closure_redraw_mm > 1000)
+        return "closure_redraw_mm must be in 0..1000";
     if (p->keyframe_mm < 0 || p->keyframe_mm > 100000)
         return "keyframe_mm must be in 0..100000";
     if (p->keyframe_turn > HL_BAM_HALF_TURN)

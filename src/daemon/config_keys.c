@@ -116,6 +116,8 @@ const hl_config_key_t hl_config_keys[] = {
       "... seek this many of a stop's matches a scan, in the scans after it, then fit in the next (0: all at once, in the scan that made the stop)" },
     { "slam.closure_match_readings", HL_KEY_U32, S(closure_match_readings), 0, 1024,
       "... match a stop with at most this many of its readings, taken evenly through its scan (0: all)" },
+    { "slam.closure_redraw_mm", HL_KEY_I32, S(closure_redraw_mm), 0, 1000,
+      "... with closure_redraw_readings, draw a fit only when it moves some stop more than this from where its vectors lie (0: every fit)" },
     { "slam.closure_redraw_readings", HL_KEY_U32, S(closure_redraw_readings), 0, 100000000,
       "... after a fit, draw the map again aside, about this many readings a scan, and put it in place when done (0: at once, in the scan that fitted)" },
     { "slam.square_walls", HL_KEY_BOOL, S(square_walls), 0, 0,

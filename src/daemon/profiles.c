@@ -36,6 +36,10 @@ static const hl_profile_key_t sonar_continuous[] = {
     { "slam.closure_match_readings", "256",
       "... a keyframe matched with 256 of its readings (up to 1,024 joined), which keeps a "
       "scan's matches within 50 ms" },
+    { "slam.closure_redraw_mm", "25",
+      "... and a fit drawn only once it has moved some stop 25 mm from where its vectors "
+      "lie: most move the map less than its 50 mm squares, and a redraw is most of a "
+      "scan's time" },
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 46 x 45 m): the global search's coarse cell doubled, "
       "a quarter of the cells for as many answers" },

@@ -2,10 +2,11 @@
  * back near an old one is matched with it, a match beyond the gate is refused, the fit
  * pulls a drifted stop back and the map is drawn again with it, forgotten stops are not
  * offered, a stop's candidates are those near it (not the newest's), a stop's readings
- * thinned for matching, scans between stops (keyframes) join the last one, a redraw spread over scans
- * gives the map a redraw at once gives and carries the stops recorded meanwhile, square
- * walls turn a turned
- * map back, and the slam starts its record afresh when its pose is set from outside. */
+ * are thinned evenly for matching, scans between stops (keyframes) join the last one, a
+ * redraw spread over scans gives the map a redraw at once gives and carries the stops
+ * recorded meanwhile, a fit that moves the map little is not drawn, square walls turn a
+ * turned map back, and the slam starts its record afresh when its pose is set from
+ * outside. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -318,6 +319,18 @@ static void drifted_loop(loop_t *l, hl_closure_t *c, hl_map_t *map, hl_scan_t *s
     assert_true(hl_closure_match(c, 1, 7, l->truth[6]));
 }
 
+/* As the slam records a stop after a fit: stop 6's sounding drawn into @p map at @p on
+ * (where the slam has the robot, in the map's frame) and recorded. */
+static void record_stop_at(loop_t *l, hl_closure_t *c, hl_map_t *map, hl_pose_t on,
+                           hl_scan_t *scan)
+{
+    sr_sound(&l->room, l->truth[6], 128, 8000, 5, scan);
+    hl_rng_t rng = hl_map_rng(map);
+    hl_map_set_stamp(map, hl_closure_next_stamp(c));
+    hl_map_add_scan(map, scan, on, NULL);
+    hl_closure_record(c, scan, on, rng);
+}
+
 static void test_a_redraw_spread_over_scans_gives_the_same_map(void **state)
 {
     (void)state;
@@ -367,6 +380,49 @@ static void test_a_redraw_spread_over_scans_gives_the_same_map(void **state)
     free(l);
 }
 
+/* slam.closure_redraw_mm: a fit that moves no stop beyond the bound is not drawn (the map
+ * and the slam stay in the frame before it, a stop recorded meanwhile is carried into the
+ * fit's), and a later fit measured from the map as drawn draws them all. */
+static void test_a_fit_that_moves_the_map_little_is_not_drawn(void **state)
+{
+    (void)state;
+    loop_t *l = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_closure_t *c = hl_closure_create(16, CAP, 1);
+    hl_map_t *map = hl_map_create(CAP, 1), *shadow = hl_map_create(CAP, 1);
+    drifted_loop(l, c, map, scan);
+    hl_pose_t before = hl_closure_newest(c);
+    uint32_t version = hl_map_version(map);
+    hl_closure_redraw_beyond(c, 1000);  /* the fit moves the drifted stop ~150 mm, 2 deg */
+    hl_closure_fit_spread(c, map, shadow);
+    assert_false(hl_closure_redrawing(c));
+    assert_int_equal(hl_map_version(map), version);
+    assert_pose_equal(hl_closure_newest(c), before);
+
+    hl_pose_t on = { before.x_mm + 1000, before.y_mm, before.theta };
+    record_stop_at(l, c, map, on, scan);
+    assert_pose_equal(hl_closure_newest(c), on);    /* in the map where the slam put it */
+    hl_pose_t carried = hl_closure_carry(c, on);
+    assert_true(abs(carried.x_mm - on.x_mm) + abs(carried.y_mm - on.y_mm) > 20);
+
+    hl_closure_redraw_beyond(c, 1);
+    hl_closure_fit_spread(c, map, shadow);
+    assert_true(hl_closure_redrawing(c));
+    while (!hl_closure_redraw_step(c, map, shadow, 100000))
+        ;
+    /* Drawn where the fits put it: as carried from the map's frame, give or take what the
+     * second fit moved it. */
+    hl_pose_t drawn = hl_closure_newest(c);
+    assert_true(abs(drawn.x_mm - carried.x_mm) <= 5 && abs(drawn.y_mm - carried.y_mm) <= 5);
+    assert_true(abs(hl_bam_diff(drawn.theta, carried.theta)) <= hl_bam_from_deg(0.1));
+    assert_true(hl_map_version(map) != version);
+    hl_map_destroy(shadow);
+    hl_map_destroy(map);
+    hl_closure_destroy(c);
+    free(scan);
+    free(l);
+}
+
 static void test_a_stop_recorded_during_a_spread_redraw_is_carried(void **state)
 {
     (void)state;
@@ -382,11 +438,7 @@ static void test_a_stop_recorded_during_a_spread_redraw_is_carried(void **state)
      * (in the map in use) where the slam put it, and lands as far from the fitted pose
      * once the shadow is in place. No match is sought meanwhile. */
     hl_pose_t on = { before.x_mm + 1000, before.y_mm, before.theta };
-    sr_sound(&l->room, l->truth[6], 128, 8000, 5, scan);
-    hl_rng_t rng = hl_map_rng(map);
-    hl_map_set_stamp(map, hl_closure_next_stamp(c));
-    hl_map_add_scan(map, scan, on, NULL);
-    hl_closure_record(c, scan, on, rng);
+    record_stop_at(l, c, map, on, scan);
     assert_pose_equal(hl_closure_newest(c), on);
     while (!hl_closure_redraw_step(c, map, shadow, 100000))
         ;
@@ -532,6 +584,7 @@ int main(void)
         cmocka_unit_test(test_forgotten_stops_are_not_offered),
         cmocka_unit_test(test_scans_between_stops_join_the_last_one),
         cmocka_unit_test(test_a_redraw_spread_over_scans_gives_the_same_map),
+        cmocka_unit_test(test_a_fit_that_moves_the_map_little_is_not_drawn),
         cmocka_unit_test(test_a_stop_recorded_during_a_spread_redraw_is_carried),
         cmocka_unit_test(test_square_walls_turn_a_turned_map_back),
         cmocka_unit_test(test_the_slam_closes_loops_and_starts_afresh_when_placed),
