@@ -380,18 +380,51 @@ static void test_a_redraw_spread_over_scans_gives_the_same_map(void **state)
     free(l);
 }
 
+/* A drifted loop recorded and matched, its map, and a shadow for a spread redraw: the
+ * setup of the tests of spread fits (cmocka state). */
+typedef struct spread {
+    loop_t *l;
+    hl_scan_t *scan;
+    hl_closure_t *c;
+    hl_map_t *map, *shadow;
+    hl_pose_t before;       /* the newest stop before the fit */
+} spread_t;
+
+static int spread_setup(void **state)
+{
+    spread_t *f = calloc(1, sizeof *f);
+    f->l = make_loop();
+    f->scan = malloc(sizeof *f->scan);
+    f->c = hl_closure_create(16, CAP, 1);
+    f->map = hl_map_create(CAP, 1);
+    f->shadow = hl_map_create(CAP, 1);
+    drifted_loop(f->l, f->c, f->map, f->scan);
+    f->before = hl_closure_newest(f->c);
+    *state = f;
+    return 0;
+}
+
+static int spread_teardown(void **state)
+{
+    spread_t *f = *state;
+    hl_map_destroy(f->shadow);
+    hl_map_destroy(f->map);
+    hl_closure_destroy(f->c);
+    free(f->scan);
+    free(f->l);
+    free(f);
+    return 0;
+}
+
 /* slam.closure_redraw_mm: a fit that moves no stop beyond the bound is not drawn (the map
  * and the slam stay in the frame before it, a stop recorded meanwhile is carried into the
  * fit's), and a later fit measured from the map as drawn draws them all. */
 static void test_a_fit_that_moves_the_map_little_is_not_drawn(void **state)
 {
-    (void)state;
-    loop_t *l = make_loop();
-    hl_scan_t *scan = malloc(sizeof *scan);
-    hl_closure_t *c = hl_closure_create(16, CAP, 1);
-    hl_map_t *map = hl_map_create(CAP, 1), *shadow = hl_map_create(CAP, 1);
-    drifted_loop(l, c, map, scan);
-    hl_pose_t before = hl_closure_newest(c);
+    spread_t *f = *state;
+    hl_closure_t *c = f->c;
+    hl_map_t *map = f->map, *shadow = f->shadow;
+    hl_pose_t before = f->before;
     uint32_t version = hl_map_version(map);
     hl_closure_redraw_beyond(c, 1000);  /* the fit moves the drifted stop ~150 mm, 2 deg */
     hl_closure_fit_spread(c, map, shadow);
@@ -400,7 +433,7 @@ static void test_a_fit_that_moves_the_map_little_is_not_drawn(void **state)
     assert_pose_equal(hl_closure_newest(c), before);
 
     hl_pose_t on = { before.x_mm + 1000, before.y_mm, before.theta };
-    record_stop_at(l, c, map, on, scan);
+    record_stop_at(f->l, c, map, on, f->scan);
     assert_pose_equal(hl_closure_newest(c), on);    /* in the map where the slam put it */
     hl_pose_t carried = hl_closure_carry(c, on);
     assert_true(abs(carried.x_mm - on.x_mm) + abs(carried.y_mm - on.y_mm) > 20);
@@ -416,29 +449,21 @@ static void test_a_fit_that_moves_the_map_little_is_not_drawn(void **state)
     assert_true(abs(drawn.x_mm - carried.x_mm) <= 5 && abs(drawn.y_mm - carried.y_mm) <= 5);
     assert_true(abs(hl_bam_diff(drawn.theta, carried.theta)) <= hl_bam_from_deg(0.1));
     assert_true(hl_map_version(map) != version);
-    hl_map_destroy(shadow);
-    hl_map_destroy(map);
-    hl_closure_destroy(c);
-    free(scan);
-    free(l);
 }
 
 static void test_a_stop_recorded_during_a_spread_redraw_is_carried(void **state)
 {
-    (void)state;
-    loop_t *l = make_loop();
-    hl_scan_t *scan = malloc(sizeof *scan);
-    hl_closure_t *c = hl_closure_create(16, CAP, 1);
-    hl_map_t *map = hl_map_create(CAP, 1), *shadow = hl_map_create(CAP, 1);
-    drifted_loop(l, c, map, scan);
-    hl_pose_t before = hl_closure_newest(c);
+    spread_t *f = *state;
+    hl_closure_t *c = f->c;
+    hl_map_t *map = f->map, *shadow = f->shadow;
+    hl_pose_t before = f->before;
     hl_closure_fit_spread(c, map, shadow);
     hl_pose_t fitted = hl_closure_carry(c, before);
     /* The slam, still in the old frame, records a stop 1 m on: it is the newest, drawn
      * (in the map in use) where the slam put it, and lands as far from the fitted pose
      * once the shadow is in place. No match is sought meanwhile. */
     hl_pose_t on = { before.x_mm + 1000, before.y_mm, before.theta };
-    record_stop_at(l, c, map, on, scan);
+    record_stop_at(f->l, c, map, on, f->scan);
     assert_pose_equal(hl_closure_newest(c), on);
     while (!hl_closure_redraw_step(c, map, shadow, 100000))
         ;
@@ -454,11 +479,6 @@ static void test_a_stop_recorded_during_a_spread_redraw_is_carried(void **state)
     for (uint32_t i = 0; i < hl_map_count(map); i++)
         its += hl_map_stamps(map)[i] == 8;
     assert_true(its > 50);
-    hl_map_destroy(shadow);
-    hl_map_destroy(map);
-    hl_closure_destroy(c);
-    free(scan);
-    free(l);
 }
 
 static void test_square_walls_turn_a_turned_map_back(void **state)
@@ -584,8 +604,10 @@ int main(void)
         cmocka_unit_test(test_forgotten_stops_are_not_offered),
         cmocka_unit_test(test_scans_between_stops_join_the_last_one),
         cmocka_unit_test(test_a_redraw_spread_over_scans_gives_the_same_map),
-        cmocka_unit_test(test_a_fit_that_moves_the_map_little_is_not_drawn),
-        cmocka_unit_test(test_a_stop_recorded_during_a_spread_redraw_is_carried),
+        cmocka_unit_test_setup_teardown(test_a_fit_that_moves_the_map_little_is_not_drawn,
+                                        spread_setup, spread_teardown),
+        cmocka_unit_test_setup_teardown(test_a_stop_recorded_during_a_spread_redraw_is_carried,
+                                        spread_setup, spread_teardown),
         cmocka_unit_test(test_square_walls_turn_a_turned_map_back),
         cmocka_unit_test(test_the_slam_closes_loops_and_starts_afresh_when_placed),
         cmocka_unit_test(test_the_slam_spreads_its_matches_and_redraws_over_scans),
