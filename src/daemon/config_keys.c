@@ -106,7 +106,7 @@ const hl_config_key_t hl_config_keys[] = {
     { "slam.close_loops", HL_KEY_BOOL, S(close_loops), 0, 0,
       "loop closure: match each stop against the earlier stops near it and fit all stops to the matches, moving the map (not in the paper)" },
     { "slam.closure_stops", HL_KEY_U32, S(closure_stops), 2, 4096,
-      "... the stops it remembers (a fit takes up to 0.05 s at 256, 1.5 s at 4096: docs/results/performance.md)" },
+      "... the stops it remembers (a fit of the synthetic worst case takes about 0.02 s at 256, 4 s at 4096: docs/results/pose-graph-solver.md)" },
     { "slam.keyframe_mm", HL_KEY_I32, S(keyframe_mm), 0, 100000,
       "... a mapped scan is a stop of its own (a node of the fit) when the robot has moved this far since the last stop (0 with keyframe_deg 0: every scan is a stop)" },
     { "slam.keyframe_deg", HL_KEY_DEG, S(keyframe_turn), 0, 180, "... or turned this much" },
