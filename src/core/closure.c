@@ -348,8 +348,10 @@ bool hl_closure_match(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t
         c->n_edges >= c->max_edges)
         return false;
     hl_pg_pose_t now = hl_pg_between(c->poses[i], c->poses[k]);
-    /* found is where the submap, drawn at the stops' places in the map, has the query:
-     * their fitted poses but for the rounding, unless the last fit was not drawn */
+    /* found is where the submap, drawn at the stops' places in the map, has the query.
+     * Those are the fitted poses but for their rounding to whole millimetres, unless the
+     * last fit was not drawn; measuring from the fitted pose otherwise keeps the rounding
+     * out of every earlier result (the goldens, the lab tours). */
     hl_pg_pose_t at = c->undrawn ? hl_pg_from_pose(c->placed[i]) : c->poses[i];
     hl_pg_pose_t said = hl_pg_between(at, hl_pg_from_pose(found));
     double turn_deg = fabs(remainder(now.theta - said.theta, 2 * PI)) * (180 / PI);

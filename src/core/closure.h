@@ -105,7 +105,8 @@ void hl_closure_append(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose)
 /** The newest stop's stamp (its vectors' and those of the scans joined to it). */
 uint32_t hl_closure_newest_stamp(const hl_closure_t *c);
 
-/** The newest stop's fitted pose (the recorded one until a fit moves it). */
+/** Where the newest stop's vectors lie in the map: its recorded pose, its fitted one once
+ *  a fit is drawn. */
 hl_pose_t hl_closure_newest(const hl_closure_t *c);
 
 /** The earlier stops (their stamps, oldest first, at most @p max) that the stop stamped

@@ -50,9 +50,10 @@ static void fit(hl_slam_t *s, hl_pose_t *pose)
 
 /* The stop whose matches are sought when a stop is made: that stop; with keyframes the one
  * before it, whose scan now holds the readings of every scan joined to it (the new stop's
- * holds one scan's). Measured against matching the new stop at once, over culling seeds
- * 1-8: the laser's ATE lower on four of the five real buildings and level on the fifth;
- * also when only a stop that scans had joined was matched late (docs/results/real-buildings.md). */
+ * holds one scan's). Against matching the new stop at once, over culling seeds 1-8, the
+ * laser's ATE fell on four of the five real buildings and stayed within its spread on the
+ * fifth; matching late only the stops that scans had joined did worse
+ * (docs/results/real-buildings.md). */
 static uint32_t query_stop(const hl_slam_t *s)
 {
     uint32_t newest = hl_closure_newest_stamp(s->closure);
