@@ -36,12 +36,26 @@ WARN     := -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2
 CWARN    := $(WARN) -Wmissing-prototypes -Wstrict-prototypes
 OPT      ?= -O2 -g
 SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-# Layers are enforced here: the core sees only include/ (CORE_CPPFLAGS); the generated LCM
-# headers (LCMGEN_CPPFLAGS) are on the path of src/bus and of tools, never of src/core or
-# src/daemon.
-CORE_CPPFLAGS := -Iinclude -D_POSIX_C_SOURCE=200809L -MMD -MP
+# Layers are enforced here: each compiles with the public headers of its own layer and of
+# those it builds on, and nothing else. include/core/houghloc is the core's API (and
+# libhoughloc's installed headers); include/robot, include/bus and include/store those of
+# the robot link, the bus and the map and key files; include/internal holds the core's
+# private modules that its own tests and the laboratory's research tools read
+# (houghloc-internal/...). Only src/bus and the tools see the generated LCM headers
+# (LCMGEN_CPPFLAGS); only src/daemon sees its own folder.
+HL_DEFS      := -D_POSIX_C_SOURCE=200809L -MMD -MP
+CORE_INC     := -Iinclude/core
+INTERNAL_INC := -Iinclude/internal
+PUBLIC_INC   := $(CORE_INC) -Iinclude/robot -Iinclude/bus -Iinclude/store
+CORE_CPPFLAGS  := $(CORE_INC) $(INTERNAL_INC) $(HL_DEFS)
+ROBOT_CPPFLAGS := $(CORE_INC) -Iinclude/robot $(HL_DEFS)
 LCMGEN_CPPFLAGS := -I$(BUILD)/lcmtypes
-CPPFLAGS := $(CORE_CPPFLAGS) $(LCMGEN_CPPFLAGS)
+BUS_CPPFLAGS   := $(CORE_INC) -Iinclude/bus $(LCMGEN_CPPFLAGS) $(HL_DEFS)
+STORE_CPPFLAGS := $(CORE_INC) -Iinclude/bus -Iinclude/store $(HL_DEFS)
+# Tools (and the tests' generic rule): every layer's public headers; the lab's research
+# tools and the core's tests add the internal ones (their rules below and in lab.mk).
+TOOL_CPPFLAGS  := $(PUBLIC_INC) $(HL_DEFS)
+CPPFLAGS := $(TOOL_CPPFLAGS) $(LCMGEN_CPPFLAGS)
 CFLAGS   := -std=c11 $(CWARN) $(OPT)
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(EIGEN_CFLAGS)
 # What every program linking the core needs besides: the math library, and the C++
@@ -50,6 +64,11 @@ CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(EIGEN_CFLAGS)
 SYS_LIBS := -lstdc++ -lm
 
 # ---- core library (pure C11, no I/O) -------------------------------------------------
+# The core and its solve layer are compiled with hidden visibility: a symbol leaves
+# libhoughloc.so only when its declaration carries HL_API (houghloc/export.h), so the
+# shared library's ABI is the public headers' functions and nothing of the internal
+# modules (closure, posegraph, judge, ...). tests/integration/test_install.sh checks it.
+HIDDEN    := -fvisibility=hidden
 CORE_SRCS := $(sort $(wildcard src/core/*.c))
 TRIG_SRC  := $(BUILD)/gen/trig_table.c
 
@@ -68,7 +87,7 @@ obj     = $(patsubst %.c,$(BUILD)/obj/%.o,$(patsubst %.cpp,$(BUILD)/obj/%.o,$(1)
 asanobj = $(patsubst %.c,$(BUILD)/asan/%.o,$(1))
 
 # The core's library carries the solve layer (src/solve/solve.mk): C++ on Eigen, compiled
-# with Eigen's include path alone, called by the core through include/houghloc/solve.h.
+# with Eigen's include path alone, called by the core through include/internal/houghloc-internal/solve.h.
 SOLVE_SRCS := $(sort $(wildcard src/solve/*.cpp))
 CORE_OBJS      := $(call obj,$(CORE_SRCS) $(SOLVE_SRCS)) $(BUILD)/obj/gen/trig_table.o
 CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(patsubst %.cpp,$(BUILD)/asan/%.o,$(SOLVE_SRCS)) \
@@ -91,10 +110,11 @@ INTEGRATION_TESTS := tests/integration/test_tools.sh
 .DEFAULT_GOAL := all
 
 # The layers in their order, each seeing the libraries of those before it: src/bus/bus.mk
-# the bus library, src/robot/robot.mk the robot link's, src/daemon/daemon.mk houghlocd,
+# the bus library, src/robot/robot.mk the robot link's, src/store/store.mk the map and key
+# files', src/daemon/daemon.mk houghlocd,
 # src/solve/solve.mk the sparse solver on Eigen (C++, Eigen's include path its own); then tools/*/*.mk the separate programs and packaging/packaging.mk `make install`;
 # last the laboratory, tools/lab/lab.mk, which builds on all of them.
-include src/bus/bus.mk src/robot/robot.mk src/daemon/daemon.mk
+include src/bus/bus.mk src/robot/robot.mk src/store/store.mk src/daemon/daemon.mk
 include src/solve/solve.mk
 -include $(sort $(filter-out tools/lab/%,$(wildcard tools/*/*.mk tests/*/*.mk packaging/*.mk)))
 include tools/lab/lab.mk
@@ -129,10 +149,10 @@ lcmtypes: $(LCM_STAMP)
 # ---- compile rules --------------------------------------------------------------------
 $(BUILD)/obj/gen/%.o: $(BUILD)/gen/%.c
 	@mkdir -p $(@D)
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) -c -o $@ $<
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(HIDDEN) -c -o $@ $<
 $(BUILD)/asan/gen/%.o: $(BUILD)/gen/%.c
 	@mkdir -p $(@D)
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(HIDDEN) $(SAN) -c -o $@ $<
 # Generated LCM code is not ours to fix: compile it without -Werror extras.
 $(BUILD)/obj/lcmtypes/%.o: $(BUILD)/lcmtypes/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
@@ -151,15 +171,18 @@ $(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CXX     $<"
 	$(Q)$(CXX) $(CPPFLAGS) $(PKG_CFLAGS) $(CAIRO_CFLAGS) $(CXXFLAGS) -c -o $@ $<
-# The core: its own include path and nothing else (no LCM, glib, Eigen or cairo).
+# The core: its own include paths and nothing else (no LCM, glib, Eigen or cairo).
 $(BUILD)/obj/src/core/%.o: src/core/%.c
 	@mkdir -p $(@D)
 	@echo "  CC      $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) -c -o $@ $<
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(HIDDEN) -c -o $@ $<
 $(BUILD)/asan/src/core/%.o: src/core/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(HIDDEN) $(SAN) -c -o $@ $<
+# The core's tests also read its private modules: houghloc-internal/ and src/core's own
+# headers (peak.h, blur.h).
+$(BUILD)/asan/tests/core/%.o: CPPFLAGS += $(INTERNAL_INC) -Isrc/core
 $(BUILD)/asan/%.o: %.c | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"

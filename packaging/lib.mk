@@ -18,23 +18,21 @@
 # loader search both by default (/usr/local/lib through the loader's cache: install runs
 # ldconfig when it installs as root into the real system); set LIBDIR to override.
 #
-# The version comes from include/houghloc/version.h (HL_VERSION), so the library, its
+# The version comes from include/core/houghloc/version.h (HL_VERSION), so the library, its
 # .pc file and every program's --version say the same. The soname carries the major
 # number only.
 
-HL_LIB_VERSION := $(shell sed -n 's/^\#define HL_VERSION "\([0-9][0-9.]*\)"$$/\1/p' include/houghloc/version.h)
+HL_LIB_VERSION := $(shell sed -n 's/^\#define HL_VERSION "\([0-9][0-9.]*\)"$$/\1/p' include/core/houghloc/version.h)
 HL_LIB_MAJOR   := $(firstword $(subst ., ,$(HL_LIB_VERSION)))
 HL_LIB_SONAME  := libhoughloc.so.$(HL_LIB_MAJOR)
 HL_LIB_A       := $(BUILD)/lib/libhoughloc.a
 HL_LIB_SO      := $(BUILD)/lib/libhoughloc.so.$(HL_LIB_VERSION)
-HL_LIB_MAP     := $(BUILD)/lib/libhoughloc.map
 
-# The headers a caller of the core needs: the core's own, none of the robot link's or
-# the bus's (those need libserialport, LCM, libsodium). tests/integration/test_install.sh
-# compiles each alone against the installed folder.
-HL_PUBLIC_HEADERS := $(addprefix include/houghloc/,fixed.h scan.h map.h localize.h echo.h \
-                     normals.h refine.h reloc.h slam.h rng.h status.h calib.h fence.h \
-                     version.h)
+# The headers a caller of the core needs: the core's public folder, include/core/houghloc
+# (none of the robot link's, the bus's or the store's: those need libserialport, LCM,
+# libsodium, zlib). tests/integration/test_install.sh compiles each alone against the
+# installed folder.
+HL_PUBLIC_HEADERS := $(sort $(wildcard include/core/houghloc/*.h))
 
 MULTIARCH  := $(shell $(CC) -print-multiarch 2>/dev/null)
 LIBDIR     ?= $(if $(and $(filter /usr /usr/,$(PREFIX)),$(MULTIARCH)),/usr/lib/$(MULTIARCH),$(PREFIX)/lib)
@@ -48,37 +46,29 @@ CORE_PIC_OBJS := $(patsubst $(BUILD)/obj/%,$(BUILD)/pic/%,$(CORE_OBJS))
 $(BUILD)/pic/src/core/%.o: src/core/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-PIC  $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) -fPIC -c -o $@ $<
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(HIDDEN) -fPIC -c -o $@ $<
 $(BUILD)/pic/gen/%.o: $(BUILD)/gen/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-PIC  $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) -fPIC -c -o $@ $<
+	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(HIDDEN) -fPIC -c -o $@ $<
 $(BUILD)/pic/src/solve/%.o: src/solve/%.cpp
 	@mkdir -p $(@D)
 	@echo "  CXX-PIC $<"
-	$(Q)$(CXX) $(CORE_CPPFLAGS) $(CXXFLAGS) -fPIC -c -o $@ $<
+	$(Q)$(CXX) $(CORE_CPPFLAGS) $(CXXFLAGS) $(HIDDEN) -fPIC -c -o $@ $<
 $(patsubst %.c,$(BUILD)/pic/%.o,$(KERNEL_SRCS)): CFLAGS += $(VECTOR_FLAGS)
 
 # The static library: the programs' own core objects (the generic $(BUILD)/lib/%.a rule).
 $(HL_LIB_A): $(CORE_OBJS)
 
-# The shared library exports the public API only: its version script makes global the
-# functions the public headers declare (every hl_...( the preprocessor leaves of them,
-# kept if an object defines it) and everything else local, so the core's internal
-# modules (closure, posegraph, vgroup, ...) stay out of the ABI. -z defs refuses a
-# library with an unresolved symbol.
-$(HL_LIB_MAP): $(HL_PUBLIC_HEADERS) $(CORE_PIC_OBJS) packaging/lib.mk
-	@mkdir -p $(@D)
-	$(Q)printf '#include "houghloc/%s"\n' $(notdir $(HL_PUBLIC_HEADERS)) | \
-	    $(CC) -std=c11 -Iinclude -E -P -x c - | grep -oE '\<hl_[a-z0-9_]+ *\(' | \
-	    sed 's/ *($$//' | sort -u >$@.declared
-	$(Q)nm -g --defined-only $(CORE_PIC_OBJS) | awk 'NF == 3 { print $$3 }' | sort -u >$@.defined
-	$(Q){ echo '{'; echo '  global:'; comm -12 $@.declared $@.defined | sed 's/.*/    &;/'; \
-	    echo '  local: *;'; echo '};'; } >$@.tmp && rm -f $@.declared $@.defined && mv $@.tmp $@
-$(HL_LIB_SO): $(CORE_PIC_OBJS) $(HL_LIB_MAP)
+# The shared library exports the public API only: the core is compiled with hidden
+# visibility and its public headers mark their functions HL_API (houghloc/export.h), so
+# the core's internal modules (closure, posegraph, judge, ...) stay out of the ABI.
+# packaging/libhoughloc.map keeps in what the C++ standard library instantiates in the
+# solve layer. -z defs refuses a library with an unresolved symbol.
+$(HL_LIB_SO): $(CORE_PIC_OBJS) packaging/libhoughloc.map
 	@mkdir -p $(@D)
 	@echo "  LD-SO   $@"
-	$(Q)$(CC) -shared -Wl,-soname,$(HL_LIB_SONAME) -Wl,--version-script=$(HL_LIB_MAP) \
+	$(Q)$(CC) -shared -Wl,-soname,$(HL_LIB_SONAME) -Wl,--version-script=packaging/libhoughloc.map \
 	    -Wl,-z,defs $(LDFLAGS) -o $@ $(CORE_PIC_OBJS) $(SYS_LIBS)
 
 .PHONY: lib install-lib uninstall-lib

@@ -14,6 +14,16 @@ BUS_LDLIBS    := $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) $(SODIUM_LIBS) $(SYS_LIBS)
 BUS_TESTS := $(patsubst tests/bus/%.c,$(BUILD)/tests/bus/%,$(wildcard tests/bus/test_*.c))
 TEST_BINS += $(BUS_TESTS)
 
+# Its own include paths: the core's and the bus's public headers and the generated code.
+$(BUILD)/obj/src/bus/%.o: src/bus/%.c | $(LCM_STAMP)
+	@mkdir -p $(@D)
+	@echo "  CC      $<"
+	$(Q)$(CC) $(BUS_CPPFLAGS) $(PKG_CFLAGS) $(CFLAGS) -c -o $@ $<
+$(BUILD)/asan/src/bus/%.o: src/bus/%.c | $(LCM_STAMP)
+	@mkdir -p $(@D)
+	@echo "  CC-SAN  $<"
+	$(Q)$(CC) $(BUS_CPPFLAGS) $(PKG_CFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+
 $(BUS_LIB): $(BUS_OBJS)
 $(BUS_ASAN_LIB): $(BUS_ASAN_OBJS)
 

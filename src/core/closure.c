@@ -1,12 +1,12 @@
 /* closure.c - loop closure's record of stops, matches and fit (closure.h). */
-#include "closure.h"
+#include "houghloc-internal/closure.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "houghloc/rng.h"
-#include "posegraph.h"
+#include "houghloc-internal/posegraph.h"
 
 #define PI 3.14159265358979323846
 #define MAX_EDGES_A_STOP (1 + HL_CLOSURE_MAX_MATCHES)   /* its step and its matches */

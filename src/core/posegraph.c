@@ -1,11 +1,11 @@
 /* posegraph.c - a 2-D pose graph by Gauss-Newton and a sparse Cholesky (posegraph.h). */
-#include "posegraph.h"
+#include "houghloc-internal/posegraph.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "houghloc/solve.h"
+#include "houghloc-internal/solve.h"
 
 #define GN_STEPS 10             /* Gauss-Newton steps at most ... */
 #define GN_STEPS_AFTER_DROP 3   /* ... and after matches are dropped, from the fit before */

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "closure.h"
+#include "houghloc-internal/closure.h"
 #include "slam_internal.h"
 
 

@@ -5,7 +5,7 @@
 #ifndef HOUGHLOC_CORE_SLAM_INTERNAL_H
 #define HOUGHLOC_CORE_SLAM_INTERNAL_H
 
-#include "closure.h"
+#include "houghloc-internal/closure.h"
 #include "houghloc/slam.h"
 
 /* The matches a stop seeks, when they are spread over the scans that follow it

@@ -2,7 +2,7 @@
  * density bound as they set it up (slam.h). */
 #include "houghloc/slam.h"
 
-#include "closure.h"   /* HL_CLOSURE_MAX_STOPS */
+#include "houghloc-internal/closure.h"   /* HL_CLOSURE_MAX_STOPS */
 
 void hl_slam_params_default(hl_slam_params_t *p)
 {

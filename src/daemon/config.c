@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "config_keys.h"
+#include "houghloc-internal/daemon_config.h"
 #include "houghloc/sounder.h"
 #include "link.h"
 #include "log.h"
@@ -469,4 +470,21 @@ bool hl_config_load(hl_config_t *c, const char *path, bool optional,
             return false;
     }
     return validate(c, why);
+}
+
+_Static_assert(HL_DAEMON_CONFIG_WHY_LEN == HL_CONFIG_WHY_LEN, "the research tools' why buffer");
+
+bool hl_daemon_config_slam(const char *path, const char *const *overrides, int n_overrides,
+                           hl_slam_params_t *out, char why[HL_DAEMON_CONFIG_WHY_LEN])
+{
+    hl_config_t *c = malloc(sizeof *c);
+    if (!c) {
+        snprintf(why, HL_CONFIG_WHY_LEN, "config: out of memory");
+        return false;
+    }
+    bool ok = hl_config_load(c, path, false, overrides, n_overrides, why);
+    if (ok)
+        *out = c->slam;
+    free(c);
+    return ok;
 }

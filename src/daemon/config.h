@@ -20,7 +20,7 @@
 
 #include "houghloc/bus.h"
 #include "houghloc/drive.h"
-#include "houghloc/fence.h"
+#include "fence.h"
 #include "houghloc/rlink.h"
 #include "houghloc/slam.h"
 #include "houghloc/sounder.h"

@@ -19,9 +19,9 @@
 
 #include "houghloc/auth.h"
 #include "houghloc/bus.h"
-#include "houghloc/fence.h"
+#include "fence.h"
 #include "houghloc/slam.h"
-#include "mapstore.h"
+#include "houghloc/mapstore.h"
 
 typedef enum hl_chan {
     HL_CH_SONAR,            /* inputs */

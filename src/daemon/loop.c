@@ -16,7 +16,7 @@
 #include <unistd.h>
 
 #include "log.h"
-#include "mapstore.h"
+#include "houghloc/mapstore.h"
 
 #define WHY(...) snprintf(why, HL_CONFIG_WHY_LEN, __VA_ARGS__)
 

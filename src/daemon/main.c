@@ -13,11 +13,11 @@
 #include "cycle.h"
 #include "houghloc/logcheck.h"
 #include "houghloc/version.h"
-#include "keyfile.h"
+#include "houghloc/keyfile.h"
 #include "log.h"
 #include "loop.h"
 #include "map_location.h"
-#include "mapstore.h"
+#include "houghloc/mapstore.h"
 #include "profiles.h"
 
 

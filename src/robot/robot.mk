@@ -1,6 +1,7 @@
 # src/robot/robot.mk - the robot link library: the ARCOS packet codec (docs/manual/arcos.md).
-# Pure C11 like the core: compiled with $(CORE_CPPFLAGS) only, so it sees include/ and
-# nothing else (no LCM, no generated headers); its tests likewise.
+# Pure C11 like the core: compiled with $(ROBOT_CPPFLAGS) only, so it sees the core's and
+# its own public headers and nothing else (no LCM, no generated headers); its tests
+# likewise. It also holds the sonar calibration (calib.c: raw readings to millimetres).
 
 ROBOT_SRCS      := $(sort $(wildcard src/robot/*.c))
 ROBOT_OBJS      := $(call obj,$(ROBOT_SRCS))
@@ -14,15 +15,15 @@ TEST_BINS += $(ROBOT_TESTS)
 $(BUILD)/obj/src/robot/%.o: src/robot/%.c
 	@mkdir -p $(@D)
 	@echo "  CC      $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) -c -o $@ $<
+	$(Q)$(CC) $(ROBOT_CPPFLAGS) $(CFLAGS) -c -o $@ $<
 $(BUILD)/asan/src/robot/%.o: src/robot/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+	$(Q)$(CC) $(ROBOT_CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
 $(BUILD)/asan/tests/robot/%.o: tests/robot/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+	$(Q)$(CC) $(ROBOT_CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
 
 $(ROBOT_LIB): $(ROBOT_OBJS)
 $(ROBOT_ASAN_LIB): $(ROBOT_ASAN_OBJS)

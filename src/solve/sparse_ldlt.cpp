@@ -4,7 +4,7 @@
  * block's nine values map once, at the analysis, to their places in that storage (or to
  * none: the lower half of a diagonal block), so a call with the pattern analyzed before
  * only zeroes the values, adds the blocks in and factors: no search, no triplets. */
-#include "houghloc/solve.h"
+#include "houghloc-internal/solve.h"
 
 #include <cmath>
 #include <cstdint>

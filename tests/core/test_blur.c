@@ -8,7 +8,7 @@
 
 #include <stdlib.h>
 
-#include "../../src/core/blur.h"
+#include "blur.h"
 
 static void test_kernel_sums_to_256(void **state)
 {

@@ -16,7 +16,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "../../src/core/closure.h"
+#include "houghloc-internal/closure.h"
 #include "slam_walk.h"
 
 #define CAP 1500

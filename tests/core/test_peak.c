@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "../../src/core/peak.h"
+#include "peak.h"
 
 static void test_offset(void **state)
 {

@@ -10,7 +10,7 @@
 
 #include <math.h>
 
-#include "../../src/core/posegraph.h"
+#include "houghloc-internal/posegraph.h"
 
 #define N 12                /* poses around a loop */
 #define PI 3.14159265358979323846

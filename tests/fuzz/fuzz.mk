@@ -31,7 +31,7 @@ FUZZ_UNLISTED := $(filter-out $(FUZZ_NAMES),$(patsubst tests/fuzz/fuzz_%,%,$(bas
                  $(wildcard tests/fuzz/fuzz_*.c tests/fuzz/fuzz_*.cpp))))
 $(if $(FUZZ_UNLISTED),$(error tests/fuzz/fuzz.mk: put fuzz_$(firstword $(FUZZ_UNLISTED)) in a group))
 
-FUZZ_INC := -Itests/fuzz -Isrc/daemon -Itools/carmen -Itools/sim
+FUZZ_INC := -Itests/fuzz -Isrc/daemon -Itools/carmen -Itools/sim $(INTERNAL_INC)
 FUZZ_SIM_ASAN_LIB := $(BUILD)/lib/libhoughloc_sim_asan.a
 FUZZ_CARMEN_ASAN_OBJ := $(BUILD)/asan/tools/carmen/carmen_log.o
 
@@ -81,7 +81,7 @@ $(call fuzz_replay,$(FUZZ_BUS_NAMES)): $(BUILD)/tests/fuzz/replay_%: $(FUZZ_REPL
 	$(Q)$(CC) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(BUS_ASAN_LIB) $(CORE_ASAN_LIB) $(PKG_LIBS) \
 	    $(SODIUM_LIBS) $(SYS_LIBS)
 $(call fuzz_replay,$(FUZZ_DAEMON_NAMES)): $(BUILD)/tests/fuzz/replay_%: $(FUZZ_REPLAY_PREREQS) \
-        $(DAEMON_ASAN_LIB) $(ROBOT_ASAN_LIB) $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
+        $(DAEMON_ASAN_LIB) $(ROBOT_ASAN_LIB) $(STORE_ASAN_LIB) $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(DAEMON_ASAN_LIB) $(DAEMON_ASAN_LDLIBS)
@@ -121,7 +121,7 @@ FUZZ_MEMFILE    := $(call fuzz_obj,tests/fuzz/memfile.c)
 $(FUZZ_CORE_LIB): $(call fuzz_obj,$(CORE_SRCS) $(SOLVE_SRCS) $(TRIG_SRC))
 $(FUZZ_ROBOT_LIB): $(call fuzz_obj,$(ROBOT_SRCS))
 $(FUZZ_BUS_LIB): $(call fuzz_obj,$(BUS_SRCS) $(LCM_C_SRCS))
-$(FUZZ_DAEMON_LIB): $(call fuzz_obj,$(DAEMON_LIB_SRCS))
+$(FUZZ_DAEMON_LIB): $(call fuzz_obj,$(DAEMON_LIB_SRCS) $(STORE_SRCS))
 $(FUZZ_OUT)/lib/%.a:
 	@mkdir -p $(@D)
 	$(Q)rm -f $@ && ar rcs $@ $^

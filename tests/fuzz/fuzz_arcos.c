@@ -1,5 +1,5 @@
 /*
- * fuzz_arcos.c - the ARCOS codec (include/houghloc/arcos.h): the input is a byte stream
+ * fuzz_arcos.c - the ARCOS codec (include/robot/houghloc/arcos.h): the input is a byte stream
  * from the robot's serial line.
  *
  * It goes through the streaming parser twice: whole, and cut at points drawn from the

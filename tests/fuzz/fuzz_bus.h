@@ -2,7 +2,7 @@
  * fuzz_bus.h - shared by the LCM message targets (fuzz_bus_*.c): the input is one
  * message as it arrives on the bus (an lcm_recv_buf_t's data, or an event of a log).
  *
- * include/houghloc/bus.h promises, for every codec: a refusal is HL_ERR_PARSE or
+ * include/bus/houghloc/bus.h promises, for every codec: a refusal is HL_ERR_PARSE or
  * HL_ERR_RANGE with a one-line reason; whatever decodes re-encodes to the same bytes
  * (a scan's embedded odometry extras aside). The targets check exactly that.
  */

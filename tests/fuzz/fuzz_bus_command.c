@@ -1,5 +1,5 @@
 /*
- * fuzz_bus_command.c - hl_bus_decode_command (include/houghloc/bus.h): one COMMAND message as
+ * fuzz_bus_command.c - hl_bus_decode_command (include/bus/houghloc/bus.h): one COMMAND message as
  * received. A decoded message must re-encode to the input's bytes (see fuzz_bus.h).
  */
 #include "fuzz_bus.h"

@@ -1,5 +1,5 @@
 /*
- * fuzz_bus_destination.c - hl_bus_decode_destination (include/houghloc/bus.h): one DESTINATION message as
+ * fuzz_bus_destination.c - hl_bus_decode_destination (include/bus/houghloc/bus.h): one DESTINATION message as
  * received. A decoded message must re-encode to the input's bytes (see fuzz_bus.h).
  */
 #include "fuzz_bus.h"

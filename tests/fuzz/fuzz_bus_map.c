@@ -1,5 +1,5 @@
 /*
- * fuzz_bus_map.c - hl_bus_decode_map (include/houghloc/bus.h): one MAP message as
+ * fuzz_bus_map.c - hl_bus_decode_map (include/bus/houghloc/bus.h): one MAP message as
  * received, decoded into caller storage sized to the input (a heap block of exactly
  * that many vectors, so AddressSanitizer sees a write past it). A decoded map must
  * re-encode to the input's bytes, and storage one vector short must be refused with

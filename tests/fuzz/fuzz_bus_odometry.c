@@ -1,5 +1,5 @@
 /*
- * fuzz_bus_odometry.c - hl_bus_decode_odometry (include/houghloc/bus.h): one ODOMETRY message as
+ * fuzz_bus_odometry.c - hl_bus_decode_odometry (include/bus/houghloc/bus.h): one ODOMETRY message as
  * received. A decoded message must re-encode to the input's bytes (see fuzz_bus.h).
  */
 #include "fuzz_bus.h"

@@ -1,5 +1,5 @@
 /*
- * fuzz_bus_pose.c - hl_bus_decode_pose (include/houghloc/bus.h): one POSE message as
+ * fuzz_bus_pose.c - hl_bus_decode_pose (include/bus/houghloc/bus.h): one POSE message as
  * received. A decoded message must re-encode to the input's bytes (see fuzz_bus.h).
  */
 #include "fuzz_bus.h"

@@ -1,5 +1,5 @@
 /*
- * fuzz_bus_reply.c - hl_bus_decode_reply (include/houghloc/bus.h): one REPLY message as
+ * fuzz_bus_reply.c - hl_bus_decode_reply (include/bus/houghloc/bus.h): one REPLY message as
  * received. A decoded message must re-encode to the input's bytes (see fuzz_bus.h).
  */
 #include "fuzz_bus.h"

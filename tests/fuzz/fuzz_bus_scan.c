@@ -1,5 +1,5 @@
 /*
- * fuzz_bus_scan.c - hl_bus_decode_scan (include/houghloc/bus.h): one SONAR message as
+ * fuzz_bus_scan.c - hl_bus_decode_scan (include/bus/houghloc/bus.h): one SONAR message as
  * received. A decoded scan re-encodes to the input's bytes except for the embedded
  * odometry's utime, velocity and stopped fields, which bus.h says the encoder writes as
  * the scan's utime, 0 and true (see fuzz_bus.h).

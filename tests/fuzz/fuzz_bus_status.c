@@ -1,5 +1,5 @@
 /*
- * fuzz_bus_status.c - hl_bus_decode_status (include/houghloc/bus.h): one STATUS message
+ * fuzz_bus_status.c - hl_bus_decode_status (include/bus/houghloc/bus.h): one STATUS message
  * as received. A decoded message must re-encode to the input's bytes (see fuzz_bus.h).
  */
 #include "fuzz_bus.h"

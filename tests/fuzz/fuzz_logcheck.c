@@ -1,5 +1,5 @@
 /*
- * fuzz_logcheck.c - the LCM log reader (include/houghloc/logcheck.h): the input is an
+ * fuzz_logcheck.c - the LCM log reader (include/bus/houghloc/logcheck.h): the input is an
  * event log file, walked by hl_log_check through a path as every program of ours does
  * before it hands a log to liblcm, and then, when the check passes, read by liblcm's own
  * event reader, which logcheck.h says is then safe. The same bytes also go to

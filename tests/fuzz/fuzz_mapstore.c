@@ -1,5 +1,5 @@
 /*
- * fuzz_mapstore.c - the map file loader (src/daemon/mapstore.h): the input is a map
+ * fuzz_mapstore.c - the map file loader (include/store/houghloc/mapstore.h): the input is a map
  * file as found on disk after a crash, a bad disk or a hostile hand.
  *
  * It is loaded twice: as it is, and with its last four bytes replaced by the right
@@ -17,7 +17,7 @@
 #include <zlib.h>
 
 #include "fuzz.h"
-#include "mapstore.h"
+#include "houghloc/mapstore.h"
 
 /* Saves @p m into a fresh folder under /dev/shm (or $TMPDIR) and compares the file with
  * @p data; the folder is removed again. */

@@ -1,5 +1,5 @@
 /*
- * fuzz_rlink.c - the ARCOS connection (include/houghloc/rlink.h) as houghlocd drives it:
+ * fuzz_rlink.c - the ARCOS connection (include/robot/houghloc/rlink.h) as houghlocd drives it:
  * the input is what the robot sends, in reads cut at points drawn from the input, with
  * the wall clock moving on between reads.
  *

@@ -7,10 +7,9 @@ PROGS="houghlocd houghloc-goto houghloc-ctl houghloc-console houghloc-sim houghl
 houghloc-import-carmen houghloc-eval"
 # The core's public headers: those of the robot link and the bus stay out (they need
 # libserialport, LCM, libsodium).
-PUBLIC_HEADERS="fixed.h scan.h map.h localize.h echo.h normals.h refine.h reloc.h slam.h \
-rng.h status.h calib.h fence.h version.h"
+PUBLIC_HEADERS=$(cd include/core/houghloc && echo *.h)
 SENSOR_PROFILES="sonar-stops sonar-continuous laser"
-LIB_VERSION=$(sed -n 's/^#define HL_VERSION "\([0-9][0-9.]*\)"$/\1/p' include/houghloc/version.h)
+LIB_VERSION=$(sed -n 's/^#define HL_VERSION "\([0-9][0-9.]*\)"$/\1/p' include/core/houghloc/version.h)
 LIB_MAJOR=${LIB_VERSION%%.*}
 # The python3 that make install asks for its version: Debian's, not a pyenv's first on PATH.
 PYTHON=python3

@@ -20,7 +20,7 @@ trap 'rm -rf "$tmp"' EXIT
 for p in $PROGS; do
     check "$BUILD/bin/$p is built" test -x "$BUILD/bin/$p"
 done
-check "the library's version is read from include/houghloc/version.h" test -n "$LIB_VERSION"
+check "the library's version is read from include/core/houghloc/version.h" test -n "$LIB_VERSION"
 [ $fail -eq 0 ] || exit 1
 
 root=$tmp/root
@@ -62,6 +62,13 @@ check "it exports the public API (hl_loc_run, hl_slam_update, hl_map_create)" \
 check "... and not the core's internal modules (closure, posegraph, vgroups)" \
     sh -c '! grep -qE "^hl_(closure|posegraph|vgroups|judge|peak)_" "$1"' - "$tmp/exported"
 check "... nor anything but hl_ names" sh -c '! grep -qv "^hl_" "$1"' - "$tmp/exported"
+# Exactly the functions the public headers mark HL_API (houghloc/export.h): the core is
+# compiled with hidden visibility, so nothing else can leave the library.
+sed -n 's/^HL_API .*\<\(hl_[a-z0-9_]*\) *(.*/\1/p' include/core/houghloc/*.h | sort -u >"$tmp/marked"
+sort -u "$tmp/exported" >"$tmp/exported.sorted"
+check "... exactly the $(wc -l <"$tmp/marked") functions the public headers mark HL_API" \
+    cmp -s "$tmp/marked" "$tmp/exported.sorted"
+cmp -s "$tmp/marked" "$tmp/exported.sorted" || diff "$tmp/marked" "$tmp/exported.sorted" | head
 
 # ---- installed copies are the sources -------------------------------------------------------
 check "installed houghlocd is the built one" cmp -s "$BUILD/bin/houghlocd" "$pre/bin/houghlocd"
@@ -72,8 +79,8 @@ for f in lcmtypes/houghloc_*.lcm; do
 done
 check "the LCM type definitions are lcmtypes/*.lcm" test -z "$bad"
 bad=
-for h in $PUBLIC_HEADERS; do cmp -s "include/houghloc/$h" "$pre/include/houghloc/$h" || bad="$bad $h"; done
-check "the headers are include/houghloc's" test -z "$bad"
+for h in $PUBLIC_HEADERS; do cmp -s "include/core/houghloc/$h" "$pre/include/houghloc/$h" || bad="$bad $h"; done
+check "the headers are include/core/houghloc's" test -z "$bad"
 
 # ---- man pages ------------------------------------------------------------------------------
 bad=

@@ -1,7 +1,7 @@
 #!/bin/sh
 # The manual pages in man/: every page the project ships is there, renders with groff and
 # with man(1) with every warning on and none given, carries the release of
-# include/houghloc/version.h, and names every option its program's --help lists.
+# include/core/houghloc/version.h, and names every option its program's --help lists.
 # Needs man-db and groff-base (apt-get install man-db groff-base).
 set -u
 BIN=${BUILD:-build}/bin
@@ -37,8 +37,8 @@ else
     echo "ok: the check refuses a page with warnings"
 fi
 
-version=$(sed -n 's/^#define HL_VERSION "\(.*\)"$/\1/p' include/houghloc/version.h)
-[ -n "$version" ] || { echo "FAIL: no HL_VERSION in include/houghloc/version.h"; fail=1; }
+version=$(sed -n 's/^#define HL_VERSION "\(.*\)"$/\1/p' include/core/houghloc/version.h)
+[ -n "$version" ] || { echo "FAIL: no HL_VERSION in include/core/houghloc/version.h"; fail=1; }
 
 for page in $PAGES; do
     f=man/$page

@@ -1,4 +1,4 @@
-/* Tests for src/solve/sparse_ldlt.cpp (include/houghloc/solve.h): a small SPD block system
+/* Tests for src/solve/sparse_ldlt.cpp (include/internal/houghloc-internal/solve.h): a small SPD block system
  * against its dense solution, blocks of one place summed, the pattern's analysis reused
  * with new values (and the same answer as a fresh solver), a singular and an indefinite
  * system refused, bad arguments refused. */
@@ -11,7 +11,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "houghloc/solve.h"
+#include "houghloc-internal/solve.h"
 
 #define ROWS 4                  /* unknown blocks */
 #define N (3 * ROWS)            /* unknowns */

@@ -19,7 +19,7 @@ INTEGRATION_TESTS += tests/integration/test_import.sh
 $(BUILD)/obj/tools/carmen/%.o: tools/carmen/%.c
 	@mkdir -p $(@D)
 	@echo "  CC      $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) $(PKG_CFLAGS) $(ZLIB_CFLAGS) $(CFLAGS) -c -o $@ $<
+	$(Q)$(CC) $(TOOL_CPPFLAGS) $(PKG_CFLAGS) $(ZLIB_CFLAGS) $(CFLAGS) -c -o $@ $<
 
 $(BUILD)/bin/houghloc-import-carmen: $(CARMEN_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)

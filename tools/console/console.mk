@@ -2,9 +2,9 @@
 # and pose in a browser, click to send the robot somewhere (docs/manual/houghloc-console.md). Included by
 # the top Makefile.
 #
-# Like houghloc-goto it sees include/, src/daemon (keyfile.h) and tools/goto (request.h),
-# never the generated LCM headers: messages go through src/bus. It links tools/goto's
-# request.o for the options it shares with the clients, and src/daemon's keyfile.o.
+# Like houghloc-goto it sees the layers' public headers and tools/goto (request.h), never
+# the generated LCM headers: messages go through src/bus. It links tools/goto's request.o
+# for the options it shares with the clients, and the store library for the key.
 # The page, tools/console/page.html, is embedded by hl-embed into $(BUILD)/gen (never
 # committed). (This file is read before tools/goto/goto.mk: it names request.o itself.)
 # GROUND_TRUTH is moved into the map frame by tools/eval's truth_frame.c (unit-tested
@@ -17,11 +17,11 @@ MHD_LIBS   := $(shell pkg-config --libs libmicrohttpd 2>/dev/null)
 CONSOLE_PURE := jbuf bridge destreq access hub
 CONSOLE_OBJS := $(patsubst %,$(BUILD)/obj/tools/console/%.o,$(CONSOLE_PURE) args http sender main) \
                 $(BUILD)/obj/gen/console_page.o $(BUILD)/obj/tools/eval/truth_frame.o \
-                $(BUILD)/obj/tools/goto/request.o $(BUILD)/obj/src/daemon/keyfile.o
+                $(BUILD)/obj/tools/goto/request.o
 CONSOLE_ASAN_OBJS := $(patsubst %,$(BUILD)/asan/tools/console/%.o,$(CONSOLE_PURE)) \
                      $(BUILD)/asan/tools/eval/truth_frame.o
 CONSOLE_TESTS := $(patsubst tests/console/%.c,$(BUILD)/tests/console/%,$(wildcard tests/console/test_*.c))
-CONSOLE_CPPFLAGS := $(CORE_CPPFLAGS) -Isrc/daemon -Itools/goto -Itools/console -Itools/eval
+CONSOLE_CPPFLAGS := $(TOOL_CPPFLAGS) -Itools/goto -Itools/console -Itools/eval
 
 BINS              += $(BUILD)/bin/houghloc-console
 TEST_BINS         += $(CONSOLE_TESTS)
@@ -54,10 +54,10 @@ $(BUILD)/asan/tests/console/%.o: tests/console/%.c
 	@echo "  CC-SAN  $<"
 	$(Q)$(CC) $(CONSOLE_CPPFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
 
-$(BUILD)/bin/houghloc-console: $(CONSOLE_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+$(BUILD)/bin/houghloc-console: $(CONSOLE_OBJS) $(STORE_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CC) -o $@ $(CONSOLE_OBJS) $(BUS_LIB) $(BUS_LDLIBS) $(MHD_LIBS)
+	$(Q)$(CC) -o $@ $(CONSOLE_OBJS) $(STORE_LIB) $(STORE_LDLIBS) $(MHD_LIBS)
 
 $(BUILD)/tests/console/%: $(BUILD)/asan/tests/console/%.o $(CONSOLE_ASAN_OBJS) $(BUS_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)

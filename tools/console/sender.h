@@ -16,7 +16,7 @@
 
 #include "houghloc/auth.h"
 #include "houghloc/bus.h"
-#include "keyfile.h"
+#include "houghloc/keyfile.h"
 
 #define SENDER_KEPT 64      /* seqs remembered, to tell the console's replies apart */
 

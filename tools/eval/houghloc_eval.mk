@@ -23,7 +23,7 @@ $(BUILD)/bin/houghloc-eval: $(HLEVAL_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 $(METRICS_ASAN_OBJ) $(BUILD)/asan/tests/eval/test_houghloc_eval.o: $(BUILD)/asan/%.o: %.cpp
 	@mkdir -p $(@D)
 	@echo "  CXX-SAN $<"
-	$(Q)$(CXX) $(CORE_CPPFLAGS) -Itools/eval $(CXXFLAGS) $(SAN) -c -o $@ $<
+	$(Q)$(CXX) $(TOOL_CPPFLAGS) -Itools/eval $(CXXFLAGS) $(SAN) -c -o $@ $<
 
 $(BUILD)/tests/eval/test_houghloc_eval: $(BUILD)/asan/tests/eval/test_houghloc_eval.o \
                                         $(METRICS_ASAN_OBJ)

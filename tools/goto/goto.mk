@@ -3,11 +3,11 @@
 # REPLY. Both are thin mains over request.c (options, signing, publishing, the wait).
 # Included by the top Makefile.
 #
-# Like the daemon they see include/ and src/daemon (for keyfile.h), never the generated
-# LCM headers: messages go through src/bus. keyfile.o is linked on its own rather than
-# through $(DAEMON_LIB), so the tools need nothing else of the daemon.
+# They see the layers' public headers (TOOL_CPPFLAGS), never the generated LCM headers:
+# messages go through src/bus. The signing key is read by the store library
+# (houghloc/keyfile.h), so the tools need nothing of the daemon.
 
-REQUEST_OBJS := $(BUILD)/obj/tools/goto/request.o $(BUILD)/obj/src/daemon/keyfile.o
+REQUEST_OBJS := $(BUILD)/obj/tools/goto/request.o
 GOTO_OBJS := $(BUILD)/obj/tools/goto/goto.o $(BUILD)/obj/tools/goto/goto_args.o \
              $(REQUEST_OBJS)
 CTL_OBJS  := $(BUILD)/obj/tools/goto/ctl.o $(BUILD)/obj/tools/goto/ctl_args.o \
@@ -20,14 +20,14 @@ INTEGRATION_TESTS += tests/integration/test_goto.sh tests/integration/test_ctl.s
 $(BUILD)/obj/tools/goto/%.o: tools/goto/%.c
 	@mkdir -p $(@D)
 	@echo "  CC      $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) -Isrc/daemon $(PKG_CFLAGS) $(CFLAGS) -c -o $@ $<
+	$(Q)$(CC) $(TOOL_CPPFLAGS) $(PKG_CFLAGS) $(CFLAGS) -c -o $@ $<
 
-$(BUILD)/bin/houghloc-goto: $(GOTO_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+$(BUILD)/bin/houghloc-goto: $(GOTO_OBJS) $(STORE_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CC) -o $@ $(GOTO_OBJS) $(BUS_LIB) $(BUS_LDLIBS)
+	$(Q)$(CC) -o $@ $(GOTO_OBJS) $(STORE_LIB) $(STORE_LDLIBS)
 
-$(BUILD)/bin/houghloc-ctl: $(CTL_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+$(BUILD)/bin/houghloc-ctl: $(CTL_OBJS) $(STORE_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CC) -o $@ $(CTL_OBJS) $(BUS_LIB) $(BUS_LDLIBS)
+	$(Q)$(CC) -o $@ $(CTL_OBJS) $(STORE_LIB) $(STORE_LDLIBS)

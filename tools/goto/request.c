@@ -20,7 +20,7 @@
 #include "houghloc/auth.h"
 #include "houghloc/fixed.h"
 #include "houghloc/version.h"
-#include "keyfile.h"
+#include "houghloc/keyfile.h"
 
 #define COORD_MAX_M (HL_COORD_MAX_MM / 1000.0)
 

@@ -1,7 +1,7 @@
 // simrobot.hpp - the simulated ARCOS robot, pure: commands in, robot time advanced in
 // SIP periods, SIPs out (no sockets, no clock, no global state).
 //
-// It is the server side of the ARCOS subset of include/houghloc/arcos.h, less the
+// It is the server side of the ARCOS subset of include/robot/houghloc/arcos.h, less the
 // connection (connection.hpp): motion commands drive a Base (motion.hpp), the sonar ring
 // fires one transducer per sonar cycle from the true pose into the world (tools/sim's
 // sonar_ping), and every 100 ms of robot time it reports a standard SIP with the

@@ -18,6 +18,10 @@
 # benchmarks name its library in their prerequisites, and the top Makefile's unit tests
 # link it.
 
+# The research tools may read the core's private modules (the pose graph, loop closure's
+# matcher) through houghloc-internal/, the internal headers; the product's tools may not.
+$(BUILD)/obj/tools/lab/%.o $(BUILD)/asan/tools/lab/%.o: CPPFLAGS += $(INTERNAL_INC)
+
 include tools/lab/testkit/testkit.mk
 include $(sort $(filter-out tools/lab/testkit/testkit.mk,$(wildcard tools/lab/*/*.mk)))
 

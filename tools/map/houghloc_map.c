@@ -21,7 +21,7 @@
 #include "houghloc/version.h"
 #include "mapdraw.h"
 #include "mapgrid.h"
-#include "mapstore.h"
+#include "houghloc/mapstore.h"
 #include "runlog.h"
 #include "truth_frame.h"
 

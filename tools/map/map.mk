@@ -2,15 +2,13 @@
 # a PNG picture and as a ROS map_server occupancy grid (PGM + YAML). Included by the top
 # Makefile.
 #
-# It reads map files with the daemon's own loader (src/daemon/mapstore.o, linked alone
-# with zlib, as tools/goto links keyfile.o) and logs with hl-eval's reader
+# It reads map files with the daemon's own loader (the store library, src/store) and
+# logs with hl-eval's reader
 # (tools/eval/runlog.o); messages go through src/bus.
 
 MAP_TOOL_OBJS := $(BUILD)/obj/tools/map/houghloc_map.o $(BUILD)/obj/tools/map/mapgrid.o \
                  $(BUILD)/obj/tools/map/mapdraw.o $(BUILD)/obj/tools/eval/runlog.o \
-                 $(BUILD)/obj/tools/eval/truth_frame.o \
-                 $(BUILD)/obj/src/daemon/mapstore.o
-ZLIB_LIBS := $(shell pkg-config --libs zlib 2>/dev/null)
+                 $(BUILD)/obj/tools/eval/truth_frame.o
 
 BINS              += $(BUILD)/bin/houghloc-map
 INTEGRATION_TESTS += tests/integration/test_map_tool.sh
@@ -18,10 +16,10 @@ INTEGRATION_TESTS += tests/integration/test_map_tool.sh
 $(BUILD)/obj/tools/map/%.o: tools/map/%.c
 	@mkdir -p $(@D)
 	@echo "  CC      $<"
-	$(Q)$(CC) $(CORE_CPPFLAGS) -Isrc/daemon -Itools/eval $(PKG_CFLAGS) $(CAIRO_CFLAGS) \
+	$(Q)$(CC) $(TOOL_CPPFLAGS) -Itools/eval $(PKG_CFLAGS) $(CAIRO_CFLAGS) \
 	    $(CFLAGS) -c -o $@ $<
 
-$(BUILD)/bin/houghloc-map: $(MAP_TOOL_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+$(BUILD)/bin/houghloc-map: $(MAP_TOOL_OBJS) $(STORE_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CC) -o $@ $(MAP_TOOL_OBJS) $(BUS_LIB) $(BUS_LDLIBS) $(CAIRO_LIBS) $(ZLIB_LIBS)
+	$(Q)$(CC) -o $@ $(MAP_TOOL_OBJS) $(STORE_LIB) $(STORE_LDLIBS) $(CAIRO_LIBS)

@@ -14,7 +14,7 @@ SIM_OBJS      := $(call obj,$(SIM_SRCS)) $(BUILD)/obj/gen/sim_lab_world.o
 SIM_ASAN_OBJS := $(patsubst %.cpp,$(BUILD)/asan/%.o,$(SIM_SRCS)) $(BUILD)/asan/gen/sim_lab_world.o
 # What a program linking $(SIM_LIB) also needs, after it on the command line (the log
 # writer encodes through the bus codecs, src/bus/bus.mk).
-SIM_LDLIBS := $(BUS_LIB) $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) $(SYS_LIBS)
+SIM_LDLIBS := $(ROBOT_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB) $(PKG_LIBS) $(SYS_LIBS)
 
 SIM_TESTS := $(patsubst tests/sim/%.cpp,$(BUILD)/tests/sim/%,$(wildcard tests/sim/test_*.cpp))
 
@@ -53,7 +53,7 @@ $(BUILD)/asan/tests/sim/%.o: tests/sim/%.cpp | $(LCM_STAMP)
 $(SIM_LIB): $(SIM_OBJS)
 $(SIM_ASAN_LIB): $(SIM_ASAN_OBJS)
 
-$(BUILD)/tests/sim/%: $(BUILD)/asan/tests/sim/%.o $(SIM_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
+$(BUILD)/tests/sim/%: $(BUILD)/asan/tests/sim/%.o $(SIM_ASAN_LIB) $(ROBOT_ASAN_LIB) $(LCM_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) $(SYS_LIBS)

@@ -1,5 +1,5 @@
 /*
- * bench_posegraph - times loop closure's fit (hl_posegraph_fit, src/core/posegraph.h) on a
+ * bench_posegraph - times loop closure's fit (hl_posegraph_fit, houghloc-internal/posegraph.h) on a
  * synthetic graph of any size, so that the cost of a large `slam.closure_stops` can be
  * read before a robot pays it (docs/results/performance.md).
  *
@@ -28,7 +28,7 @@
 
 #include "../testkit/corridor.h"
 #include "timing.h"
-#include "../../../src/core/closure.h"
+#include "houghloc-internal/closure.h"
 
 #define PI 3.14159265358979323846
 static void usage(FILE *to)

@@ -16,7 +16,7 @@ EXP_SRCS := tools/lab/experiments/experiments.cpp tools/lab/experiments/dataset.
 LAB_BINS += $(BUILD)/bin/hl-experiments
 
 # render.mk is read after this file, so its library is named by path.
-$(BUILD)/bin/hl-experiments: $(call obj,$(EXP_SRCS)) $(BUILD)/lib/libhoughloc_render.a $(SIM_LIB) \
+$(BUILD)/bin/hl-experiments: $(call obj,$(EXP_SRCS)) $(BUILD)/lib/libhoughloc_render.a $(SIM_LIB) $(ROBOT_LIB) \
                              $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"

@@ -3,17 +3,17 @@
 
 namespace hlkid {
 
-std::unique_ptr<hl_config_t> load_config(const std::string &file,
+std::unique_ptr<hl_slam_params_t> load_config(const std::string &file,
                                          const std::vector<std::string> &sets,
                                          std::string *why)
 {
     std::vector<const char *> keys;
     for (const std::string &s : sets)
         keys.push_back(s.c_str());
-    auto cfg = std::make_unique<hl_config_t>();
-    char buf[HL_CONFIG_WHY_LEN];
-    if (!hl_config_load(cfg.get(), file.c_str(), false, keys.data(),
-                        static_cast<int>(keys.size()), buf)) {
+    auto cfg = std::make_unique<hl_slam_params_t>();
+    char buf[HL_DAEMON_CONFIG_WHY_LEN];
+    if (!hl_daemon_config_slam(file.c_str(), keys.data(), static_cast<int>(keys.size()),
+                               cfg.get(), buf)) {
         *why = buf;
         return nullptr;
     }

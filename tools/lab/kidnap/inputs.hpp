@@ -1,5 +1,6 @@
-// inputs.hpp - what the kidnap tools (hl-kidnap, hl-tour-study) read: houghlocd's
-// configuration, through the daemon's own loader, and the robot's scans of a log.
+// inputs.hpp - what the kidnap tools (hl-kidnap, hl-tour-study) read: the slam parameters
+// of houghlocd's configuration, through the daemon's own loader
+// (houghloc-internal/daemon_config.h), and the robot's scans of a log.
 #ifndef HLKID_INPUTS_HPP
 #define HLKID_INPUTS_HPP
 
@@ -7,11 +8,8 @@
 #include <string>
 #include <vector>
 
-extern "C" {
-#include "config.h"
-}
-
 #include "../experiments/dataset.hpp"
+#include "houghloc-internal/daemon_config.h"
 #include "houghloc/map.h"
 #include "houghloc/slam.h"
 
@@ -25,10 +23,10 @@ struct MapDeleter {
     void operator()(hl_map_t *m) const { hl_map_destroy(m); }
 };
 
-// houghlocd's configuration from @p file, then the K=V keys of @p sets in order (as
-// `houghlocd --config FILE --set K=V`). nullptr with the loader's one-line reason in
-// @p why on any bad key, value or file.
-std::unique_ptr<hl_config_t> load_config(const std::string &file,
+// The slam parameters of houghlocd's configuration from @p file, then the K=V keys of
+// @p sets in order (as `houghlocd --config FILE --set K=V`). nullptr with the loader's
+// one-line reason in @p why on any bad key, value or file.
+std::unique_ptr<hl_slam_params_t> load_config(const std::string &file,
                                          const std::vector<std::string> &sets,
                                          std::string *why);
 

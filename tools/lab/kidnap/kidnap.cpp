@@ -199,12 +199,12 @@ bool run_sim_map(const hl_slam_params_t &p, const std::string &what, const std::
 int run(const Options &o)
 {
     std::string why;
-    std::unique_ptr<hl_config_t> cfg = hlkid::load_config(o.config, o.sets, &why);
+    std::unique_ptr<hl_slam_params_t> cfg = hlkid::load_config(o.config, o.sets, &why);
     if (!cfg) {
         std::fprintf(stderr, "hl-kidnap: %s\n", why.c_str());
         return 1;
     }
-    const hl_slam_params_t &p = cfg->slam;
+    const hl_slam_params_t &p = *cfg;
     const std::string what = o.world + " " + o.input;
     hlkid::Scorer scorer(o.world, o.input, p.reloc);
     std::string err;

@@ -1,5 +1,5 @@
 # tools/lab/kidnap/kidnap.mk - make kidnap: the global relocalization (hl_slam_relocalize,
-# include/houghloc/reloc.h) of a robot set down anywhere in a known map, heading unknown
+# include/core/houghloc/reloc.h) of a robot set down anywhere in a known map, heading unknown
 # (docs/results/relocalization.md). Included by tools/lab/lab.mk.
 #
 #   make -j2 kidnap                          every row, two at a time
@@ -85,7 +85,7 @@ INTEGRATION_TESTS += tests/integration/test_kidnap.sh
 $(call obj,$(KIDNAP_SRCS) tools/lab/kidnap/tour_study.cpp): $(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CXX     $<"
-	$(Q)$(CXX) $(CPPFLAGS) -Isrc/daemon $(PKG_CFLAGS) $(CXXFLAGS) -c -o $@ $<
+	$(Q)$(CXX) $(CPPFLAGS) $(PKG_CFLAGS) $(CXXFLAGS) -c -o $@ $<
 
 $(BUILD)/bin/hl-kidnap: $(KIDNAP_OBJS) $(SIM_LIB) $(DAEMON_LIB) $(ROBOT_LIB) \
                         $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)

@@ -5,7 +5,7 @@
 #include <vector>
 
 extern "C" {
-#include "mapstore.h"
+#include "houghloc/mapstore.h"
 }
 
 #include "../../sim/logwriter.hpp"

@@ -18,9 +18,9 @@
 #include <vector>
 
 extern "C" {
-#include "../../../src/core/closure.h"
-#include "../../../src/core/posegraph.h"
-#include "mapstore.h"
+#include "houghloc-internal/closure.h"
+#include "houghloc-internal/posegraph.h"
+#include "houghloc/mapstore.h"
 }
 
 #include "houghloc/map.h"
@@ -36,7 +36,7 @@ using Edge = hl_pg_edge_t;
 constexpr double kFarMm = 500.0;
 
 // Loop closure after the tour (--mode graph): the rules of houghlocd's own loop closure
-// (slam.close_loops; src/core/closure.h), applied once to the tracked tour instead of at
+// (slam.close_loops; houghloc-internal/closure.h), applied once to the tracked tour instead of at
 // every stop: each stop matched against each earlier stop at least HL_CLOSURE_GAP before
 // it and within HL_CLOSURE_RADIUS_MM, in a map of that stop and its neighbours, by the
 // tracker's local search from the stop's estimate; a match counts as the daemon's does
@@ -345,12 +345,12 @@ void error_of(hl_pose_t est, hl_pose_t truth, double *deg, double *mm)
 int run(const Options &o)
 {
     std::string err;
-    std::unique_ptr<hl_config_t> cfg = hlkid::load_config(o.config, o.sets, &err);
+    std::unique_ptr<hl_slam_params_t> cfg = hlkid::load_config(o.config, o.sets, &err);
     if (!cfg) {
         std::fprintf(stderr, "hl-tour-study: %s\n", err.c_str());
         return 1;
     }
-    const hl_slam_params_t &p = cfg->slam;
+    const hl_slam_params_t &p = *cfg;
     hlexp::Soundings tour;
     if (!hlkid::load_soundings(o.tour, &tour, &err)) {
         std::fprintf(stderr, "hl-tour-study: %s\n", err.c_str());

@@ -14,18 +14,18 @@ logs: $(BUILD)/bin/hl-sim-logs
 	@mkdir -p logs
 	$(Q)$(BUILD)/bin/hl-sim-logs --seed 1 --continuous --out-dir logs
 
-$(BUILD)/bin/hl-sim-logs: $(call obj,tools/lab/sim-logs/make_logs.cpp) $(SIM_LIB) $(BUS_LIB) \
+$(BUILD)/bin/hl-sim-logs: $(call obj,tools/lab/sim-logs/make_logs.cpp) $(SIM_LIB) $(ROBOT_LIB) $(BUS_LIB) \
                           $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $^ $(PKG_LIBS) $(SYS_LIBS)
 
-$(BUILD)/bin/hl-calibrate: $(call obj,tools/lab/sim-logs/calibrate.cpp) $(SIM_LIB) $(CORE_LIB)
+$(BUILD)/bin/hl-calibrate: $(call obj,tools/lab/sim-logs/calibrate.cpp) $(SIM_LIB) $(ROBOT_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $^ $(SYS_LIBS)
 
-$(BUILD)/bin/hl-sim-draw: $(call obj,tools/lab/sim-logs/draw_world.cpp) $(SIM_LIB) $(CORE_LIB)
+$(BUILD)/bin/hl-sim-draw: $(call obj,tools/lab/sim-logs/draw_world.cpp) $(SIM_LIB) $(ROBOT_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $^ $(CAIRO_LIBS) $(SYS_LIBS)

@@ -3,7 +3,7 @@
 
 #include <math.h>
 
-#include "../../../src/core/closure.h"
+#include "houghloc-internal/closure.h"
 #include "houghloc/rng.h"
 #include "synthroom.h"
 

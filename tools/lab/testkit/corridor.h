@@ -10,7 +10,7 @@
 
 #include <stdint.h>
 
-#include "../../../src/core/posegraph.h"
+#include "houghloc-internal/posegraph.h"
 
 #ifdef __cplusplus
 extern "C" {

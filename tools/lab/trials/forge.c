@@ -19,7 +19,7 @@
 #include "forge_req.h"
 #include "houghloc/version.h"
 #include "trial_args.h"
-#include "keyfile.h"
+#include "houghloc/keyfile.h"
 
 #define PROG "hl-forge"
 #define SHOW_WRONG 10       /* wrong answers printed one by one; the rest only counted */

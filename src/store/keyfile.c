@@ -1,5 +1,5 @@
 /* keyfile.c - loading the request-signing key (see keyfile.h). */
-#include "keyfile.h"
+#include "houghloc/keyfile.h"
 
 #include <errno.h>
 #include <fcntl.h>

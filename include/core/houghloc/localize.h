@@ -20,6 +20,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc/export.h"
 #include "houghloc/map.h"
 #include "houghloc/scan.h"
 
@@ -75,12 +76,12 @@ typedef struct hl_loc_params {
 } hl_loc_params_t;
 
 /** Fills @p p with the defaults above. */
-void hl_loc_params_default(hl_loc_params_t *p);
+HL_API void hl_loc_params_default(hl_loc_params_t *p);
 /** Raster cells a local search with half-width @p window_mm needs (for max_cells). */
-uint32_t hl_loc_cells_for_window(const hl_loc_params_t *p, hl_mm_t window_mm,
-                                 bool search_theta);
+HL_API uint32_t hl_loc_cells_for_window(const hl_loc_params_t *p, hl_mm_t window_mm,
+                                        bool search_theta);
 /** A one-line description of what is wrong with @p p, or NULL if nothing. */
-const char *hl_loc_params_error(const hl_loc_params_t *p);
+HL_API const char *hl_loc_params_error(const hl_loc_params_t *p);
 
 typedef struct hl_loc_query {
     hl_pose_t predicted;    /* the window centre, and the centre heading of the slice */
@@ -119,7 +120,7 @@ typedef struct hl_loc_result {
  * best one at least peak_separation_mm away, after the prior when the query used one
  * (0 if there is no peak or @p r is NULL).
  */
-double hl_loc_confidence(const hl_loc_result_t *r);
+HL_API double hl_loc_confidence(const hl_loc_result_t *r);
 
 /** The blurred vote surface of the last run, for figures and tests. */
 typedef struct hl_loc_surface {
@@ -135,12 +136,12 @@ typedef struct hl_loc_surface {
 typedef struct hl_localizer hl_localizer_t;
 
 /** @return NULL if the parameters are invalid or memory is short. */
-hl_localizer_t *hl_loc_create(const hl_loc_params_t *params);
+HL_API hl_localizer_t *hl_loc_create(const hl_loc_params_t *params);
 /** Accepts NULL. */
-void hl_loc_destroy(hl_localizer_t *loc);
-const hl_loc_params_t *hl_loc_get_params(const hl_localizer_t *loc);
+HL_API void hl_loc_destroy(hl_localizer_t *loc);
+HL_API const hl_loc_params_t *hl_loc_get_params(const hl_localizer_t *loc);
 /** Bytes allocated by the localizer. */
-size_t hl_loc_mem_bytes(const hl_localizer_t *loc);
+HL_API size_t hl_loc_mem_bytes(const hl_localizer_t *loc);
 
 /**
  * Localizes @p scan against @p n map vectors.
@@ -149,12 +150,12 @@ size_t hl_loc_mem_bytes(const hl_localizer_t *loc);
  *         exceeds what the localizer was created for; HL_ERR_RANGE for out-of-range
  *         input; HL_ERR_ARG for NULL.
  */
-hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
-                       const hl_scan_t *scan, const hl_loc_query_t *query,
-                       hl_loc_result_t *result);
+HL_API hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
+                              const hl_scan_t *scan, const hl_loc_query_t *query,
+                              hl_loc_result_t *result);
 
 /** The surface of the last successful hl_loc_run. */
-void hl_loc_get_surface(const hl_localizer_t *loc, hl_loc_surface_t *out);
+HL_API void hl_loc_get_surface(const hl_localizer_t *loc, hl_loc_surface_t *out);
 
 #ifdef __cplusplus
 }

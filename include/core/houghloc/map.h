@@ -16,6 +16,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc/export.h"
 #include "houghloc/rng.h"
 #include "houghloc/scan.h"
 
@@ -44,12 +45,12 @@ typedef struct hl_map hl_map_t;
  * @param seed     seeds the culling generator.
  * @return the map, or NULL on a bad capacity or out of memory.
  */
-hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed);
+HL_API hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed);
 /** Frees the map. Accepts NULL. */
-void hl_map_destroy(hl_map_t *map);
+HL_API void hl_map_destroy(hl_map_t *map);
 
 /** Removes every vector; the culling generator keeps its state. */
-void hl_map_clear(hl_map_t *map);
+HL_API void hl_map_clear(hl_map_t *map);
 
 /**
  * Bounds the map's density (not in the paper): at most @p per_place vectors of one
@@ -63,7 +64,7 @@ void hl_map_clear(hl_map_t *map);
  * @param square_mm HL_MAP_MIN_SQUARE_MM .. HL_MAP_MAX_SQUARE_MM when per_place > 0
  * @return HL_OK, HL_ERR_RANGE, HL_ERR_NOMEM (the map then has no bound).
  */
-hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place);
+HL_API hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place);
 
 /**
  * Culls by evidence (not in the paper): each scan added by hl_map_add_scan first confirms
@@ -77,7 +78,7 @@ hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_pl
  * @param confirm_mm 1 .. HL_MAP_MAX_SQUARE_MM when choices > 1
  * @return HL_OK, HL_ERR_RANGE, HL_ERR_NOMEM (the map then culls at random).
  */
-hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm);
+HL_API hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm);
 
 /**
  * Culls by crowding (not in the paper): a full map drops, for each new vector, the most
@@ -97,13 +98,13 @@ hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm
  * @return HL_OK; HL_ERR_RANGE (bad choices or square, or no density bound); HL_ERR_NOMEM;
  *         HL_ERR_ARG on NULL.
  */
-hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm);
+HL_API hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm);
 
 /**
  * Adds one vector, culling at random when full (hl_map_set_evidence: by evidence).
  * @return HL_OK, HL_ERR_RANGE when the vector's fields are out of range (not added).
  */
-hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v);
+HL_API hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v);
 
 /**
  * Transforms the valid readings of @p scan, taken at @p pose, into world tangent
@@ -112,30 +113,30 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v);
  * HL_COORD_MAX_MM are skipped.
  * @param[out] added  number of vectors added; may be NULL.
  */
-hl_status_t hl_map_add_scan(hl_map_t *map, const hl_scan_t *scan, hl_pose_t pose,
-                            uint32_t *added);
+HL_API hl_status_t hl_map_add_scan(hl_map_t *map, const hl_scan_t *scan, hl_pose_t pose,
+                                   uint32_t *added);
 
 /** The tangent vector for one reading at a pose. @return false if out of range. */
-bool hl_vector_from_reading(hl_pose_t pose, const hl_reading_t *r, hl_vector_t *out);
+HL_API bool hl_vector_from_reading(hl_pose_t pose, const hl_reading_t *r, hl_vector_t *out);
 /** The sensor position a vector was seen from (surface point + range along normal). */
-void hl_vector_origin(const hl_vector_t *v, hl_mm_t *x_mm, hl_mm_t *y_mm);
+HL_API void hl_vector_origin(const hl_vector_t *v, hl_mm_t *x_mm, hl_mm_t *y_mm);
 
-uint32_t hl_map_count(const hl_map_t *map);
-uint32_t hl_map_capacity(const hl_map_t *map);
+HL_API uint32_t hl_map_count(const hl_map_t *map);
+HL_API uint32_t hl_map_capacity(const hl_map_t *map);
 /** Increments on every change. */
-uint32_t hl_map_version(const hl_map_t *map);
+HL_API uint32_t hl_map_version(const hl_map_t *map);
 /** The vectors, valid until the next change to the map. */
-const hl_vector_t *hl_map_vectors(const hl_map_t *map);
+HL_API const hl_vector_t *hl_map_vectors(const hl_map_t *map);
 /** The culling generator's state, for saving. */
-hl_rng_t hl_map_rng(const hl_map_t *map);
+HL_API hl_rng_t hl_map_rng(const hl_map_t *map);
 
 /**
  * Replaces the contents with @p n saved vectors, a version and a culling state.
  * @return HL_ERR_CAPACITY when n > capacity, HL_ERR_RANGE when a vector is out of range;
  *         on error the map is unchanged.
  */
-hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n,
-                           uint32_t version, hl_rng_t rng);
+HL_API hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n,
+                                  uint32_t version, hl_rng_t rng);
 
 /**
  * Exchanges the contents of @p a and @p b (vectors, stamps, culling state and indexes),
@@ -143,7 +144,7 @@ hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n
  * aside, in the background, then put in place at once). @p a's version then differs
  * from both versions before, so that its readers see a change.
  */
-void hl_map_swap(hl_map_t *a, hl_map_t *b);
+HL_API void hl_map_swap(hl_map_t *a, hl_map_t *b);
 
 /*
  * Stamps. Each vector keeps the stamp the map had when it was added (a stop's number, for
@@ -151,15 +152,15 @@ void hl_map_swap(hl_map_t *a, hl_map_t *b);
  * again. Restored vectors have stamp 0.
  */
 /** Vectors added from now on get @p stamp. */
-void hl_map_set_stamp(hl_map_t *map, uint32_t stamp);
+HL_API void hl_map_set_stamp(hl_map_t *map, uint32_t stamp);
 /** Each vector's stamp, in the order of hl_map_vectors. */
-const uint32_t *hl_map_stamps(const hl_map_t *map);
+HL_API const uint32_t *hl_map_stamps(const hl_map_t *map);
 
 /** Checks one vector's fields against their ranges. */
-bool hl_vector_in_range(const hl_vector_t *v);
+HL_API bool hl_vector_in_range(const hl_vector_t *v);
 
 /** Bytes allocated by the map. */
-size_t hl_map_mem_bytes(const hl_map_t *map);
+HL_API size_t hl_map_mem_bytes(const hl_map_t *map);
 
 #ifdef __cplusplus
 }

@@ -27,6 +27,7 @@
 
 #include <stdint.h>
 
+#include "houghloc/export.h"
 #include "houghloc/scan.h"
 
 #ifdef __cplusplus
@@ -52,9 +53,9 @@ typedef struct hl_normals_params {
 } hl_normals_params_t;
 
 /** Fills @p p with the defaults above. */
-void hl_normals_params_default(hl_normals_params_t *p);
+HL_API void hl_normals_params_default(hl_normals_params_t *p);
 /** A one-line description of what is wrong with @p p, or NULL if nothing. */
-const char *hl_normals_params_error(const hl_normals_params_t *p);
+HL_API const char *hl_normals_params_error(const hl_normals_params_t *p);
 
 /**
  * Copies @p in to @p out with every valid reading's tilt set from the line through it and
@@ -64,7 +65,7 @@ const char *hl_normals_params_error(const hl_normals_params_t *p);
  * @return HL_OK; HL_ERR_ARG for NULL, overlap or invalid parameters; HL_ERR_RANGE when
  *         @p in fails hl_scan_check.
  */
-hl_status_t hl_normals_fit(const hl_normals_params_t *p, const hl_scan_t *in, hl_scan_t *out);
+HL_API hl_status_t hl_normals_fit(const hl_normals_params_t *p, const hl_scan_t *in, hl_scan_t *out);
 
 #ifdef __cplusplus
 }

@@ -8,6 +8,8 @@
 
 #include <stdint.h>
 
+#include "houghloc/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -17,10 +19,10 @@ typedef struct hl_rng {
     uint64_t inc;
 } hl_rng_t;
 
-void hl_rng_seed(hl_rng_t *rng, uint64_t seed);
-uint32_t hl_rng_next(hl_rng_t *rng);
+HL_API void hl_rng_seed(hl_rng_t *rng, uint64_t seed);
+HL_API uint32_t hl_rng_next(hl_rng_t *rng);
 /** Uniform integer in [0, bound), without modulo bias. bound must be > 0. */
-uint32_t hl_rng_below(hl_rng_t *rng, uint32_t bound);
+HL_API uint32_t hl_rng_below(hl_rng_t *rng, uint32_t bound);
 
 #ifdef __cplusplus
 }

@@ -1,4 +1,4 @@
-/* Tests for src/daemon/keyfile.c: a good key file, and every file it must refuse (open
+/* Tests for src/store/keyfile.c: a good key file, and every file it must refuse (open
  * to group or others, missing, a directory, a FIFO, a symbolic link, too large, not a
  * key), each with one line naming the file. */
 #include <stdarg.h>
@@ -15,7 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "keyfile.h"
+#include "houghloc/keyfile.h"
 
 static const char good_hex[] =
     "000102030405060708090a0b0c0d0e0f101112131415161718191a1b1c1d1e1f\n";

@@ -31,6 +31,7 @@
 
 #include <stdint.h>
 
+#include "houghloc/export.h"
 #include "houghloc/scan.h"
 
 #ifdef __cplusplus
@@ -56,9 +57,9 @@ typedef struct hl_echo_params {
 } hl_echo_params_t;
 
 /** Fills @p p with the defaults above. */
-void hl_echo_params_default(hl_echo_params_t *p);
+HL_API void hl_echo_params_default(hl_echo_params_t *p);
 /** A one-line description of what is wrong with @p p, or NULL if nothing. */
-const char *hl_echo_params_error(const hl_echo_params_t *p);
+HL_API const char *hl_echo_params_error(const hl_echo_params_t *p);
 
 /**
  * Copies @p in to @p out with every valid reading's bearing moved to its estimated echo
@@ -67,7 +68,7 @@ const char *hl_echo_params_error(const hl_echo_params_t *p);
  * @return HL_OK; HL_ERR_ARG for NULL, overlap or invalid parameters; HL_ERR_RANGE when
  *         @p in fails hl_scan_check.
  */
-hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_scan_t *out);
+HL_API hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_scan_t *out);
 
 #ifdef __cplusplus
 }

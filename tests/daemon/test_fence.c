@@ -1,4 +1,4 @@
-/* Tests for src/core/fence.c: rectangles, convex and concave polygons, border points and
+/* Tests for src/daemon/fence.c: rectangles, convex and concave polygons, border points and
  * vertices, far-away and extreme coordinates, and the polygons it must refuse. */
 #include <stdarg.h>
 #include <stddef.h>
@@ -8,7 +8,7 @@
 
 #include <string.h>
 
-#include "houghloc/fence.h"
+#include "fence.h"
 
 #define M HL_COORD_MAX_MM
 

@@ -1,4 +1,4 @@
-/* Tests for src/daemon/mapstore.c: the map file's layout byte by byte, round trips, saves
+/* Tests for src/store/mapstore.c: the map file's layout byte by byte, round trips, saves
  * that fail leave no temporary file and the old map whole, moving a bad file aside. What a
  * bad file is refused for: test_mapstore_refuse.c. */
 #include "mapstore_fixture.h"

@@ -42,6 +42,7 @@
 
 #include <stdbool.h>
 
+#include "houghloc/export.h"
 #include "houghloc/echo.h"
 #include "houghloc/normals.h"
 #include "houghloc/localize.h"
@@ -158,14 +159,14 @@ typedef struct hl_slam_params {
                                    fine stage uses `loc` */
 } hl_slam_params_t;
 
-void hl_slam_params_default(hl_slam_params_t *p);
+HL_API void hl_slam_params_default(hl_slam_params_t *p);
 
 /** Sets @p map's density bound and cull as hl_slam_create sets its own map's (for tools
  *  that build maps beside a slam). @return HL_OK or what the map's setter returned. */
-hl_status_t hl_slam_setup_map(hl_map_t *map, const hl_slam_params_t *p);
+HL_API hl_status_t hl_slam_setup_map(hl_map_t *map, const hl_slam_params_t *p);
 
 /** A one-line description of what is wrong, or NULL. */
-const char *hl_slam_params_error(const hl_slam_params_t *p);
+HL_API const char *hl_slam_params_error(const hl_slam_params_t *p);
 
 /**
  * @p scan as the slam's localizer and map see it: at its echo bearings when @p p asks
@@ -174,8 +175,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p);
  * hl_scan_check refuses, and then leaves its input (the localizer refuses it itself).
  * The buffers are used only when their step is asked for (NULL is fine otherwise).
  */
-const hl_scan_t *hl_slam_prepare(const hl_slam_params_t *p, const hl_scan_t *scan,
-                                 hl_scan_t *echoed, hl_scan_t *fitted);
+HL_API const hl_scan_t *hl_slam_prepare(const hl_slam_params_t *p, const hl_scan_t *scan,
+                                        hl_scan_t *echoed, hl_scan_t *fitted);
 
 typedef struct hl_slam_step {
     hl_pose_t pose;             /* the estimate after this scan */
@@ -192,11 +193,11 @@ typedef struct hl_slam_step {
 typedef struct hl_slam hl_slam_t;
 
 /** @return NULL on invalid parameters or no memory. */
-hl_slam_t *hl_slam_create(const hl_slam_params_t *p);
-void hl_slam_destroy(hl_slam_t *s);   /* accepts NULL */
+HL_API hl_slam_t *hl_slam_create(const hl_slam_params_t *p);
+HL_API void hl_slam_destroy(hl_slam_t *s);   /* accepts NULL */
 
-/** Starts over: empty map, the next scan is at @p start. */
-void hl_slam_reset(hl_slam_t *s, hl_pose_t start);
+       /** Starts over: empty map, the next scan is at @p start. */
+       HL_API void hl_slam_reset(hl_slam_t *s, hl_pose_t start);
 
 /**
  * One cycle: predict from @p odometry (the base's dead-reckoned pose when the scan was
@@ -204,8 +205,8 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start);
  * Either the whole cycle happens or nothing changes: on an error return the map, the
  * pose, the odometry reference and the peak average are as they were.
  */
-hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
-                         hl_slam_step_t *out);
+HL_API hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
+                                hl_slam_step_t *out);
 
 /**
  * Localizes @p scan against the current map as hl_slam_update would, with @p predicted
@@ -213,9 +214,9 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
  * @param[out] loc   the Hough result;  @param[out] pose  the pose (refined if asked).
  * @return as hl_loc_run.
  */
-hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
-                             hl_loc_result_t *loc, hl_pose_t *pose);
-hl_map_t *hl_slam_map(hl_slam_t *s);
+HL_API hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
+                                    hl_loc_result_t *loc, hl_pose_t *pose);
+HL_API hl_map_t *hl_slam_map(hl_slam_t *s);
 
 /**
  * Where is the robot, heading unknown (the kidnapped robot, reloc.h): the scan at its
@@ -223,14 +224,14 @@ hl_map_t *hl_slam_map(hl_slam_t *s);
  * when the params ask. Changes nothing: adopting the answer is hl_slam_set_pose's.
  * @return as hl_reloc_run.
  */
-hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_result_t *out);
+HL_API hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_result_t *out);
 /** hl_reloc_judge of @p scan (at its echo bearings when the params ask) at @p pose against
  *  the current map. */
-uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose);
+HL_API uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose);
 /** hl_slam_judge at each of @p poses[0 .. count - 1] into @p scores, the scan prepared
  *  and the map hashed once (hl_reloc_judge_poses). */
-void hl_slam_judge_poses(hl_slam_t *s, const hl_scan_t *scan, const hl_pose_t *poses,
-                         uint32_t count, uint32_t *scores);
+HL_API void hl_slam_judge_poses(hl_slam_t *s, const hl_scan_t *scan, const hl_pose_t *poses,
+                                uint32_t count, uint32_t *scores);
 
 /**
  * Moves the estimate to @p pose and takes @p odometry as the base's odometry there
@@ -238,10 +239,10 @@ void hl_slam_judge_poses(hl_slam_t *s, const hl_scan_t *scan, const hl_pose_t *p
  * sets the start pose instead, and the first scan's odometry is still the reference.
  * @return HL_ERR_RANGE when a position is out of range (nothing changes).
  */
-hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry);
+HL_API hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry);
 
 /** The current estimate (the start pose before the first scan). */
-hl_pose_t hl_slam_pose(const hl_slam_t *s);
+HL_API hl_pose_t hl_slam_pose(const hl_slam_t *s);
 
 /**
  * Everything besides the map's vectors that the next hl_slam_update depends on: with it
@@ -258,7 +259,7 @@ typedef struct hl_slam_state {
     hl_rng_t cull_rng;      /* the map's culling generator */
 } hl_slam_state_t;
 
-void hl_slam_get_state(const hl_slam_t *s, hl_slam_state_t *out);
+HL_API void hl_slam_get_state(const hl_slam_t *s, hl_slam_state_t *out);
 
 /**
  * Replaces the map and the state with a saved one. The vectors are checked (count at
@@ -266,8 +267,8 @@ void hl_slam_get_state(const hl_slam_t *s, hl_slam_state_t *out);
  * @return HL_OK; HL_ERR_CAPACITY when @p n exceeds the capacity; HL_ERR_RANGE for a
  *         vector or pose out of range. On error nothing changes.
  */
-hl_status_t hl_slam_restore(hl_slam_t *s, const hl_slam_state_t *state,
-                            const hl_vector_t *vectors, uint32_t n);
+HL_API hl_status_t hl_slam_restore(hl_slam_t *s, const hl_slam_state_t *state,
+                                   const hl_vector_t *vectors, uint32_t n);
 
 #ifdef __cplusplus
 }

@@ -20,7 +20,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
-#include "mapstore.h"
+#include "houghloc/mapstore.h"
 
 #define HDR 93
 #define BIG 16384

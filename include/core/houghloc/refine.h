@@ -21,6 +21,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc/export.h"
 #include "houghloc/map.h"
 #include "houghloc/scan.h"
 
@@ -38,16 +39,16 @@ typedef struct hl_refine_params {
     uint16_t min_matches;       /* fewer matched readings: refuse; default 12 */
 } hl_refine_params_t;
 
-void hl_refine_params_default(hl_refine_params_t *p);
+HL_API void hl_refine_params_default(hl_refine_params_t *p);
 /** A one-line description of what is wrong with @p p, or NULL if nothing. */
-const char *hl_refine_params_error(const hl_refine_params_t *p);
+HL_API const char *hl_refine_params_error(const hl_refine_params_t *p);
 
 typedef struct hl_refiner hl_refiner_t;
 
 /** @return NULL on invalid parameters, max_map_vectors of 0, or no memory. */
-hl_refiner_t *hl_refine_create(const hl_refine_params_t *p, uint32_t max_map_vectors);
-void hl_refine_destroy(hl_refiner_t *r);   /* accepts NULL */
-size_t hl_refine_mem_bytes(const hl_refiner_t *r);
+HL_API hl_refiner_t *hl_refine_create(const hl_refine_params_t *p, uint32_t max_map_vectors);
+HL_API void hl_refine_destroy(hl_refiner_t *r);   /* accepts NULL */
+       HL_API size_t hl_refine_mem_bytes(const hl_refiner_t *r);
 
 /**
  * Refines @p start against @p n map vectors.
@@ -57,9 +58,9 @@ size_t hl_refine_mem_bytes(const hl_refiner_t *r);
  *         singular system); HL_ERR_CAPACITY when @p n exceeds max_map_vectors;
  *         HL_ERR_RANGE for a bad scan or pose; HL_ERR_ARG for NULL.
  */
-hl_status_t hl_refine_run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
-                          const hl_scan_t *scan, hl_pose_t start, bool heading,
-                          hl_pose_t *out);
+HL_API hl_status_t hl_refine_run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
+                                 const hl_scan_t *scan, hl_pose_t start, bool heading,
+                                 hl_pose_t *out);
 
 #ifdef __cplusplus
 }

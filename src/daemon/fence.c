@@ -8,7 +8,7 @@
  * product below 2^32 * 2^23 * 2 = 2^56. Twice the polygon's area, summed over at most 64
  * triangles fanned from vertex 0, stays below 64 * 2^47 = 2^53. All of it fits int64.
  */
-#include "houghloc/fence.h"
+#include "fence.h"
 
 #include <stddef.h>
 

@@ -1,4 +1,4 @@
-/* Tests for src/daemon/mapstore.c's refusals: every truncation and every single-bit flip,
+/* Tests for src/store/mapstore.c's refusals: every truncation and every single-bit flip,
  * a wrong magic or version, each range check behind a good checksum, more vectors than
  * the caller holds. */
 #include "mapstore_fixture.h"

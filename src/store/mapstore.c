@@ -5,7 +5,7 @@
  * the map's size. Every number is written byte by byte in little-endian order, so the
  * file is the same on every host and the header needs no padding.
  */
-#include "mapstore.h"
+#include "houghloc/mapstore.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -2,6 +2,8 @@
 #ifndef HOUGHLOC_STATUS_H
 #define HOUGHLOC_STATUS_H
 
+#include "houghloc/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -18,7 +20,7 @@ typedef enum hl_status {
 } hl_status_t;
 
 /** A short constant English description, e.g. "input out of range". */
-const char *hl_status_str(hl_status_t s);
+HL_API const char *hl_status_str(hl_status_t s);
 
 #ifdef __cplusplus
 }

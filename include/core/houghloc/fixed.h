@@ -36,6 +36,8 @@
 
 #include <stdint.h>
 
+#include "houghloc/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -53,12 +55,12 @@ typedef uint16_t hl_bam_t;
 #define HL_VOTE_MAX UINT16_MAX
 
 /** Sine of a binary angle, Q14. */
-int16_t hl_sin(hl_bam_t a);
+HL_API int16_t hl_sin(hl_bam_t a);
 /** Cosine of a binary angle, Q14. */
-int16_t hl_cos(hl_bam_t a);
+HL_API int16_t hl_cos(hl_bam_t a);
 
 /** As hl_polar_to_xy, in Q8 millimetres (1/256 mm), from the Q30 table. */
-void hl_polar_to_xy_q8(int32_t range_mm, hl_bam_t angle, int32_t *x_q8, int32_t *y_q8);
+HL_API void hl_polar_to_xy_q8(int32_t range_mm, hl_bam_t angle, int32_t *x_q8, int32_t *y_q8);
 
 /** Signed shortest difference a - b, in BAM: [-32768, 32767]. */
 static inline int32_t hl_bam_diff(hl_bam_t a, hl_bam_t b)
@@ -70,15 +72,15 @@ static inline int32_t hl_bam_diff(hl_bam_t a, hl_bam_t b)
  * Cartesian offset of a point at @p range_mm along @p angle, rounded to the millimetre.
  * @param[in] range_mm  0..HL_RANGE_MAX_MM (larger values are clamped).
  */
-void hl_polar_to_xy(int32_t range_mm, hl_bam_t angle, int32_t *x_mm, int32_t *y_mm);
+HL_API void hl_polar_to_xy(int32_t range_mm, hl_bam_t angle, int32_t *x_mm, int32_t *y_mm);
 
 /** Conversions for configuration and tools (not the hot path). Rounds to nearest. */
-hl_bam_t hl_bam_from_deg(double deg);
-hl_bam_t hl_bam_from_rad(double rad);
-double hl_bam_to_deg(hl_bam_t a);   /* in [0, 360) */
-double hl_bam_to_rad(hl_bam_t a);   /* in [0, 2 pi) */
-/** Signed angle in degrees, [-180, 180). */
-double hl_bam_to_sdeg(hl_bam_t a);
+HL_API hl_bam_t hl_bam_from_deg(double deg);
+HL_API hl_bam_t hl_bam_from_rad(double rad);
+HL_API double hl_bam_to_deg(hl_bam_t a);   /* in [0, 360) */
+       HL_API double hl_bam_to_rad(hl_bam_t a);   /* in [0, 2 pi) */
+       /** Signed angle in degrees, [-180, 180). */
+       HL_API double hl_bam_to_sdeg(hl_bam_t a);
 
 #ifdef __cplusplus
 }

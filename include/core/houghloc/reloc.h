@@ -38,6 +38,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc/export.h"
 #include "houghloc/localize.h"
 #include "houghloc/map.h"
 #include "houghloc/scan.h"
@@ -110,9 +111,9 @@ typedef struct hl_reloc_params {
 } hl_reloc_params_t;
 
 /** Fills @p p with the defaults above. */
-void hl_reloc_params_default(hl_reloc_params_t *p);
+HL_API void hl_reloc_params_default(hl_reloc_params_t *p);
 /** A one-line description of what is wrong with @p p, or NULL if nothing. */
-const char *hl_reloc_params_error(const hl_reloc_params_t *p);
+HL_API const char *hl_reloc_params_error(const hl_reloc_params_t *p);
 
 typedef struct hl_reloc_result {
     bool found;                 /* an answer distinct enough from the runner-up */
@@ -133,7 +134,7 @@ typedef struct hl_reloc_result {
 } hl_reloc_result_t;
 
 /** 1 - runner_up_score / score (0..1; 1 with no runner-up, 0 with no answer). */
-double hl_reloc_confidence(const hl_reloc_result_t *r);
+HL_API double hl_reloc_confidence(const hl_reloc_result_t *r);
 
 typedef struct hl_reloc hl_reloc_t;
 
@@ -143,11 +144,11 @@ typedef struct hl_reloc hl_reloc_t;
  *              set for the fine window; max_map_vectors bounds the maps accepted).
  * @return NULL when a parameter is invalid or memory is short.
  */
-hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *fine);
+HL_API hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *fine);
 /** Accepts NULL. */
-void hl_reloc_destroy(hl_reloc_t *r);
+HL_API void hl_reloc_destroy(hl_reloc_t *r);
 /** Bytes allocated. */
-size_t hl_reloc_mem_bytes(const hl_reloc_t *r);
+HL_API size_t hl_reloc_mem_bytes(const hl_reloc_t *r);
 
 /**
  * Searches the whole map for the pose of @p scan, heading unknown.
@@ -156,21 +157,21 @@ size_t hl_reloc_mem_bytes(const hl_reloc_t *r);
  *         the map exceeds max_map_vectors or its bounding box the coarse raster budget;
  *         HL_ERR_RANGE for a bad scan; HL_ERR_ARG for NULL.
  */
-hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
-                         const hl_scan_t *scan, hl_reloc_result_t *result);
+HL_API hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                                const hl_scan_t *scan, hl_reloc_result_t *result);
 
 /**
  * The score hl_reloc_run gives a pose (readings explained less readings contradicted, see
  * above) for @p scan placed at @p pose: to weigh another pose, such as tracking's,
  * against the search's answer. @return the score; 0 for bad arguments or an empty map.
  */
-uint32_t hl_reloc_judge(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
-                        const hl_scan_t *scan, hl_pose_t pose);
+HL_API uint32_t hl_reloc_judge(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                               const hl_scan_t *scan, hl_pose_t pose);
 /** hl_reloc_judge at each of @p poses[0 .. count - 1] into @p scores (0 for a pose out of
  *  range, all 0 for bad arguments), hashing the map once. */
-void hl_reloc_judge_poses(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
-                          const hl_scan_t *scan, const hl_pose_t *poses, uint32_t count,
-                          uint32_t *scores);
+HL_API void hl_reloc_judge_poses(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                                 const hl_scan_t *scan, const hl_pose_t *poses, uint32_t count,
+                                 uint32_t *scores);
 
 #ifdef __cplusplus
 }

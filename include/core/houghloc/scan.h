@@ -12,6 +12,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "houghloc/export.h"
 #include "houghloc/fixed.h"
 #include "houghloc/status.h"
 
@@ -43,7 +44,7 @@ typedef struct hl_scan {
 } hl_scan_t;
 
 /** Empties @p scan. */
-void hl_scan_clear(hl_scan_t *scan);
+HL_API void hl_scan_clear(hl_scan_t *scan);
 
 /**
  * Appends one reading. A range outside 0..HL_RANGE_MAX_MM cannot be held: the reading
@@ -54,8 +55,8 @@ void hl_scan_clear(hl_scan_t *scan);
  *         0..HL_RANGE_MAX_MM (appended as invalid); HL_ERR_CAPACITY when the scan is
  *         full (nothing appended); HL_ERR_ARG on NULL.
  */
-hl_status_t hl_scan_add(hl_scan_t *scan, hl_bam_t bearing, int32_t range_mm,
-                        int8_t transducer, bool valid);
+HL_API hl_status_t hl_scan_add(hl_scan_t *scan, hl_bam_t bearing, int32_t range_mm,
+                               int8_t transducer, bool valid);
 
 /** The world direction of @p r's surface normal (towards the sensor) seen from a robot
  *  heading @p heading: the beam's reverse turned by the reading's tilt. */
@@ -65,17 +66,17 @@ static inline hl_bam_t hl_reading_normal(const hl_reading_t *r, hl_bam_t heading
 }
 
 /** Number of valid readings. */
-uint32_t hl_scan_valid_count(const hl_scan_t *scan);
+HL_API uint32_t hl_scan_valid_count(const hl_scan_t *scan);
 
 /** Checks count and every valid reading's range and tilt. @return HL_OK or HL_ERR_RANGE. */
-hl_status_t hl_scan_check(const hl_scan_t *scan);
+HL_API hl_status_t hl_scan_check(const hl_scan_t *scan);
 
 /** Composes poses: the pose @p rel, given in the frame of @p base, in the world frame. */
-hl_pose_t hl_pose_compose(hl_pose_t base, hl_pose_t rel);
+HL_API hl_pose_t hl_pose_compose(hl_pose_t base, hl_pose_t rel);
 /** The pose of @p to in the frame of @p from (inverse of hl_pose_compose). */
-hl_pose_t hl_pose_between(hl_pose_t from, hl_pose_t to);
+HL_API hl_pose_t hl_pose_between(hl_pose_t from, hl_pose_t to);
 /** Checks |x|, |y| <= HL_COORD_MAX_MM. */
-bool hl_pose_in_range(hl_pose_t p);
+HL_API bool hl_pose_in_range(hl_pose_t p);
 
 #ifdef __cplusplus
 }
