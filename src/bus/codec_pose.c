@@ -19,12 +19,24 @@
 #include "houghloc/slam.h"
 #include "houghloc_pose_t.h"
 
-_Static_assert(HOUGHLOC_POSE_T_ACCEPTED == HL_SLAM_ACCEPTED &&
-               HOUGHLOC_POSE_T_REJECTED_WILD == HL_SLAM_REJECTED_WILD &&
-               HOUGHLOC_POSE_T_ODOMETRY_ONLY == HL_SLAM_ODOMETRY_ONLY &&
+_Static_assert(HOUGHLOC_POSE_T_ACCEPTED == HL_BUS_POSE_ACCEPTED &&
+               HOUGHLOC_POSE_T_REJECTED_WILD == HL_BUS_POSE_REJECTED_WILD &&
+               HOUGHLOC_POSE_T_ODOMETRY_ONLY == HL_BUS_POSE_ODOMETRY_ONLY &&
                HOUGHLOC_POSE_T_RELOCALIZED == HL_BUS_POSE_RELOCALIZED &&
                HOUGHLOC_POSE_T_LOST == HL_BUS_POSE_LOST,
-               "slam.h's HL_SLAM_* disagree with lcmtypes/houghloc_pose_t.lcm");
+               "bus.h's HL_BUS_POSE_* disagree with lcmtypes/houghloc_pose_t.lcm");
+
+int8_t hl_bus_pose_status(hl_slam_status_t status)
+{
+    switch (status) {
+    case HL_SLAM_ACCEPTED: return HL_BUS_POSE_ACCEPTED;
+    case HL_SLAM_REJECTED_WILD: return HL_BUS_POSE_REJECTED_WILD;
+    case HL_SLAM_ODOMETRY_ONLY: return HL_BUS_POSE_ODOMETRY_ONLY;
+    case HL_SLAM_RELOCALIZED: return HL_BUS_POSE_RELOCALIZED;
+    case HL_SLAM_LOST: return HL_BUS_POSE_LOST;
+    }
+    return HL_BUS_POSE_LOST;    /* not a status: the pose is not to be trusted */
+}
 
 static hl_status_t check_pose(const hl_bus_pose_t *m, char *why)
 {

@@ -1,4 +1,5 @@
-/* slam.c - the online localize-then-extend cycle (paper, sections 2 and 7). */
+/* slam.c - the tracker's life (create, reset, state) and tracking: the online
+ * localize-then-extend cycle of the paper (sections 2 and 7), in its stages. */
 #include "houghloc/slam.h"
 
 #include <math.h>
@@ -255,73 +256,102 @@ uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose)
     return score;
 }
 
-/* Computes the whole cycle into locals first and commits at the end, so that every error
- * return leaves the slam as it was (slam.h). The scratch buffers (s->echoed, the
- * localizer's raster, the refiner's hash) are not state: each use rewrites them. */
-hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
-                         hl_slam_step_t *out)
+/* ---- tracking: the stages of one scan ------------------------------------------------- */
+
+/* Prepare: the prediction from the odometry, and the scan as the localizer and the map
+ * see it. */
+static hl_status_t stage_prepare(hl_slam_t *s, const hl_scan_t **scan, hl_pose_t odometry,
+                                 hl_slam_step_t *step)
 {
-    if (!s || !scan || !out)
-        return HL_ERR_ARG;
-    if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(odometry))
-        return HL_ERR_RANGE;
     hl_pose_t predicted = s->pose;
     if (s->started)
         predicted = hl_pose_compose(s->pose, hl_pose_between(s->odom, odometry));
     if (!hl_pose_in_range(predicted))
         return HL_ERR_RANGE;
-    hl_slam_step_t step = { .pose = predicted, .predicted = predicted,
-                            .status = HL_SLAM_ODOMETRY_ONLY };
-    uint32_t peak_avg = s->peak_avg;
-    scan = prepared(s, scan);
+    *step = (hl_slam_step_t){ .pose = predicted, .predicted = predicted,
+                              .status = HL_SLAM_ODOMETRY_ONLY };
+    *scan = prepared(s, *scan);
+    return HL_OK;
+}
 
-    hl_pose_t found;
-    hl_status_t st = localize(s, scan, predicted, &step.loc, &found);
-    bool extend = true;
-    if (st == HL_OK) {
-        /* A turned drive's pose has passed the judge, which weighs more than the guard's
-         * rules of thumb (its peak may be low against recent ones: the robot has driven
-         * into a place it has mapped less). */
-        step.turned = turn_drive(s, scan, hl_pose_between(s->odom, odometry), &step.loc,
-                                 &found);
-        bool accept = !s->p.guarded || step.turned || plausible(s, found, predicted, &step.loc);
-        peak_avg = tracked_peak(s->peak_avg, step.loc.peak, accept);
-        if (accept) {
-            step.status = HL_SLAM_ACCEPTED;
-            step.pose = found;
-            step.pose.theta = blend_heading(predicted.theta, found.theta, s->p.heading_gain);
-        } else {
-            step.status = HL_SLAM_REJECTED_WILD;
-            extend = false;
-        }
-    } else if (st == HL_ERR_EMPTY) {
-        /* Nothing to vote against: the first scan, or a scan that overlaps nothing the
-         * map holds near the prediction. The paper's robot starts its map this way, and
-         * this is how the map follows the robot where it has nothing yet (slam.h): the
-         * scan goes in at the prediction. */
-        extend = true;
-    } else {
-        return st;
+/* Localize: the Hough vote around the prediction, refined, and after a long drive the
+ * drive turned about its start. HL_ERR_EMPTY: nothing to vote against. */
+static hl_status_t stage_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
+                                  hl_slam_step_t *step, hl_pose_t *found)
+{
+    hl_status_t st = localize(s, scan, step->predicted, &step->loc, found);
+    if (st == HL_OK)
+        step->turned = turn_drive(s, scan, hl_pose_between(s->odom, odometry), &step->loc,
+                                  found);
+    return st;
+}
+
+/* Guard: accept or reject the pose found (guarded mode), the recent-peak average moved
+ * with it. @return whether the scan extends the map. */
+static bool stage_guard(const hl_slam_t *s, hl_pose_t found, hl_slam_step_t *step,
+                        uint32_t *peak_avg)
+{
+    /* A turned drive's pose has passed the judge, which weighs more than the guard's
+     * rules of thumb (its peak may be low against recent ones: the robot has driven into
+     * a place it has mapped less). */
+    bool accept = !s->p.guarded || step->turned ||
+                  plausible(s, found, step->predicted, &step->loc);
+    *peak_avg = tracked_peak(s->peak_avg, step->loc.peak, accept);
+    if (!accept) {
+        step->status = HL_SLAM_REJECTED_WILD;
+        return false;
     }
+    step->status = HL_SLAM_ACCEPTED;
+    step->pose = found;
+    step->pose.theta = blend_heading(step->predicted.theta, found.theta, s->p.heading_gain);
+    return true;
+}
+
+/* Integrate: the scan into the map at the step's pose (culled to capacity), stamped for
+ * loop closure. hl_map_add_scan refuses only a pose out of range, which the caller has
+ * checked, so this cannot fail; the map is unchanged if it does. */
+static hl_status_t stage_integrate(hl_slam_t *s, const hl_scan_t *scan, hl_slam_step_t *step,
+                                   bool *stop)
+{
+    *stop = s->closure && hl_slam_closure_stamp(s, step->pose);
+    return hl_map_add_scan(s->map, scan, step->pose, &step->added);
+}
+
+/* Computes the stages into locals first and commits at the end, so that every error
+ * return leaves the tracker as it was (slam_internal.h). The scratch buffers (s->echoed,
+ * the localizer's raster, the refiner's hash) are not state: each use rewrites them. */
+hl_status_t hl_slam_track(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
+                          hl_slam_step_t *out)
+{
+    hl_slam_step_t step;
+    hl_status_t st = stage_prepare(s, &scan, odometry, &step);
+    if (st != HL_OK)
+        return st;
+    uint32_t peak_avg = s->peak_avg;
+    hl_pose_t found;
+    bool extend = true;
+    st = stage_localize(s, scan, odometry, &step, &found);
+    if (st == HL_OK)
+        extend = stage_guard(s, found, &step, &peak_avg);
+    else if (st != HL_ERR_EMPTY)
+        return st;
+    /* HL_ERR_EMPTY: nothing to vote against. The first scan, or a scan that overlaps
+     * nothing the map holds near the prediction: the paper's robot starts its map this
+     * way, and this is how the map follows the robot where it has nothing yet (slam.h):
+     * the scan goes in at the prediction. */
+
     /* A local window at the edge of the coordinate range can put the peak (or the
-     * refinement) outside it. hl_map_add_scan refuses only such a pose (the scan passed
-     * hl_scan_check above, and every vector it makes is in range by construction), so
-     * after this check it cannot fail. */
+     * refinement) outside it. */
     if (extend && !hl_pose_in_range(step.pose))
         return HL_ERR_RANGE;
 
     /* Commit. */
     hl_rng_t rng_before = hl_map_rng(s->map);
     bool stop = false;      /* a stop of its own for loop closure, or joins the last */
-    if (extend) {
-        if (s->closure)
-            stop = hl_slam_closure_stamp(s, step.pose);
-        st = hl_map_add_scan(s->map, scan, step.pose, &step.added);
-        if (st != HL_OK)    /* unreachable (above); the map is unchanged if it happens */
-            return st;
-    }
-    /* Loop closure cannot fail (its memory is its own, from create). A rejected scan is
-     * not remembered: its pose is odometry's alone. */
+    if (extend && (st = stage_integrate(s, scan, &step, &stop)) != HL_OK)
+        return st;
+    /* Closure: cannot fail (its memory is its own, from create). A rejected scan is not
+     * remembered: its pose is odometry's alone. */
     if (s->closure)
         step.loops = hl_slam_closure_stage(s, extend ? scan : NULL, stop, rng_before,
                                            &step.pose);
@@ -333,12 +363,8 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
     return HL_OK;
 }
 
-hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry)
+void hl_slam_place(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry)
 {
-    if (!s)
-        return HL_ERR_ARG;
-    if (!hl_pose_in_range(pose) || !hl_pose_in_range(odometry))
-        return HL_ERR_RANGE;
     s->pose = pose;
     if (s->closure)     /* no step joins the stops before to the ones after */
         hl_slam_closure_reset(s);
@@ -346,6 +372,16 @@ hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry)
      * becomes it, at this pose. */
     if (s->started)
         s->odom = odometry;
+}
+
+hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry)
+{
+    if (!s)
+        return HL_ERR_ARG;
+    if (!hl_pose_in_range(pose) || !hl_pose_in_range(odometry))
+        return HL_ERR_RANGE;
+    hl_slam_place(s, pose, odometry);
+    hl_slam_stop_searching(s);
     return HL_OK;
 }
 

@@ -1,11 +1,13 @@
 /*
- * slam_internal.h (private) - the slam's state, shared by its files: slam.c (the cycle)
- * and slam_closure.c (its loop-closure stage).
+ * slam_internal.h (private) - the tracker's state, shared by its files: slam.c (tracking:
+ * the stages of one scan), slam_lost.c (the recovery around it, and hl_slam_update) and
+ * slam_closure.c (the loop-closure stage).
  */
 #ifndef HOUGHLOC_CORE_SLAM_INTERNAL_H
 #define HOUGHLOC_CORE_SLAM_INTERNAL_H
 
 #include "houghloc-internal/closure.h"
+#include "houghloc-internal/slam_search.h"
 #include "houghloc/slam.h"
 
 /* The matches a stop seeks, when they are spread over the scans that follow it
@@ -17,6 +19,16 @@ typedef struct hl_slam_matching {
     uint32_t taken;         /* matches taken so far */
     bool fit_due;           /* all sought, some taken: the next scan fits */
 } hl_slam_matching_t;
+
+/* The recovery's state (slam_lost.c). */
+typedef struct hl_slam_recovery {
+    bool lost;
+    uint32_t epoch;             /* times lost was entered */
+    int32_t doubtful_run;       /* doubtful tracked scans in a row */
+    int32_t accepted_run;       /* ... and well-matched ones while lost */
+    bool have_candidate;        /* the global search found this, to be confirmed */
+    hl_pose_t candidate, candidate_odometry;
+} hl_slam_recovery_t;
 
 struct hl_slam {
     hl_slam_params_t p;
@@ -34,7 +46,22 @@ struct hl_slam {
     hl_closure_t *closure;  /* loop closure, when the params ask for it */
     hl_map_t *shadow;       /* ... the map drawn again aside (closure_redraw_readings) */
     hl_slam_matching_t matching;
+    hl_slam_recovery_t recovery;
+    uint64_t scans;         /* hl_slam_update calls taken (search_every counts them) */
 };
+
+/**
+ * Tracking, the stages of one scan (prepare, localize, guard, integrate, closure) from
+ * the last estimate moved by @p odometry. Either all of it happens or nothing changes:
+ * on an error return the map, the estimate, the odometry reference and the peak average
+ * are as they were, and @p out is not written.
+ */
+hl_status_t hl_slam_track(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
+                          hl_slam_step_t *out);
+
+/** The estimate moved to @p pose with @p odometry there (hl_slam_set_pose, but the
+ *  recovery's state is left alone). */
+void hl_slam_place(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry);
 
 /** Hough, then the optional refinement, of @p scan against @p map (the slam's, or a loop
  *  closure's map of one earlier stop) from @p predicted. */

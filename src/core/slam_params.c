@@ -47,6 +47,12 @@ void hl_slam_params_default(hl_slam_params_t *p)
     p->long_drive_turn = hl_bam_from_deg(6.0);
     p->long_drive_turns = 2;
     hl_reloc_params_default(&p->reloc);
+    /* The lost state is off until the global search meets its wrong-answer target
+     * (docs/results/relocalization.md): a wrong answer adopted moves the robot's
+     * estimate, and the map, to the wrong place. hl_slam_lose works regardless. */
+    p->lost_after = 0;
+    p->lost_peak_ratio = 0.5;
+    p->search_every = 0;
 }
 
 const char *hl_slam_params_error(const hl_slam_params_t *p)
@@ -116,6 +122,12 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
          (uint32_t)p->long_drive_turn * p->long_drive_turns > HL_BAM_QUARTER_TURN))
         return "long drives need long_drive_turns in 1..4 and long_drive_turn above 0, "
                "turning at most 90 degrees in all";
+    if (p->lost_after < 0 || p->lost_after > 1000000)
+        return "lost_after must be in 0..1000000";
+    if (!(p->lost_peak_ratio >= 0 && p->lost_peak_ratio <= 1))
+        return "lost_peak_ratio must be in 0..1";
+    if (p->search_every < 0 || p->search_every > 1000000)
+        return "search_every must be in 0..1000000";
     return hl_reloc_params_error(&p->reloc);
 }
 

@@ -86,12 +86,6 @@ void hl_config_defaults(hl_config_t *c)
     c->status_period_ms = 1000;
     c->idle_after_ms = 5000;
     c->compute_window = 100;
-    /* The lost state is off until the global search meets its wrong-answer target
-     * (docs/results/relocalization.md): a wrong answer adopted moves the robot's estimate, and the map,
-     * to the wrong place. RELOCALIZE works regardless. */
-    c->lost_after = 0;
-    c->lost_peak_ratio = 0.5;
-    c->search_every = 0;
     c->log_level = HL_LOG_INFO;
     snprintf(c->robot_profile, sizeof c->robot_profile, "bonnie");
     c->robot_sound_on_connect = true;

@@ -49,9 +49,6 @@ typedef struct hl_config {
     int32_t status_period_ms;           /* STATUS this often, wall clock */
     int32_t idle_after_ms;              /* no SONAR this long (wall clock): state IDLE */
     int32_t compute_window;             /* scans in STATUS's compute median and p99 */
-    int32_t lost_after;                 /* doubtful scans in a row: lost */
-    double lost_peak_ratio;             /* below this share of the recent peaks: doubtful */
-    int32_t search_every;               /* global search every N tracked scans; 0: never */
     int32_t log_level;                  /* HL_LOG_* */
     /* [auth] */
     char key_file[HL_CONFIG_PATH_MAX];  /* "" = requests are not authenticated */

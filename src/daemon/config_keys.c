@@ -39,13 +39,13 @@ const hl_config_key_t hl_config_keys[] = {
       "no SONAR for this long: the state goes from LOCALIZING to IDLE" },
     { "daemon.compute_window", HL_KEY_I32, F(compute_window), 1, 10000,
       "scans over which STATUS reports the median and 99th percentile compute time" },
-    { "daemon.lost_after", HL_KEY_I32, F(lost_after), 0, 1000000,
+    { "daemon.lost_after", HL_KEY_I32, S(lost_after), 0, 1000000,
       "doubtful scans in a row (rejected, or matched far worse than recent ones) that make the "
       "daemon LOST: each scan then searches the whole map; 0: never" },
-    { "daemon.search_every", HL_KEY_I32, F(search_every), 0, 1000000,
+    { "daemon.search_every", HL_KEY_I32, S(search_every), 0, 1000000,
       "while tracking, also search the whole map every this many scans, to notice a robot "
       "carried away (a sonar's scans are seconds apart); 0: never" },
-    { "daemon.lost_peak_ratio", HL_KEY_DOUBLE, F(lost_peak_ratio), 0, 1,
+    { "daemon.lost_peak_ratio", HL_KEY_DOUBLE, S(lost_peak_ratio), 0, 1,
       "an accepted scan whose vote peak is below this fraction of the recent average is doubtful" },
     { "daemon.log_level", HL_KEY_LEVEL, F(log_level), 0, 0,
       "error, warning, notice, info or debug" },

@@ -115,15 +115,16 @@ static float share(uint32_t part, uint32_t whole)
     return whole ? (float)part / (float)whole : 0.0f;
 }
 
-/* POSE for one scan: @p status is a slam status (with @p step's local search) or one of
- * the global search's (with @p found). */
-static void publish_pose(hl_cycle_t *c, const hl_bus_scan_t *in, const hl_slam_step_t *step,
-                         int8_t status, const hl_reloc_result_t *found)
+/* POSE for one scan: the local search's figures when it was localized, the global
+ * search's when it was searched. */
+static void publish_pose(hl_cycle_t *c, const hl_bus_scan_t *in, const hl_slam_step_t *step)
 {
-    bool localized = status == HL_SLAM_ACCEPTED || status == HL_SLAM_REJECTED_WILD;
-    bool searched = status == HL_BUS_POSE_RELOCALIZED || status == HL_BUS_POSE_LOST;
+    bool localized = step->status == HL_SLAM_ACCEPTED || step->status == HL_SLAM_REJECTED_WILD;
+    bool searched = step->status == HL_SLAM_RELOCALIZED || step->status == HL_SLAM_LOST;
+    const hl_reloc_result_t *found = &step->search;
     hl_bus_pose_t m = {
-        .utime = in->utime, .scan_seq = in->seq, .pose = step->pose, .status = status,
+        .utime = in->utime, .scan_seq = in->seq, .pose = step->pose,
+        .status = hl_bus_pose_status(step->status),
         .confidence = localized ? (float)hl_loc_confidence(&step->loc)
                     : searched ? (float)hl_reloc_confidence(found) : 0.0f,
         .peak = localized ? (int32_t)step->loc.peak : 0,
@@ -138,17 +139,6 @@ static void publish_pose(hl_cycle_t *c, const hl_bus_scan_t *in, const hl_slam_s
     int len = hl_bus_encode_pose(&m, c->buf, sizeof c->buf);
     if (len > 0)
         c->io.emit(c->io.ctx, HL_CH_POSE, c->buf, (size_t)len);
-}
-
-/* The pose a failed update leaves: the estimate moved by odometry, as slam predicts. */
-static hl_pose_t prediction(const hl_cycle_t *c, hl_pose_t odometry)
-{
-    hl_slam_state_t s;
-    hl_slam_get_state(c->slam, &s);
-    if (!s.started)
-        return s.pose;
-    hl_pose_t p = hl_pose_compose(s.pose, hl_pose_between(s.odom, odometry));
-    return hl_pose_in_range(p) ? p : s.pose;
 }
 
 /* The start pose is where the robot stood when the odometry began: a first scan made
@@ -196,25 +186,15 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
 
     uint32_t version = hl_map_version(hl_slam_map(c->slam));
     hl_slam_step_t step;
-    hl_reloc_result_t found = { 0 };
-    int8_t status;
-    if (c->lost) {
-        status = hl_cycle_lost_scan(c, in, prediction(c, in->odometry), false, &step, &found,
-                                    now_us);
-    } else if (c->p.search_every > 0 && c->n.scans % c->p.search_every == 0 &&
-               hl_cycle_kidnapped(c, in, prediction(c, in->odometry), &step, &found, now_us)) {
-        status = HL_BUS_POSE_RELOCALIZED;
-    } else {
-        bool doubtful = hl_cycle_track(c, in, prediction(c, in->odometry), &step);
-        status = (int8_t)step.status;
-        c->doubtful_run = doubtful ? c->doubtful_run + 1 : 0;
-        if (c->p.lost_after > 0 && c->doubtful_run >= c->p.lost_after) {
-            snprintf(what, sizeof what, "%d doubtful scans in a row (daemon.lost_after)",
-                     c->doubtful_run);
-            hl_cycle_enter_lost(c, what, now_us);
-            status = hl_cycle_lost_scan(c, in, step.pose, true, &step, &found, now_us);
-        }
+    hl_status_t st = hl_slam_update(c->slam, &in->scan, in->odometry, &step);
+    if (st != HL_OK) {
+        /* the scan is answered with the prediction (slam.h) */
+        snprintf(what, sizeof what, "SONAR: scan seq %d not localized: %s", in->seq,
+                 hl_status_str(st));
+        hl_cycle_fault(c, NULL, "sonar update", what);
     }
+    hl_cycle_report_recovery(c, in, &step, now_us);
+    hl_slam_status_t status = step.status;
     c->scan_odometry = in->odometry;
     if (!c->have_odometry || in->utime >= c->last_odometry_utime)
         c->odometry = in->odometry;
@@ -223,7 +203,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     c->n.accepted += status == HL_SLAM_ACCEPTED;
     c->n.rejected_wild += status == HL_SLAM_REJECTED_WILD;
     c->n.odometry_only += status == HL_SLAM_ODOMETRY_ONLY;
-    publish_pose(c, in, &step, status, &found);
+    publish_pose(c, in, &step);
     int64_t compute_us = c->io.now_us(c->io.ctx) - t0;
     hl_cycle_record_compute(c, compute_us);
     bool changed = hl_map_version(hl_slam_map(c->slam)) != version;
@@ -235,8 +215,10 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
                hypot((double)step.pose.x_mm - step.predicted.x_mm,
                      (double)step.pose.y_mm - step.predicted.y_mm));
     if (hl_log_enabled(HL_LOG_DEBUG)) {
-        static const char *const names[] = { "ACCEPTED", "REJECTED_WILD", "ODOMETRY_ONLY",
-                                             "RELOCALIZED", "LOST" };
+        static const char *const names[] = {
+            [HL_SLAM_ACCEPTED] = "ACCEPTED", [HL_SLAM_REJECTED_WILD] = "REJECTED_WILD",
+            [HL_SLAM_ODOMETRY_ONLY] = "ODOMETRY_ONLY", [HL_SLAM_RELOCALIZED] = "RELOCALIZED",
+            [HL_SLAM_LOST] = "LOST" };
         /* "changed": the scan went into the map, and counts towards daemon.save_every */
         /* "loops": matches with earlier stops (slam.close_loops): every stop was fitted
          * again and the map drawn again with them; then the scan's compute time, as
@@ -254,7 +236,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
         c->since_save++;
     }
     hl_cycle_maybe_publish_map(c);
-    int8_t state = c->lost ? HL_BUS_STATE_LOST : HL_BUS_STATE_LOCALIZING;
+    int8_t state = hl_slam_lost(c->slam) ? HL_BUS_STATE_LOST : HL_BUS_STATE_LOCALIZING;
     if (c->state != state)
         hl_cycle_set_state(c, state, now_us);
 }

@@ -66,13 +66,6 @@ typedef struct hl_cycle_params {
                                    (cycle_map.c); 0 = no bound in bytes */
     int32_t idle_after_ms;      /* wall time without SONAR before the state is IDLE */
     int32_t compute_window;     /* scans in the compute-time statistics, 1..10000 */
-    int32_t lost_after;         /* doubtful scans in a row that make the daemon lost
-                                   (cycle_lost.c); 0 = never */
-    double lost_peak_ratio;     /* an accepted scan whose peak is below this fraction of
-                                   the recent average is doubtful */
-    int32_t search_every;       /* while tracking, every this many scans also run the
-                                   global search, which notices a robot carried away;
-                                   0 = never */
 } hl_cycle_params_t;
 
 /** Counters, as STATUS reports them. */
@@ -145,7 +138,7 @@ hl_slam_t *hl_cycle_slam(hl_cycle_t *c);
 bool hl_cycle_lost(const hl_cycle_t *c);
 /** How many times the daemon became lost (the robot sounds again for each). */
 uint32_t hl_cycle_lost_epoch(const hl_cycle_t *c);
-/** Forgets the pose (a RELOCALIZE command, a run of rejected scans): @p why is logged. */
+/** Forgets the pose (a RELOCALIZE command): @p why is logged. */
 void hl_cycle_enter_lost(hl_cycle_t *c, const char *why, int64_t now_us);
 /** Stops relocalizing (the robot sounded as often as it may): tracking goes on from the
  *  current estimate, which the ambiguous scans kept following; @p why is logged. */

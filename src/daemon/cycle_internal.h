@@ -49,14 +49,6 @@ struct hl_cycle {
     int n_fault_kinds;
     char last_error[HL_BUS_TEXT_MAX];
 
-    /* lost (cycle_lost.c) */
-    bool lost;
-    uint32_t lost_epoch;            /* times lost was entered */
-    int32_t doubtful_run;           /* doubtful tracking scans in a row (hl_cycle_track) */
-    int32_t accepted_run;           /* ... and well-matched ones while lost */
-    bool have_candidate;            /* the global search found this, to be confirmed */
-    hl_pose_t candidate, candidate_odometry;
-
     hl_bus_scan_t scan;             /* decode target: too big for the stack */
     uint8_t buf[HL_BUS_STATUS_MAX_BYTES + HL_BUS_REPLY_MAX_BYTES + HL_BUS_POSE_BYTES];
 };
@@ -82,34 +74,9 @@ void hl_cycle_map_input(hl_cycle_t *c, size_t len);
 /** Publishes MAP if the map changed and both bounds allow it (cycle_map.c). */
 void hl_cycle_maybe_publish_map(hl_cycle_t *c);
 
-/** Not lost, no candidate, no runs counted (the lost state's bookkeeping, cleared). */
-void hl_cycle_clear_lost(hl_cycle_t *c);
-/**
- * The ordinary cycle on one scan (hl_slam_update; a failure answers @p prediction).
- * @return true when the scan is doubtful: rejected, or accepted with a peak far below
- *         the recent ones (daemon.lost_peak_ratio).
- */
-bool hl_cycle_track(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t prediction,
-                    hl_slam_step_t *step);
-/**
- * While tracking (daemon.search_every): the global search on this scan, and whether it
- * finds the robot somewhere else that explains the scan clearly better than where
- * tracking would put it. If so the daemon is lost with that candidate (to be confirmed by
- * the next scan), @p step holds it and @p found the search, and nothing was tracked.
- */
-bool hl_cycle_kidnapped(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t prediction,
-                        hl_slam_step_t *step, hl_reloc_result_t *found, int64_t now_us);
-/**
- * One scan while lost (cycle_lost.c): confirms the candidate or searches the whole map.
- * @param prediction  the pose to publish when nothing is found.
- * @param tracked     this scan already went through hl_cycle_track (it made the daemon
- *                    lost), with its result in @p step: it is not tracked again.
- * @return the POSE status: HL_SLAM_ACCEPTED (tracking again), HL_BUS_POSE_RELOCALIZED
- *         (a candidate found) or HL_BUS_POSE_LOST; @p step holds the pose (and the local
- *         search of an accepted scan), @p found the search.
- */
-int8_t hl_cycle_lost_scan(hl_cycle_t *c, const hl_bus_scan_t *in, hl_pose_t prediction,
-                          bool tracked, hl_slam_step_t *step, hl_reloc_result_t *found,
-                          int64_t now_us);
+/** What the tracker's recovery did with scan @p in (hl_slam_update's @p step): each
+ *  change of the lost state logged and shown in STATUS (cycle_lost.c). */
+void hl_cycle_report_recovery(hl_cycle_t *c, const hl_bus_scan_t *in,
+                              const hl_slam_step_t *step, int64_t now_us);
 
 #endif

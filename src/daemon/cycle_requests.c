@@ -82,13 +82,13 @@ static void set_pose(hl_cycle_t *c, const hl_bus_command_t *cmd, int64_t now_us)
 {
     char what[HL_BUS_TEXT_MAX];
     hl_pose_t odometry = c->have_scan || c->have_odometry ? c->odometry : cmd->pose;
+    bool was_lost = hl_slam_lost(c->slam);
     if (hl_slam_set_pose(c->slam, cmd->pose, odometry) != HL_OK) {
         hl_cycle_reply(c, cmd->seq, HL_BUS_REPLY_REJECTED_INVALID, "pose out of range");
         return;
     }
-    if (c->lost)
+    if (was_lost)   /* a pose set by hand ends the lost state (slam.h) */
         hl_log(HL_LOG_NOTICE, "no longer lost: the pose was set by hand");
-    hl_cycle_clear_lost(c);
     snprintf(what, sizeof what, "pose set to (%.3f, %.3f) m, %.1f deg; map kept",
              cmd->pose.x_mm / 1000.0, cmd->pose.y_mm / 1000.0, hl_bam_to_sdeg(cmd->pose.theta));
     hl_cycle_reply(c, cmd->seq, HL_BUS_REPLY_ACCEPTED, what);

@@ -80,7 +80,7 @@ void hl_cycle_set_state(hl_cycle_t *c, int8_t state, int64_t now_us)
 {
     (void)now_us;
     /* lost outranks what the robot is doing; a fault or the way out outranks lost */
-    if (c->lost && state != HL_BUS_STATE_FAULT && state != HL_BUS_STATE_STOPPING)
+    if (hl_slam_lost(c->slam) && state != HL_BUS_STATE_FAULT && state != HL_BUS_STATE_STOPPING)
         state = HL_BUS_STATE_LOST;
     if (state != c->state)
         hl_log(HL_LOG_INFO, "state %s -> %s", state_name(c->state), state_name(state));

@@ -264,8 +264,6 @@ static bool cycle_params(const hl_config_t *cfg, hl_cycle_params_t *p)
         .save_every = cfg->save_every, .map_period_ms = cfg->map_period_ms,
         .map_input_ratio = cfg->map_input_ratio,
         .idle_after_ms = cfg->idle_after_ms, .compute_window = cfg->compute_window,
-        .lost_after = cfg->lost_after, .lost_peak_ratio = cfg->lost_peak_ratio,
-        .search_every = cfg->search_every,
     };
     if (!cfg->key_file[0])
         return true;

@@ -83,7 +83,7 @@ static void test_pose(void **state)
     (void)state;
     hl_bus_pose_t p = { .utime = 1000, .scan_seq = 42,
                         .pose = { .x_mm = 1500, .y_mm = -2000, .theta = 16384 },
-                        .status = HL_SLAM_REJECTED_WILD, .confidence = 0.75f, .peak = 300,
+                        .status = HL_BUS_POSE_REJECTED_WILD, .confidence = 0.75f, .peak = 300,
                         .second_peak = 120, .votes = 9000, .search_score = 0.5f,
                         .runner_up = { .x_mm = -1, .y_mm = 2, .theta = 32768 },
                         .runner_up_score = 0.25f };
@@ -102,8 +102,8 @@ static void test_pose(void **state)
 static void test_pose_status_and_state_names(void **state)
 {
     (void)state;
-    assert_string_equal(bridge_pose_status_name(HL_SLAM_ACCEPTED), "ACCEPTED");
-    assert_string_equal(bridge_pose_status_name(HL_SLAM_ODOMETRY_ONLY), "ODOMETRY_ONLY");
+    assert_string_equal(bridge_pose_status_name(HL_BUS_POSE_ACCEPTED), "ACCEPTED");
+    assert_string_equal(bridge_pose_status_name(HL_BUS_POSE_ODOMETRY_ONLY), "ODOMETRY_ONLY");
     assert_string_equal(bridge_pose_status_name(HL_BUS_POSE_RELOCALIZED), "RELOCALIZED");
     assert_string_equal(bridge_pose_status_name(HL_BUS_POSE_LOST), "LOST");
     assert_string_equal(bridge_pose_status_name(5), "UNKNOWN");

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "houghloc-internal/slam_search.h"
 #include "houghloc/slam.h"
 #include "../../tools/lab/testkit/synthroom.h"
 

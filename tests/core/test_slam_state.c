@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "houghloc-internal/slam_search.h"
 #include "slam_walk.h"
 
 /* Every field of two steps, one by one (struct padding is not compared). */
@@ -257,8 +258,8 @@ static void test_set_pose(void **state)
 }
 
 /* A localizer error in the middle of the cycle (a global search over a map whose
- * bounding box needs more raster than max_cells): hl_slam_update returns it and the
- * state and map are as before, started or not. */
+ * bounding box needs more raster than max_cells): hl_slam_update returns it, answers the
+ * prediction, and the state and map are as before, started or not. */
 static void test_failed_update_changes_nothing(void **state)
 {
     (void)state;
@@ -281,7 +282,12 @@ static void test_failed_update_changes_nothing(void **state)
         hl_pose_t moved = { 100, 0, 50 };
         hl_slam_step_t out = { .added = 4242 };
         assert_int_equal(hl_slam_update(s, scan, moved, &out), HL_ERR_CAPACITY);
-        assert_int_equal(out.added, 4242);  /* the step is not written either */
+        /* the step answers the prediction, and nothing went into the map */
+        hl_pose_t predicted = started ? hl_pose_compose(st.pose, hl_pose_between(st.odom, moved))
+                                      : st.pose;
+        assert_int_equal(out.status, HL_SLAM_ODOMETRY_ONLY);
+        assert_int_equal(out.added, 0);
+        assert_memory_equal(&out.pose, &predicted, sizeof predicted);
         assert_unchanged(s, &snap);
         assert_int_equal(hl_map_version(hl_slam_map(s)), 9);
     }

@@ -55,12 +55,12 @@ static void test_one_pose_per_scan(void **state)
         assert_int_equal(out.scan_seq, in->seq);
         assert_true(out.utime == in->utime);
         if (k == 0) {   /* the first scan lands on the start pose: nothing to localize against */
-            assert_int_equal(out.status, HL_SLAM_ODOMETRY_ONLY);
+            assert_int_equal(out.status, HL_BUS_POSE_ODOMETRY_ONLY);
             assert_int_equal(out.pose.x_mm, 1000);
             assert_int_equal(out.pose.y_mm, -2000);
             assert_int_equal(out.pose.theta, 0x4000);
         } else {
-            assert_int_not_equal(out.status, HL_SLAM_ODOMETRY_ONLY);
+            assert_int_not_equal(out.status, HL_BUS_POSE_ODOMETRY_ONLY);
         }
         free(in);
         k++;

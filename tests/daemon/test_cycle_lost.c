@@ -22,8 +22,8 @@ static run_t *start(int32_t lost_after)
 {
     run_t *r = calloc(1, sizeof *r);
     hl_cycle_params_t p = test_params();
-    p.lost_after = lost_after;
-    p.lost_peak_ratio = 0.5;
+    p.slam.lost_after = lost_after;
+    p.slam.lost_peak_ratio = 0.5;
     r->c = capture_cycle(&r->cap, &p);
     assert_non_null(r->c);
     return r;
@@ -115,7 +115,7 @@ static void test_kidnapped_robot_is_found_again(void **state)
             assert_true(out.runner_up_score < out.search_score);
             assert_true(out.confidence > 0.0f);
         }
-        if (found_at >= 0 && out.status == HL_SLAM_ACCEPTED) {
+        if (found_at >= 0 && out.status == HL_BUS_POSE_ACCEPTED) {
             tracking_at = i;
             assert_true(dist_mm(out.pose, tour_pose.pose) < 300);
         }
@@ -157,9 +157,9 @@ static void test_relocalize_command(void **state)
             continue;
         hl_cycle_on_message(r->c, tour[i].ch, tour[i].data, tour[i].len, tour[i].utime);
     }
-    assert_int_equal(nth_pose(r, n0).status, HL_SLAM_ACCEPTED);
+    assert_int_equal(nth_pose(r, n0).status, HL_BUS_POSE_ACCEPTED);
     assert_false(hl_cycle_lost(r->c));
-    assert_int_equal(nth_pose(r, n0 + 1).status, HL_SLAM_ACCEPTED);
+    assert_int_equal(nth_pose(r, n0 + 1).status, HL_BUS_POSE_ACCEPTED);
     assert_int_equal(hl_cycle_lost_epoch(r->c), epoch);
     finish(r);
 }

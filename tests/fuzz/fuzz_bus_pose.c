@@ -16,7 +16,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     /* The ranges bus.h gives. */
     FUZZ_CHECK(m.utime >= 0 && m.scan_seq >= 0 && fuzz_bus_xy_ok(m.pose.x_mm, m.pose.y_mm));
-    FUZZ_CHECK(m.status >= HL_SLAM_ACCEPTED && m.status <= HL_BUS_POSE_LOST);
+    FUZZ_CHECK(m.status >= HL_BUS_POSE_ACCEPTED && m.status <= HL_BUS_POSE_LOST);
     FUZZ_CHECK(m.confidence >= 0.0f && m.confidence <= 1.0f);
     FUZZ_CHECK(m.peak >= 0 && m.second_peak >= 0 && m.votes >= 0);
     FUZZ_CHECK(m.search_score >= 0.0f && m.search_score <= 1.0f);

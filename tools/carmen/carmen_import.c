@@ -136,7 +136,7 @@ static int write_scan(importer_t *im, const carmen_flaser_t *f, int64_t utime,
         return -1;
     if (t) {
         hl_bus_pose_t g = { .utime = utime, .scan_seq = im->seq,
-                            .pose = to_pose(t->x, t->y, t->yaw), .status = HL_SLAM_ACCEPTED };
+                            .pose = to_pose(t->x, t->y, t->yaw), .status = HL_BUS_POSE_ACCEPTED };
         uint8_t gbuf[HL_BUS_POSE_BYTES];
         int glen = hl_bus_encode_pose(&g, gbuf, sizeof gbuf);
         hl_bus_pose_t back;

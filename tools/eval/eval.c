@@ -146,7 +146,7 @@ static int score(hl_runlog_t *r, int rc, const char *in, const char *out, const 
         se += e * e;
         se_odo += e_odo * e_odo;
         max = e > max ? e : max;
-        wild += s->status == HL_SLAM_ACCEPTED && e > WILD_MM;
+        wild += s->status == HL_BUS_POSE_ACCEPTED && e > WILD_MM;
         n++;
         if (!quiet)
             printf("stop %4zu  scan %5d  error %7.0f mm  odometry %7.0f mm\n", n, s->seq, e, e_odo);

@@ -16,8 +16,8 @@
 #include <exception>
 #include <string>
 
+#include "houghloc/bus.h"
 #include "houghloc/fixed.h"
-#include "houghloc/slam.h"
 #include "houghloc/version.h"
 #include "metrics.hpp"
 #include "runlog.h"
@@ -95,7 +95,7 @@ hleval::Pose2 odometry_in_map(const hleval::Pose2 &truth0, const hleval::Pose2 &
 struct Run {
     hleval::Trajectory gt, est;
     std::size_t missing = 0;        // scans with truth but no POSE
-    int status[3] = { 0, 0, 0 };    // HL_SLAM_ACCEPTED, _REJECTED_WILD, _ODOMETRY_ONLY
+    int status[3] = { 0, 0, 0 };    // HL_BUS_POSE_ACCEPTED, _REJECTED_WILD, _ODOMETRY_ONLY
 };
 
 // The scored scans of a loaded run: every SONAR scan with a GROUND_TRUTH pose (and, when
@@ -157,8 +157,8 @@ void print_scores(const Options &o, const Run &run, const hleval::Scores &s)
         std::printf("scans      %zu scored", run.gt.size());
         if (!o.odometry)
             std::printf(" (%d accepted, %d rejected wild, %d odometry only; %zu without POSE)",
-                        run.status[HL_SLAM_ACCEPTED], run.status[HL_SLAM_REJECTED_WILD],
-                        run.status[HL_SLAM_ODOMETRY_ONLY], run.missing);
+                        run.status[HL_BUS_POSE_ACCEPTED], run.status[HL_BUS_POSE_REJECTED_WILD],
+                        run.status[HL_BUS_POSE_ODOMETRY_ONLY], run.missing);
         std::printf("\nalignment  rotation %.2f deg, translation (%.3f, %.3f) m\n",
                     s.alignment.angle * 180 / kPi, s.alignment.tx,
                     s.alignment.ty);
@@ -172,8 +172,8 @@ void print_scores(const Options &o, const Run &run, const hleval::Scores &s)
                 s.ate.rmse, s.rpe.rmse, s.rpe.mean, s.ate.max, run.gt.size(), s.rpe.n);
     if (!o.odometry)
         std::printf(" accepted=%d rejected_wild=%d odometry_only=%d",
-                    run.status[HL_SLAM_ACCEPTED], run.status[HL_SLAM_REJECTED_WILD],
-                    run.status[HL_SLAM_ODOMETRY_ONLY]);
+                    run.status[HL_BUS_POSE_ACCEPTED], run.status[HL_BUS_POSE_REJECTED_WILD],
+                    run.status[HL_BUS_POSE_ODOMETRY_ONLY]);
     std::printf("\n");
 }
 

@@ -69,7 +69,7 @@ struct Truth {
         g.scan_seq = static_cast<int32_t>(seq & 0x7FFFFFFF);
         g.pose = hl_pose_t{static_cast<hl_mm_t>(std::lround(p.x)),
                            static_cast<hl_mm_t>(std::lround(p.y)), hl_bam_from_rad(p.theta)};
-        g.status = HL_SLAM_ACCEPTED;
+        g.status = HL_BUS_POSE_ACCEPTED;
         int len = hl_bus_encode_pose(&g, buf.data(), buf.size());
         if (len < 0)
             log.once("truth-encode", "GROUND_TRUTH: the true pose does not encode (out of "

@@ -177,7 +177,7 @@ void LogWriter::ground_truth(int64_t utime, int32_t seq, const Pose &truth)
     g.utime = utime;
     g.scan_seq = seq;
     g.pose = to_pose(truth);
-    g.status = HL_SLAM_ACCEPTED;
+    g.status = HL_BUS_POSE_ACCEPTED;
     std::vector<uint8_t> gbuf(HL_BUS_POSE_BYTES);
     int len = hl_bus_encode_pose(&g, gbuf.data(), gbuf.size());
     if (len < 0) {

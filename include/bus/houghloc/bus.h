@@ -38,6 +38,7 @@
 
 #include "houghloc/map.h"
 #include "houghloc/scan.h"
+#include "houghloc/slam.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -107,18 +108,23 @@ int hl_bus_encode_odometry(const hl_bus_odometry_t *in, void *buf, size_t cap);
 
 /* ---- POSE (and GROUND_TRUTH) ------------------------------------------------------- */
 
-/* POSE statuses beyond the slam's HL_SLAM_ACCEPTED .. HL_SLAM_ODOMETRY_ONLY (slam.h):
- * the daemon's global search while it is lost (lcmtypes/houghloc_pose_t.lcm). */
-enum {
+/* POSE's status on the wire (lcmtypes/houghloc_pose_t.lcm). */
+typedef enum hl_bus_pose_status {
+    HL_BUS_POSE_ACCEPTED = 0,
+    HL_BUS_POSE_REJECTED_WILD = 1,
+    HL_BUS_POSE_ODOMETRY_ONLY = 2,
     HL_BUS_POSE_RELOCALIZED = 3,
     HL_BUS_POSE_LOST = 4,
-};
+} hl_bus_pose_status_t;
+
+/** The wire's status for the tracker's (slam.h): the one place the two meet. */
+int8_t hl_bus_pose_status(hl_slam_status_t status);
 
 typedef struct hl_bus_pose {
     int64_t utime;
     int32_t scan_seq;
     hl_pose_t pose;
-    int8_t status;              /* HL_SLAM_ACCEPTED .. HL_BUS_POSE_LOST */
+    int8_t status;              /* hl_bus_pose_status_t */
     float confidence;           /* 0..1 */
     int32_t peak;               /* >= 0 */
     int32_t second_peak;        /* >= 0 */

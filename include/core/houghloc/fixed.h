@@ -78,9 +78,9 @@ HL_API void hl_polar_to_xy(int32_t range_mm, hl_bam_t angle, int32_t *x_mm, int3
 HL_API hl_bam_t hl_bam_from_deg(double deg);
 HL_API hl_bam_t hl_bam_from_rad(double rad);
 HL_API double hl_bam_to_deg(hl_bam_t a);   /* in [0, 360) */
-       HL_API double hl_bam_to_rad(hl_bam_t a);   /* in [0, 2 pi) */
-       /** Signed angle in degrees, [-180, 180). */
-       HL_API double hl_bam_to_sdeg(hl_bam_t a);
+HL_API double hl_bam_to_rad(hl_bam_t a);   /* in [0, 2 pi) */
+/** Signed angle in degrees, [-180, 180). */
+HL_API double hl_bam_to_sdeg(hl_bam_t a);
 
 #ifdef __cplusplus
 }

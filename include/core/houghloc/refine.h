@@ -48,7 +48,7 @@ typedef struct hl_refiner hl_refiner_t;
 /** @return NULL on invalid parameters, max_map_vectors of 0, or no memory. */
 HL_API hl_refiner_t *hl_refine_create(const hl_refine_params_t *p, uint32_t max_map_vectors);
 HL_API void hl_refine_destroy(hl_refiner_t *r);   /* accepts NULL */
-       HL_API size_t hl_refine_mem_bytes(const hl_refiner_t *r);
+HL_API size_t hl_refine_mem_bytes(const hl_refiner_t *r);
 
 /**
  * Refines @p start against @p n map vectors.

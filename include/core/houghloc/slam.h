@@ -1,6 +1,15 @@
 /*
- * slam.h - the online cycle of the paper (sections 2 and 7): localize each new scan
- * against the map, then add it to the map at the computed pose.
+ * slam.h - the tracker: the online cycle of the paper (sections 2 and 7), localize each
+ * new scan against the map, then add it to the map at the computed pose; and, not in the
+ * paper, the recovery of a robot whose pose is lost.
+ *
+ * One call, hl_slam_update, is the whole cycle of one scan, in stages (src/core/slam.c):
+ * prepare (echo bearings, surface normals), localize (the Hough vote around the odometry's
+ * prediction, refined), guard (accept or reject), integrate (the scan into the map at the
+ * pose, culled), closure (loop closure's record, matches, fit and redraw); and around
+ * them the recovery (src/core/slam_lost.c), which decides when the robot is lost, searches
+ * the whole map for it while it is, and confirms what the search finds. Its answer is one
+ * status, hl_slam_status_t, and the global search's fields when one ran.
  *
  * Two modes:
  *  - paper:    every localization is accepted and extends the map (the paper's method);
@@ -55,11 +64,36 @@
 extern "C" {
 #endif
 
+/* What became of a scan: the pose it gives, and whether the map took it. */
 typedef enum hl_slam_status {
-    HL_SLAM_ACCEPTED = 0,
-    HL_SLAM_REJECTED_WILD = 1,
-    HL_SLAM_ODOMETRY_ONLY = 2,
+    HL_SLAM_ACCEPTED = 0,       /* localized; the map took the scan */
+    HL_SLAM_REJECTED_WILD = 1,  /* localized, but the guard refused the pose: the estimate
+                                   is the prediction, the map did not take the scan */
+    HL_SLAM_ODOMETRY_ONLY = 2,  /* nothing to localize against (an empty or unmapped
+                                   place: the map took the scan at the prediction), or the
+                                   scan could not be localized (an error return) */
+    HL_SLAM_RELOCALIZED = 3,    /* the global search found the robot, lost or carried
+                                   away, at the step's pose; the next scan must confirm it
+                                   before tracking goes on from there */
+    HL_SLAM_LOST = 4,           /* lost, and the global search found nothing that stands
+                                   out: the pose is a guess (the prediction) */
 } hl_slam_status_t;
+
+/* Why the tracker became lost with a scan (hl_slam_step_t.lost_why). */
+typedef enum hl_slam_lost_why {
+    HL_SLAM_LOST_NOT = 0,       /* it did not */
+    HL_SLAM_LOST_ELSEWHERE = 1, /* the periodic global search (search_every) found the
+                                   robot elsewhere, explaining the scan clearly better */
+    HL_SLAM_LOST_DOUBTFUL = 2,  /* lost_after doubtful scans in a row */
+} hl_slam_lost_why_t;
+
+/* How the tracker found the robot again with a scan (hl_slam_step_t.found_how). */
+typedef enum hl_slam_found_how {
+    HL_SLAM_FOUND_NOT = 0,      /* it did not */
+    HL_SLAM_FOUND_CONFIRMED = 1,/* the scan confirms the global search's candidate */
+    HL_SLAM_FOUND_AGREES = 2,   /* the search puts the robot where tracking does */
+    HL_SLAM_FOUND_TRACKED = 3,  /* a run of scans that tracking matched well */
+} hl_slam_found_how_t;
 
 /* The most turns of a long drive tried each way (long_drive_turns). */
 #define HL_SLAM_MAX_DRIVE_TURNS 4
@@ -155,8 +189,18 @@ typedef struct hl_slam_params {
     hl_bam_t long_drive_turn;   /* ... by multiples of this; default 6 degrees */
     uint16_t long_drive_turns;  /* ... up to this many each way,
                                    1..HL_SLAM_MAX_DRIVE_TURNS; default 2 */
-    hl_reloc_params_t reloc;    /* the global search of hl_slam_relocalize (reloc.h); its
-                                   fine stage uses `loc` */
+    hl_reloc_params_t reloc;    /* the global search (reloc.h); its fine stage uses `loc` */
+    /* Recovery (slam_lost.c): */
+    int32_t lost_after;         /* doubtful scans in a row that make the tracker lost (a
+                                   rejected scan, or an accepted one whose peak is below
+                                   lost_peak_ratio of the recent average); it also ends
+                                   the lost state after that many scans tracked well in a
+                                   row; 0..1000000, 0 (the default): never lost by doubt */
+    double lost_peak_ratio;     /* 0..1; default 0.5 */
+    int32_t search_every;       /* while tracking, every this many scans also run the
+                                   global search: a robot carried away is lost when it
+                                   finds the scan clearly better explained elsewhere;
+                                   0..1000000, 0 (the default): never */
 } hl_slam_params_t;
 
 HL_API void hl_slam_params_default(hl_slam_params_t *p);
@@ -182,12 +226,25 @@ typedef struct hl_slam_step {
     hl_pose_t pose;             /* the estimate after this scan */
     hl_pose_t predicted;        /* last estimate moved by the odometry difference */
     hl_slam_status_t status;
-    hl_loc_result_t loc;        /* valid unless status is ODOMETRY_ONLY */
+    hl_loc_result_t loc;        /* valid when status is ACCEPTED or REJECTED_WILD */
     uint32_t added;             /* vectors added to the map */
     uint32_t loops;             /* matches with earlier stops taken (close_loops); when
                                    any, pose is the fitted one and the map has moved */
     bool turned;                /* the pose is a turned drive's (long_drive_mm), taken
                                    over the tracker's own by the judge, not the guard */
+    /* The global search, when status is RELOCALIZED or LOST: its answer and runner-up
+     * (zero when it had nothing to search) */
+    hl_reloc_result_t search;
+    /* Recovery, for the caller's log: */
+    hl_slam_lost_why_t lost_why;    /* the tracker became lost with this scan ... */
+    int32_t doubtful_run;           /* ... after this many doubtful scans (DOUBTFUL) */
+    hl_pose_t tracked;              /* ... tracking's pose, and its judge's score, */
+    uint32_t tracked_score;         /*     that the search's answer beat (ELSEWHERE) */
+    hl_slam_found_how_t found_how;  /* the tracker found the robot again with this scan */
+    bool dropped_candidate;         /* the scan did not confirm the last search's answer */
+    bool searched_lost;             /* the global search ran because the tracker is lost
+                                       (also when it became lost with this scan) ... */
+    hl_status_t search_status;      /* ... and returned this (HL_OK: see search) */
 } hl_slam_step_t;
 
 typedef struct hl_slam hl_slam_t;
@@ -196,47 +253,43 @@ typedef struct hl_slam hl_slam_t;
 HL_API hl_slam_t *hl_slam_create(const hl_slam_params_t *p);
 HL_API void hl_slam_destroy(hl_slam_t *s);   /* accepts NULL */
 
-       /** Starts over: empty map, the next scan is at @p start. */
-       HL_API void hl_slam_reset(hl_slam_t *s, hl_pose_t start);
+/** Starts over: empty map, the next scan is at @p start. */
+HL_API void hl_slam_reset(hl_slam_t *s, hl_pose_t start);
 
 /**
- * One cycle: predict from @p odometry (the base's dead-reckoned pose when the scan was
- * taken), localize, accept or reject, extend the map.
- * Either the whole cycle happens or nothing changes: on an error return the map, the
- * pose, the odometry reference and the peak average are as they were.
+ * The whole cycle of one scan taken at @p odometry (the base's dead-reckoned pose when
+ * the scan was taken): tracking (predict, localize, accept or reject, extend the map,
+ * close loops) while the tracker knows where the robot is; while it is lost, the global
+ * search and the confirmation of its answer (above). @p out says what became of the scan.
+ * @return HL_OK; HL_ERR_ARG for NULL; HL_ERR_RANGE for a scan hl_scan_check refuses or
+ *         odometry out of range (nothing changes; @p out holds the last estimate, or the
+ *         prediction, as ODOMETRY_ONLY). Another error means tracking could not localize
+ *         the scan (a prediction or a pose out of range, a map too wide for the
+ *         localizer's raster): the map, the estimate, the odometry reference and the peak
+ *         average are as they were, @p out holds the prediction as ODOMETRY_ONLY, and the
+ *         recovery counts the scan as one that was not doubtful.
  */
 HL_API hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
                                 hl_slam_step_t *out);
 
-/**
- * Localizes @p scan against the current map as hl_slam_update would, with @p predicted
- * as the prediction, and changes nothing: no map update, no state.
- * @param[out] loc   the Hough result;  @param[out] pose  the pose (refined if asked).
- * @return as hl_loc_run.
- */
-HL_API hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
-                                    hl_loc_result_t *loc, hl_pose_t *pose);
 HL_API hl_map_t *hl_slam_map(hl_slam_t *s);
 
-/**
- * Where is the robot, heading unknown (the kidnapped robot, reloc.h): the scan at its
- * echo bearings when the params ask, searched over the whole map, the answer refined
- * when the params ask. Changes nothing: adopting the answer is hl_slam_set_pose's.
- * @return as hl_reloc_run.
- */
-HL_API hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_result_t *out);
-/** hl_reloc_judge of @p scan (at its echo bearings when the params ask) at @p pose against
- *  the current map. */
-HL_API uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose);
-/** hl_slam_judge at each of @p poses[0 .. count - 1] into @p scores, the scan prepared
- *  and the map hashed once (hl_reloc_judge_poses). */
-HL_API void hl_slam_judge_poses(hl_slam_t *s, const hl_scan_t *scan, const hl_pose_t *poses,
-                                uint32_t count, uint32_t *scores);
+/** Whether the tracker is lost (searching the whole map with each scan). */
+HL_API bool hl_slam_lost(const hl_slam_t *s);
+/** How many times it became lost since it was created (a robot sounds again for each). */
+HL_API uint32_t hl_slam_lost_epoch(const hl_slam_t *s);
+/** Makes the tracker lost now (an operator who knows the robot was moved): the next scans
+ *  search the whole map. */
+HL_API void hl_slam_lose(hl_slam_t *s);
+/** Ends the lost state without a pose found: tracking goes on from the estimate (a robot
+ *  that cannot move to see more). Nothing happens when it is not lost. */
+HL_API void hl_slam_stop_searching(hl_slam_t *s);
 
 /**
  * Moves the estimate to @p pose and takes @p odometry as the base's odometry there
- * (an operator placing the robot by hand). The map is kept. Before the first scan this
- * sets the start pose instead, and the first scan's odometry is still the reference.
+ * (an operator placing the robot by hand); the tracker is no longer lost. The map is
+ * kept. Before the first scan this sets the start pose instead, and the first scan's
+ * odometry is still the reference.
  * @return HL_ERR_RANGE when a position is out of range (nothing changes).
  */
 HL_API hl_status_t hl_slam_set_pose(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry);

@@ -8,6 +8,7 @@
 
 #include "experiment.hpp"
 #include "stats.hpp"
+#include "houghloc-internal/slam_search.h"
 
 namespace hlexp {
 

@@ -14,6 +14,7 @@
 #include "../experiments/dataset.hpp"
 #include "inputs.hpp"
 #include "houghloc/map.h"
+#include "houghloc-internal/slam_search.h"
 #include "houghloc/slam.h"
 
 namespace hlkid {

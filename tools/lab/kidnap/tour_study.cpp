@@ -24,6 +24,7 @@ extern "C" {
 }
 
 #include "houghloc/map.h"
+#include "houghloc-internal/slam_search.h"
 #include "houghloc/slam.h"
 #include "inputs.hpp"
 

@@ -1,0 +1,300 @@
+/*
+ * slam_lost.c - hl_slam_update: tracking, and the recovery of a robot whose pose is lost.
+ *
+ * The tracker is lost when the global search, run on every search_every-th scan while
+ * tracking, finds the robot clearly elsewhere (it was carried away: tracking may match a
+ * wrong place of a corridor well enough); after lost_after doubtful scans in a row
+ * (rejected, or accepted with a peak below lost_peak_ratio of the recent average: the
+ * estimate drifted off the map, or the robot entered unmapped space); or when told
+ * (hl_slam_lose). While lost:
+ *  - a scan with no candidate runs the global search. A pose found (distinct from the
+ *    runner-up) becomes the candidate: RELOCALIZED. Otherwise the scan is tracked as
+ *    always (the robot may only have entered space the map does not cover yet, where
+ *    tracking extends the map) and is LOST, with the search's best and runner-up so that
+ *    a client sees the ambiguity; lost_after acceptances in a row end the lost state;
+ *  - a scan with a candidate is localized around the candidate moved by the odometry
+ *    since (the ordinary local search): when that agrees (within wild_mm, a distinct
+ *    peak, enough votes), the estimate is set there and the scan is tracked; accepted,
+ *    tracking resumes. Otherwise the candidate is dropped and this scan runs the search.
+ * A found pose wins over tracking: a kidnapped robot's tracking may lock onto a wrong
+ * place once the recent peaks have fallen (slam.h), and the search is what notices.
+ */
+#include "slam_internal.h"
+
+/* Scans tracking must match well in a row to end the lost state when lost_after is 0
+ * (lost only when told): its recommended value. */
+#define LOST_EXIT_RUN 2
+
+/* One scan through the recovery: its inputs, and what the stages found so far. */
+typedef struct cycle {
+    hl_slam_t *s;
+    const hl_scan_t *scan;
+    hl_pose_t odometry;
+    hl_pose_t prediction;   /* the pose a scan tracking cannot localize gets */
+    hl_slam_step_t step;
+    hl_reloc_result_t found;    /* the global search's answer, when one ran */
+    hl_status_t error;      /* tracking's, when it could not localize the scan */
+    /* for the caller's log (hl_slam_step_t) */
+    hl_slam_lost_why_t lost_why;
+    int32_t doubtful_run;
+    hl_pose_t tracked;
+    uint32_t tracked_score;
+    hl_slam_found_how_t found_how;
+    bool dropped_candidate, searched_lost;
+    hl_status_t search_status;
+} cycle_t;
+
+static void clear_lost(hl_slam_t *s)
+{
+    uint32_t epoch = s->recovery.epoch;
+    s->recovery = (hl_slam_recovery_t){ .epoch = epoch };
+}
+
+static void enter_lost(hl_slam_t *s)
+{
+    s->recovery.epoch++;
+    clear_lost(s);
+    s->recovery.lost = true;
+}
+
+bool hl_slam_lost(const hl_slam_t *s)
+{
+    return s && s->recovery.lost;
+}
+
+uint32_t hl_slam_lost_epoch(const hl_slam_t *s)
+{
+    return s ? s->recovery.epoch : 0;
+}
+
+void hl_slam_lose(hl_slam_t *s)
+{
+    if (s)
+        enter_lost(s);
+}
+
+void hl_slam_stop_searching(hl_slam_t *s)
+{
+    if (s && s->recovery.lost)
+        clear_lost(s);
+}
+
+static int64_t dist2(hl_pose_t a, hl_pose_t b)
+{
+    int64_t dx = (int64_t)a.x_mm - b.x_mm, dy = (int64_t)a.y_mm - b.y_mm;
+    return dx * dx + dy * dy;
+}
+
+/* Two poses within wild_mm and the search's distinct_theta of each other. */
+static bool agree(const hl_slam_t *s, hl_pose_t a, hl_pose_t b)
+{
+    int32_t dt = hl_bam_diff(a.theta, b.theta);
+    return dist2(a, b) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
+           (dt < 0 ? -dt : dt) < s->p.reloc.distinct_theta;
+}
+
+/* The last estimate moved by the odometry since (the start pose before the first scan;
+ * the last estimate when the move leaves the coordinate range). */
+static hl_pose_t prediction(const hl_slam_t *s, hl_pose_t odometry)
+{
+    if (!s->started)
+        return s->pose;
+    hl_pose_t p = hl_pose_compose(s->pose, hl_pose_between(s->odom, odometry));
+    return hl_pose_in_range(p) ? p : s->pose;
+}
+
+/* Tracking on this scan (a failure answers the prediction). @return true when the scan
+ * is doubtful: rejected, or accepted with a peak far below the recent ones. */
+static bool track(cycle_t *c)
+{
+    hl_slam_t *s = c->s;
+    uint32_t peak_avg = s->peak_avg;
+    hl_status_t st = hl_slam_track(s, c->scan, c->odometry, &c->step);
+    if (st != HL_OK) {
+        c->error = st;
+        c->step = (hl_slam_step_t){ .pose = c->prediction, .status = HL_SLAM_ODOMETRY_ONLY };
+        return false;
+    }
+    /* A robot carried away matches the map far worse at its predicted pose; the guard
+     * rejects the first such scans, but its recent-peak average falls with each (slam.h,
+     * so that the map can follow a robot into unmapped space), and it soon accepts them */
+    bool low = peak_avg > 0 && c->step.loc.peak < s->p.lost_peak_ratio * (double)peak_avg;
+    return c->step.status == HL_SLAM_REJECTED_WILD ||
+           (c->step.status == HL_SLAM_ACCEPTED && low);
+}
+
+/* Where tracking's local search would put this scan from @p from, without changing
+ * anything; false (and @p from in @p out) when it finds nothing. */
+static bool tracked_pose(cycle_t *c, hl_pose_t from, hl_pose_t *out)
+{
+    hl_loc_result_t loc;
+    if (hl_slam_localize(c->s, c->scan, from, &loc, out) == HL_OK)
+        return true;
+    *out = from;
+    return false;
+}
+
+static void set_candidate(cycle_t *c, hl_pose_t pose)
+{
+    c->s->recovery.have_candidate = true;
+    c->s->recovery.candidate = pose;
+    c->s->recovery.candidate_odometry = c->odometry;
+}
+
+/* The ordinary local search around the candidate moved by the odometry since: does this
+ * scan agree with it? */
+static bool confirms(cycle_t *c, hl_pose_t *predicted)
+{
+    const hl_slam_t *s = c->s;
+    *predicted = hl_pose_compose(s->recovery.candidate,
+                                 hl_pose_between(s->recovery.candidate_odometry, c->odometry));
+    if (!hl_pose_in_range(*predicted))
+        return false;
+    hl_loc_result_t loc;
+    hl_pose_t pose;
+    if (hl_slam_localize(c->s, c->scan, *predicted, &loc, &pose) != HL_OK)
+        return false;
+    return dist2(pose, *predicted) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
+           hl_loc_confidence(&loc) >= s->p.min_confidence && loc.votes >= s->p.min_votes;
+}
+
+/* The global search while lost: true with a candidate. */
+static bool search(cycle_t *c)
+{
+    c->searched_lost = true;
+    c->search_status = hl_slam_relocalize(c->s, c->scan, &c->found);
+    if (c->search_status != HL_OK) {
+        c->found = (hl_reloc_result_t){ 0 };
+        return false;
+    }
+    if (!c->found.found)
+        return false;
+    set_candidate(c, c->found.pose);
+    return true;
+}
+
+static hl_slam_status_t found_again(cycle_t *c, hl_slam_found_how_t how,
+                                    hl_slam_status_t status)
+{
+    clear_lost(c->s);
+    c->found_how = how;
+    return status;
+}
+
+/* One scan while lost: confirms the candidate or searches the whole map. @p tracked:
+ * this scan was already tracked (it made the tracker lost), with its result in c->step. */
+static hl_slam_status_t lost_scan(cycle_t *c, bool tracked)
+{
+    hl_slam_t *s = c->s;
+    if (!tracked)
+        c->step = (hl_slam_step_t){ .pose = c->prediction, .status = HL_SLAM_ODOMETRY_ONLY };
+    c->found = (hl_reloc_result_t){ 0 };
+    hl_pose_t predicted;
+    if (s->recovery.have_candidate && confirms(c, &predicted)) {
+        hl_slam_place(s, predicted, c->odometry);
+        if (hl_slam_track(s, c->scan, c->odometry, &c->step) == HL_OK &&
+            c->step.status == HL_SLAM_ACCEPTED)
+            return found_again(c, HL_SLAM_FOUND_CONFIRMED, HL_SLAM_ACCEPTED);
+    }
+    c->dropped_candidate = s->recovery.have_candidate;
+    s->recovery.have_candidate = false;
+    if (search(c)) {
+        /* Where tracking would put this scan: when the search agrees, the robot was not
+         * carried away (it entered a part of the map seen less, or turned a corner) */
+        hl_pose_t local = c->step.pose;
+        bool have_local = tracked ? c->step.status != HL_SLAM_ODOMETRY_ONLY
+                                  : tracked_pose(c, c->prediction, &local);
+        if (have_local && agree(s, local, c->found.pose)) {
+            s->recovery.have_candidate = false;
+            if (!tracked)
+                track(c);
+            return found_again(c, HL_SLAM_FOUND_AGREES, c->step.status);
+        }
+        c->step.pose = c->found.pose;
+        return HL_SLAM_RELOCALIZED;
+    }
+    /* Nothing stands out: the robot may just have entered space the map does not cover
+     * yet (slam.h), where tracking extends the map as it always does; a run of scans it
+     * tracks well ends the lost state. */
+    if (tracked)
+        return HL_SLAM_LOST;
+    bool doubtful = track(c);
+    s->recovery.accepted_run = c->step.status == HL_SLAM_ACCEPTED && !doubtful
+                                   ? s->recovery.accepted_run + 1 : 0;
+    if (s->recovery.accepted_run >= (s->p.lost_after > 0 ? s->p.lost_after : LOST_EXIT_RUN))
+        return found_again(c, HL_SLAM_FOUND_TRACKED, HL_SLAM_ACCEPTED);
+    return HL_SLAM_LOST;
+}
+
+/* While tracking (search_every): the global search on this scan, and whether it finds
+ * the robot somewhere else that explains the scan clearly better than where tracking
+ * would put it. If so the tracker is lost with that candidate, to be confirmed by the
+ * next scan, and nothing was tracked. */
+static bool kidnapped(cycle_t *c)
+{
+    hl_slam_t *s = c->s;
+    c->found = (hl_reloc_result_t){ 0 };
+    if (hl_slam_relocalize(s, c->scan, &c->found) != HL_OK || !c->found.found)
+        return false;
+    hl_pose_t local;
+    tracked_pose(c, c->prediction, &local);
+    if (agree(s, local, c->found.pose))
+        return false;
+    uint32_t here = hl_slam_judge(s, c->scan, local);
+    if (here > s->p.reloc.max_ratio * c->found.score)
+        return false;   /* tracking's pose explains the scan about as well: keep it */
+    enter_lost(s);
+    c->lost_why = HL_SLAM_LOST_ELSEWHERE;
+    c->tracked = local;
+    c->tracked_score = here;
+    set_candidate(c, c->found.pose);
+    c->step = (hl_slam_step_t){ .pose = c->found.pose, .status = HL_SLAM_ODOMETRY_ONLY };
+    return true;
+}
+
+/* Tracking, with the recovery's watch over it: the periodic search, the doubtful run. */
+static hl_slam_status_t tracking_scan(cycle_t *c, uint64_t scan_index)
+{
+    hl_slam_t *s = c->s;
+    if (s->p.search_every > 0 && scan_index % (uint64_t)s->p.search_every == 0 &&
+        kidnapped(c))
+        return HL_SLAM_RELOCALIZED;
+    bool doubtful = track(c);
+    s->recovery.doubtful_run = doubtful ? s->recovery.doubtful_run + 1 : 0;
+    if (s->p.lost_after == 0 || s->recovery.doubtful_run < s->p.lost_after)
+        return c->step.status;
+    c->doubtful_run = s->recovery.doubtful_run;
+    c->lost_why = HL_SLAM_LOST_DOUBTFUL;
+    enter_lost(s);
+    return lost_scan(c, true);
+}
+
+hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
+                           hl_slam_step_t *out)
+{
+    if (!s || !scan || !out)
+        return HL_ERR_ARG;
+    if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(odometry)) {
+        *out = (hl_slam_step_t){ .pose = s->pose, .predicted = s->pose,
+                                 .status = HL_SLAM_ODOMETRY_ONLY };
+        return HL_ERR_RANGE;
+    }
+    cycle_t c = { .s = s, .scan = scan, .odometry = odometry,
+                  .prediction = prediction(s, odometry) };
+    uint64_t scan_index = s->scans++;
+    hl_slam_status_t status = s->recovery.lost ? lost_scan(&c, false)
+                                               : tracking_scan(&c, scan_index);
+    *out = c.step;
+    out->status = status;
+    if (status == HL_SLAM_RELOCALIZED || status == HL_SLAM_LOST)
+        out->search = c.found;
+    out->lost_why = c.lost_why;
+    out->doubtful_run = c.doubtful_run;
+    out->tracked = c.tracked;
+    out->tracked_score = c.tracked_score;
+    out->found_how = c.found_how;
+    out->dropped_candidate = c.dropped_candidate;
+    out->searched_lost = c.searched_lost;
+    out->search_status = c.search_status;
+    return c.error;
+}

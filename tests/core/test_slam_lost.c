@@ -1,0 +1,204 @@
+/* Tests for src/core/slam_lost.c: the tracker's recovery through hl_slam_update alone, as a
+ * program embedding the library meets it. A robot told it is lost is found where it is;
+ * a robot carried to another mapped place is noticed by the periodic global search, or
+ * after a run of doubtful scans, relocalized and confirmed by the next scan; a pose set by
+ * hand or hl_slam_stop_searching ends the lost state; the parameters are checked. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "houghloc/slam.h"
+#include "slam_walk.h"
+
+/* Steps of the walk that make the map before anything happens. */
+#define MAPPED 30
+
+typedef struct run {
+    walk_t *w;
+    hl_slam_t *s;
+    hl_scan_t *scan;
+} run_t;
+
+static run_t start(uint64_t seed, int32_t lost_after, int32_t search_every)
+{
+    run_t r = { .w = make_walk(seed), .scan = malloc(sizeof *r.scan) };
+    hl_slam_params_t p;
+    ray_sensor_defaults(&p);
+    p.lost_after = lost_after;
+    p.search_every = search_every;
+    r.s = hl_slam_create(&p);
+    assert_non_null(r.s);
+    hl_slam_reset(r.s, r.w->truth[0]);
+    return r;
+}
+
+static void finish(run_t *r)
+{
+    hl_slam_destroy(r->s);
+    free(r->scan);
+    free(r->w);
+}
+
+/* One scan sounded at @p truth, the base's odometry saying @p odometry. */
+static hl_slam_step_t sound(run_t *r, hl_pose_t truth, hl_pose_t odometry)
+{
+    sr_sound(&r->w->room, truth, 128, 8000, 15, r->scan);
+    hl_slam_step_t out;
+    assert_int_equal(hl_slam_update(r->s, r->scan, odometry, &out), HL_OK);
+    return out;
+}
+
+static void map_the_walk(run_t *r)
+{
+    for (int i = 0; i < MAPPED; i++)
+        sound(r, r->w->truth[i], r->w->odom[i]);
+    assert_false(hl_slam_lost(r->s));
+}
+
+/* The step of the walk farthest from where it stands after MAPPED steps: where a
+ * kidnapper sets the robot down, in the part of the room the map knows. */
+static int far_step(const run_t *r)
+{
+    int best = 0;
+    for (int i = 0; i < MAPPED - 5; i++)
+        if (dist(r->w->truth[i], r->w->truth[MAPPED - 1]) >
+            dist(r->w->truth[best], r->w->truth[MAPPED - 1]))
+            best = i;
+    assert_true(dist(r->w->truth[best], r->w->truth[MAPPED - 1]) > 1500);
+    return best;
+}
+
+/* Told it is lost where it stands: the next scan searches, finds the robot where
+ * tracking puts it too, and tracking goes on. */
+static void test_lost_by_command_found_in_place(void **state)
+{
+    (void)state;
+    run_t r = start(21, 0, 0);
+    map_the_walk(&r);
+    hl_slam_lose(r.s);
+    assert_true(hl_slam_lost(r.s));
+    assert_int_equal(hl_slam_lost_epoch(r.s), 1);
+    hl_slam_step_t out = sound(&r, r.w->truth[MAPPED], r.w->odom[MAPPED]);
+    assert_true(out.searched_lost);
+    assert_int_equal(out.search_status, HL_OK);
+    assert_int_equal(out.found_how, HL_SLAM_FOUND_AGREES);
+    assert_int_equal(out.status, HL_SLAM_ACCEPTED);
+    assert_false(hl_slam_lost(r.s));
+    assert_true(dist(out.pose, r.w->truth[MAPPED]) < 150);
+    finish(&r);
+}
+
+/* Carried from the end of the walk to a far step with the wheels still: the periodic
+ * search puts the scan there (RELOCALIZED, lost), and the next scan, a step further,
+ * confirms it. */
+static void test_carried_away_noticed_by_the_search(void **state)
+{
+    (void)state;
+    run_t r = start(22, 0, 1);
+    map_the_walk(&r);
+    int k = far_step(&r);
+    hl_pose_t still = r.w->odom[MAPPED - 1];
+    hl_slam_step_t out = sound(&r, r.w->truth[k], still);
+    assert_int_equal(out.status, HL_SLAM_RELOCALIZED);
+    assert_int_equal(out.lost_why, HL_SLAM_LOST_ELSEWHERE);
+    assert_true(out.search.found);
+    assert_true(out.search.score > out.tracked_score);
+    assert_true(dist(out.pose, r.w->truth[k]) < 300);
+    assert_true(hl_slam_lost(r.s));
+
+    /* the next step of the walk, the odometry moved by it */
+    hl_pose_t moved = hl_pose_compose(still, hl_pose_between(r.w->truth[k], r.w->truth[k + 1]));
+    out = sound(&r, r.w->truth[k + 1], moved);
+    assert_int_equal(out.found_how, HL_SLAM_FOUND_CONFIRMED);
+    assert_int_equal(out.status, HL_SLAM_ACCEPTED);
+    assert_false(hl_slam_lost(r.s));
+    assert_true(dist(out.pose, r.w->truth[k + 1]) < 300);
+    finish(&r);
+}
+
+/* The same kidnap without the periodic search: tracking rejects the scans (wild), and
+ * after lost_after of them in a row the tracker is lost and searches on that scan. */
+static void test_doubtful_run_makes_it_lost(void **state)
+{
+    (void)state;
+    run_t r = start(22, 2, 0);
+    map_the_walk(&r);
+    int k = far_step(&r);
+    hl_pose_t still = r.w->odom[MAPPED - 1];
+    hl_slam_step_t out = sound(&r, r.w->truth[k], still);
+    assert_int_equal(out.status, HL_SLAM_REJECTED_WILD);
+    assert_false(hl_slam_lost(r.s));
+    out = sound(&r, r.w->truth[k], still);
+    assert_int_equal(out.lost_why, HL_SLAM_LOST_DOUBTFUL);
+    assert_int_equal(out.doubtful_run, 2);
+    assert_true(out.searched_lost);
+    assert_int_equal(out.status, HL_SLAM_RELOCALIZED);
+    assert_true(dist(out.pose, r.w->truth[k]) < 300);
+    assert_int_equal(hl_slam_lost_epoch(r.s), 1);
+    finish(&r);
+}
+
+/* A pose set by hand ends the lost state, as does giving up the search; each entry
+ * counts in the epoch. */
+static void test_set_pose_and_stop_searching_end_it(void **state)
+{
+    (void)state;
+    run_t r = start(23, 0, 0);
+    map_the_walk(&r);
+    hl_slam_lose(r.s);
+    assert_int_equal(hl_slam_set_pose(r.s, r.w->truth[MAPPED - 1], r.w->odom[MAPPED - 1]),
+                     HL_OK);
+    assert_false(hl_slam_lost(r.s));
+    hl_slam_lose(r.s);
+    hl_slam_stop_searching(r.s);
+    assert_false(hl_slam_lost(r.s));
+    hl_slam_stop_searching(r.s);    /* not lost: nothing happens */
+    assert_int_equal(hl_slam_lost_epoch(r.s), 2);
+    /* and tracking goes on from the estimate */
+    hl_slam_step_t out = sound(&r, r.w->truth[MAPPED], r.w->odom[MAPPED]);
+    assert_int_equal(out.status, HL_SLAM_ACCEPTED);
+    assert_int_equal(out.found_how, HL_SLAM_FOUND_NOT);
+    assert_false(out.searched_lost);
+    finish(&r);
+}
+
+static void test_params_checked(void **state)
+{
+    (void)state;
+    hl_slam_params_t p;
+    hl_slam_params_default(&p);
+    assert_null(hl_slam_params_error(&p));
+    assert_int_equal(p.lost_after, 0);      /* off until the search is safe to trust */
+    assert_int_equal(p.search_every, 0);
+    p.lost_after = -1;
+    assert_non_null(hl_slam_params_error(&p));
+    hl_slam_params_default(&p);
+    p.lost_peak_ratio = 1.5;
+    assert_non_null(hl_slam_params_error(&p));
+    hl_slam_params_default(&p);
+    p.search_every = 1000001;
+    assert_non_null(hl_slam_params_error(&p));
+    assert_null(hl_slam_create(&p));
+    /* NULL is safe */
+    assert_false(hl_slam_lost(NULL));
+    assert_int_equal(hl_slam_lost_epoch(NULL), 0);
+    hl_slam_lose(NULL);
+    hl_slam_stop_searching(NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lost_by_command_found_in_place),
+        cmocka_unit_test(test_carried_away_noticed_by_the_search),
+        cmocka_unit_test(test_doubtful_run_makes_it_lost),
+        cmocka_unit_test(test_set_pose_and_stop_searching_end_it),
+        cmocka_unit_test(test_params_checked),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
