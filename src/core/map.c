@@ -29,31 +29,86 @@ struct hl_map {
     uint16_t *support;      /* [capacity] how many later readings confirmed each vector */
     bool crowd;             /* cull the most crowded of `choices` instead (needs the
                                density bound's index; support and near unallocated) */
-    hl_mapsq_t crowd_sq;    /* the crowding cull's squares (hl_map_set_crowding's
-                               square_mm); unallocated when it counts the density
+    hl_mapsq_t crowd_sq;    /* the crowding cull's squares (crowd_square_mm);
+                               unallocated when it counts the density
                                bound's place and the 8 around it */
     hl_cellhash_t near;     /* the map by cells of confirm_mm, rebuilt for each scan */
 };
 
-hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed)
+void hl_map_params_default(hl_map_params_t *p)
 {
-    if (capacity < 1 || capacity > HL_MAP_MAX_CAPACITY)
+    *p = (hl_map_params_t){ .capacity = HL_MAP_DEFAULT_CAPACITY, .seed = 1, .per_place = 0,
+                            .square_mm = 50, .cull_choices = 1, .confirm_mm = 100,
+                            .cull_crowded = false, .crowd_square_mm = 0 };
+}
+
+static bool square_ok(int32_t mm)
+{
+    return mm >= HL_MAP_MIN_SQUARE_MM && mm <= HL_MAP_MAX_SQUARE_MM;
+}
+
+const char *hl_map_params_error(const hl_map_params_t *p)
+{
+    if (!p)
+        return "no map parameters";
+    if (p->capacity < 1 || p->capacity > HL_MAP_MAX_CAPACITY)
+        return "map capacity must be in 1..1048576";
+    if (p->per_place > HL_MAP_MAX_PER_PLACE)
+        return "the density bound (per place) must be in 0..1000";
+    if (p->per_place > 0 && !square_ok(p->square_mm))
+        return "the density bound's square must be in 10..1000 mm";
+    if (p->cull_choices < 1 || p->cull_choices > HL_MAP_MAX_CHOICES)
+        return "the cull's choices must be in 1..64";
+    if (p->cull_choices > 1 && !p->cull_crowded && (p->confirm_mm < 1 ||
+                                                    p->confirm_mm > HL_MAP_MAX_SQUARE_MM))
+        return "the evidence cull's confirm distance must be in 1..1000 mm";
+    if (p->crowd_square_mm != 0 && !square_ok(p->crowd_square_mm))
+        return "the crowding cull's square must be 0 or in 10..1000 mm";
+    if (p->cull_crowded && (p->cull_choices < 2 || p->per_place == 0))
+        return "the crowding cull needs 2 or more choices and a density bound";
+    return NULL;
+}
+
+static bool set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place);
+static bool set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm);
+static bool set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm);
+
+hl_map_t *hl_map_create_with(const hl_map_params_t *p)
+{
+    if (hl_map_params_error(p))
         return NULL;
     hl_map_t *map = calloc(1, sizeof *map);
     if (!map)
         return NULL;
-    map->vectors = calloc(capacity, sizeof *map->vectors);
-    map->stamps = calloc(capacity, sizeof *map->stamps);
+    map->vectors = calloc(p->capacity, sizeof *map->vectors);
+    map->stamps = calloc(p->capacity, sizeof *map->stamps);
     if (!map->vectors || !map->stamps) {
         free(map->vectors);
         free(map->stamps);
         free(map);
         return NULL;
     }
-    map->capacity = capacity;
+    map->capacity = p->capacity;
     map->choices = 1;
-    hl_rng_seed(&map->rng, seed);
+    hl_rng_seed(&map->rng, p->seed);
+    bool ok = p->per_place == 0 || set_density(map, p->square_mm, p->per_place);
+    if (ok && p->cull_choices > 1)
+        ok = p->cull_crowded ? set_crowding(map, p->cull_choices, p->crowd_square_mm)
+                             : set_evidence(map, p->cull_choices, p->confirm_mm);
+    if (!ok) {
+        hl_map_destroy(map);
+        return NULL;
+    }
     return map;
+}
+
+hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed)
+{
+    hl_map_params_t p;
+    hl_map_params_default(&p);
+    p.capacity = capacity;
+    p.seed = seed;
+    return hl_map_create_with(&p);
 }
 
 void hl_map_destroy(hl_map_t *map)
@@ -111,31 +166,16 @@ void hl_map_swap(hl_map_t *a, hl_map_t *b)
     a->version = newer;
 }
 
-hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm)
+/* The evidence cull's support counts and neighbour hash (create time: the params were
+ * checked, the map is empty). @return false when memory is short. */
+static bool set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm)
 {
-    if (!map)
-        return HL_ERR_ARG;
-    if (choices < 1 || choices > HL_MAP_MAX_CHOICES ||
-        (choices > 1 && (confirm_mm < 1 || confirm_mm > HL_MAP_MAX_SQUARE_MM)))
-        return HL_ERR_RANGE;
-    hl_cellhash_free(&map->near);
-    free(map->support);
-    map->support = NULL;
-    map->choices = 1;
-    map->crowd = false;
-    hl_mapsq_free(&map->crowd_sq);
-    if (choices == 1)
-        return HL_OK;
     map->support = calloc(map->capacity, sizeof *map->support);
-    if (!map->support || !hl_cellhash_init(&map->near, confirm_mm, map->capacity)) {
-        hl_cellhash_free(&map->near);
-        free(map->support);
-        map->support = NULL;
-        return HL_ERR_NOMEM;
-    }
+    if (!map->support || !hl_cellhash_init(&map->near, confirm_mm, map->capacity))
+        return false;
     map->choices = choices;
     map->confirm_mm = confirm_mm;
-    return HL_OK;
+    return true;
 }
 
 /* Counts, for every map vector, the vectors of @p v[0 .. n - 1] (one scan) that confirm
@@ -175,27 +215,14 @@ static uint32_t least_confirmed(hl_map_t *map)
     return victim;
 }
 
-hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm)
+/* The crowding cull (create time, after the density bound). */
+static bool set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm)
 {
-    if (!map)
-        return HL_ERR_ARG;
-    if (choices < 2 || choices > HL_MAP_MAX_CHOICES || !map->per_place ||
-        (square_mm != 0 &&
-         (square_mm < HL_MAP_MIN_SQUARE_MM || square_mm > HL_MAP_MAX_SQUARE_MM)))
-        return HL_ERR_RANGE;
-    hl_status_t st = hl_map_set_evidence(map, 1, 0);    /* one cull at a time */
-    if (st != HL_OK)
-        return st;
-    if (square_mm > 0) {
-        if (!hl_mapsq_init(&map->crowd_sq, map->capacity, square_mm)) {
-            hl_mapsq_free(&map->crowd_sq);
-            return HL_ERR_NOMEM;
-        }
-        hl_mapsq_rebuild(&map->crowd_sq, map->vectors, map->count);
-    }
+    if (square_mm > 0 && !hl_mapsq_init(&map->crowd_sq, map->capacity, square_mm))
+        return false;
     map->choices = choices;
     map->crowd = true;
-    return HL_OK;
+    return true;
 }
 
 /* How many map vectors share slot @p c's crowding square, or else its place or one of the
@@ -237,26 +264,13 @@ static uint32_t most_crowded(hl_map_t *map)
     return victim;
 }
 
-hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place)
+/* The density bound's place index (create time). */
+static bool set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place)
 {
-    if (!map)
-        return HL_ERR_ARG;
-    if (per_place > HL_MAP_MAX_PER_PLACE ||
-        (per_place > 0 && (square_mm < HL_MAP_MIN_SQUARE_MM || square_mm > HL_MAP_MAX_SQUARE_MM)))
-        return HL_ERR_RANGE;
-    hl_mapsq_free(&map->places);
-    map->per_place = 0;
-    if (map->crowd)         /* the crowding cull reads the places: back to uniform */
-        hl_map_set_evidence(map, 1, 0);
-    if (per_place == 0)
-        return HL_OK;
-    if (!hl_mapsq_init(&map->places, map->capacity, square_mm)) {
-        hl_mapsq_free(&map->places);
-        return HL_ERR_NOMEM;
-    }
-    hl_mapsq_rebuild(&map->places, map->vectors, map->count);
+    if (!hl_mapsq_init(&map->places, map->capacity, square_mm))
+        return false;
     map->per_place = per_place;
-    return HL_OK;
+    return true;
 }
 
 /* Writes *v into slot `slot` (below count), keeping the place index in step. */

@@ -1,6 +1,6 @@
 /*
  * mapsq.h (private) - which map slots hold a vector of a given place and side: the
- * index behind the map's density bound (map.h, hl_map_set_density).
+ * index behind the map's density bound (map.h, hl_map_params_t).
  *
  * A "place" is a square of square_mm and an eighth of a turn of normals (the side the
  * surface was seen from). Slots are chained per hash bucket in ascending slot order, so

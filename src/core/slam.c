@@ -18,7 +18,9 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     if (!s)
         return NULL;
     s->p = *p;
-    s->map = hl_map_create(p->map_capacity, p->seed);
+    hl_map_params_t mp;
+    hl_slam_map_params(p, &mp);
+    s->map = hl_map_create_with(&mp);
     /* The localizer only ever sees this map: one bound for both (slam.h). */
     hl_loc_params_t lp = p->loc;
     lp.max_map_vectors = p->map_capacity;
@@ -31,9 +33,8 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->closure = p->close_loops ? hl_closure_create(p->closure_stops, p->map_capacity, p->seed)
                                 : NULL;
     bool spread = p->close_loops && p->closure_redraw_readings > 0;
-    s->shadow = spread ? hl_map_create(p->map_capacity, p->seed) : NULL;
-    if (!s->map || hl_slam_setup_map(s->map, p) != HL_OK ||
-        (spread && (!s->shadow || hl_slam_setup_map(s->shadow, p) != HL_OK)) ||
+    s->shadow = spread ? hl_map_create_with(&mp) : NULL;
+    if (!s->map || (spread && !s->shadow) ||
         !s->loc || (p->echo_bearings && !s->echoed) ||
         (p->fit_normals && !s->fitted) || (p->refine && !s->refiner) ||
         !s->reloc || (p->close_loops && !s->closure)) {

@@ -131,11 +131,12 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
     return hl_reloc_params_error(&p->reloc);
 }
 
-hl_status_t hl_slam_setup_map(hl_map_t *map, const hl_slam_params_t *p)
+void hl_slam_map_params(const hl_slam_params_t *p, hl_map_params_t *out)
 {
-    hl_status_t st = hl_map_set_density(map, p->map_square_mm, p->map_per_place);
-    if (st == HL_OK)
-        st = p->cull_crowded ? hl_map_set_crowding(map, p->cull_choices, p->crowd_square_mm)
-                             : hl_map_set_evidence(map, p->cull_choices, p->confirm_mm);
-    return st;
+    *out = (hl_map_params_t){
+        .capacity = p->map_capacity, .seed = p->seed,
+        .per_place = p->map_per_place, .square_mm = p->map_square_mm,
+        .cull_choices = p->cull_choices, .confirm_mm = p->confirm_mm,
+        .cull_crowded = p->cull_crowded, .crowd_square_mm = p->crowd_square_mm,
+    };
 }

@@ -249,6 +249,31 @@ static uint32_t in_place(const hl_map_t *m, int32_t sx, int32_t sy, hl_bam_t nor
     return n;
 }
 
+/* A map of @p capacity vectors seeded with @p seed, bounded to @p per_place vectors a
+ * @p square_mm square (0: no bound) and culling by @p cull (below). */
+enum cull { UNIFORM, EVIDENCE, CROWDING };
+static hl_map_t *map_with(uint32_t capacity, uint64_t seed, int32_t square_mm,
+                          uint32_t per_place, enum cull cull, uint32_t choices, int32_t mm)
+{
+    hl_map_params_t p;
+    hl_map_params_default(&p);
+    p.capacity = capacity;
+    p.seed = seed;
+    p.per_place = per_place;
+    p.square_mm = square_mm;
+    if (cull != UNIFORM)
+        p.cull_choices = choices;
+    if (cull == EVIDENCE)
+        p.confirm_mm = mm;
+    p.cull_crowded = cull == CROWDING;
+    if (cull == CROWDING)
+        p.crowd_square_mm = mm;
+    assert_null(hl_map_params_error(&p));
+    hl_map_t *m = hl_map_create_with(&p);
+    assert_non_null(m);
+    return m;
+}
+
 /* The density bound: a place keeps at most per_place vectors however often it is seen,
  * other places and the other side of the same place are unaffected, the newest vector
  * gets in at the rate the paper's culling gives (per_place / (per_place + 1) of the
@@ -256,8 +281,7 @@ static uint32_t in_place(const hl_map_t *m, int32_t sx, int32_t sy, hl_bam_t nor
 static void test_density_bound(void **state)
 {
     (void)state;
-    hl_map_t *m = hl_map_create(1000, 5);
-    assert_int_equal(hl_map_set_density(m, 50, 3), HL_OK);
+    hl_map_t *m = map_with(1000, 5, 50, 3, UNIFORM, 1, 0);
     uint32_t newest_kept = 0;
     for (int i = 0; i < 400; i++) {
         hl_vector_t v = { 1000 + i % 40, 2010 + i % 30, (hl_bam_t)(1000 + i), 3000 };
@@ -281,11 +305,23 @@ static void test_density_bound(void **state)
     }
     assert_int_equal(hl_map_count(m), 1000);
     assert_in_range(in_place(m, 20, 40, 1000), 0, 3);
-    /* bad settings are refused and leave the bound as it was */
-    assert_int_equal(hl_map_set_density(m, 5, 3), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_density(m, 50, HL_MAP_MAX_PER_PLACE + 1), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_density(NULL, 50, 3), HL_ERR_ARG);
     hl_map_destroy(m);
+    /* bad settings are refused, each with its reason */
+    hl_map_params_t p;
+    hl_map_params_default(&p);
+    p.per_place = 3;
+    p.square_mm = 5;
+    assert_non_null(hl_map_params_error(&p));
+    assert_null(hl_map_create_with(&p));
+    p.square_mm = 50;
+    p.per_place = HL_MAP_MAX_PER_PLACE + 1;
+    assert_non_null(hl_map_params_error(&p));
+    assert_null(hl_map_create_with(&p));
+    assert_non_null(hl_map_params_error(NULL));
+    assert_null(hl_map_create_with(NULL));
+    p.per_place = 0;
+    p.square_mm = 5;    /* no bound: its square is not read */
+    assert_null(hl_map_params_error(&p));
 }
 
 /* A bounded map saved and restored chooses exactly as the one that kept running: the
@@ -293,9 +329,8 @@ static void test_density_bound(void **state)
 static void test_density_bound_restores_exactly(void **state)
 {
     (void)state;
-    hl_map_t *a = hl_map_create(300, 21), *b = hl_map_create(300, 77);
-    assert_int_equal(hl_map_set_density(a, 40, 2), HL_OK);
-    assert_int_equal(hl_map_set_density(b, 40, 2), HL_OK);
+    hl_map_t *a = map_with(300, 21, 40, 2, UNIFORM, 1, 0);
+    hl_map_t *b = map_with(300, 77, 40, 2, UNIFORM, 1, 0);
     hl_rng_t r;
     hl_rng_seed(&r, 3);
     for (int i = 0; i < 2000; i++) {
@@ -361,9 +396,7 @@ static void test_restore_refuses_and_changes_nothing(void **state)
  * wall readings and 20 spurious echoes (each seen once) through a 200-vector map. */
 static double wall_share(uint32_t choices)
 {
-    hl_map_t *m = hl_map_create(200, 7);
-    assert_non_null(m);
-    assert_int_equal(hl_map_set_evidence(m, choices, 100), HL_OK);
+    hl_map_t *m = map_with(200, 7, 50, 0, choices > 1 ? EVIDENCE : UNIFORM, choices, 100);
     hl_scan_t *s = calloc(1, sizeof *s);
     uint32_t lcg = 12345;
     for (int k = 0; k < 60; k++) {
@@ -402,18 +435,28 @@ static void test_evidence_cull_keeps_surfaces(void **state)
 static void test_evidence_cull_arguments(void **state)
 {
     (void)state;
-    hl_map_t *m = hl_map_create(10, 1);
-    assert_int_equal(hl_map_set_evidence(NULL, 2, 100), HL_ERR_ARG);
-    assert_int_equal(hl_map_set_evidence(m, 0, 100), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_evidence(m, HL_MAP_MAX_CHOICES + 1, 100), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_evidence(m, 2, 0), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_evidence(m, 2, HL_MAP_MAX_SQUARE_MM + 1), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_evidence(m, 1, 0), HL_OK);     /* off: no radius needed */
-    assert_int_equal(hl_map_set_evidence(m, 4, 100), HL_OK);
-    size_t with = hl_map_mem_bytes(m);
-    assert_int_equal(hl_map_set_evidence(m, 1, 0), HL_OK);
-    assert_true(hl_map_mem_bytes(m) < with);
-    hl_map_destroy(m);
+    hl_map_params_t p;
+    hl_map_params_default(&p);
+    p.capacity = 10;
+    p.cull_choices = 0;
+    assert_non_null(hl_map_params_error(&p));
+    p.cull_choices = HL_MAP_MAX_CHOICES + 1;
+    assert_non_null(hl_map_params_error(&p));
+    p.cull_choices = 2;
+    p.confirm_mm = 0;
+    assert_non_null(hl_map_params_error(&p));
+    assert_null(hl_map_create_with(&p));
+    p.confirm_mm = HL_MAP_MAX_SQUARE_MM + 1;
+    assert_non_null(hl_map_params_error(&p));
+    p.cull_choices = 1;
+    p.confirm_mm = 0;   /* off: no radius needed */
+    assert_null(hl_map_params_error(&p));
+    hl_map_t *uniform = hl_map_create_with(&p);
+    hl_map_t *evidence = map_with(10, 1, 50, 0, EVIDENCE, 4, 100);
+    assert_non_null(uniform);
+    assert_true(hl_map_mem_bytes(uniform) < hl_map_mem_bytes(evidence));
+    hl_map_destroy(uniform);
+    hl_map_destroy(evidence);
 }
 
 /* Share of a 300-vector map (density bound: 2 per 50 mm square) left on a wall seen by
@@ -421,11 +464,7 @@ static void test_evidence_cull_arguments(void **state)
  * (each scan's readings along 4 m of it, shifted so they land in fresh squares). */
 static double first_wall_share(bool crowded, int32_t crowd_square_mm)
 {
-    hl_map_t *m = hl_map_create(300, 9);
-    assert_non_null(m);
-    assert_int_equal(hl_map_set_density(m, 50, 2), HL_OK);
-    if (crowded)
-        assert_int_equal(hl_map_set_crowding(m, 8, crowd_square_mm), HL_OK);
+    hl_map_t *m = map_with(300, 9, 50, 2, crowded ? CROWDING : UNIFORM, 8, crowd_square_mm);
     hl_scan_t *s = calloc(1, sizeof *s);
     for (int k = 0; k <= 100; k++) {
         hl_scan_clear(s);
@@ -465,12 +504,8 @@ static void test_crowding_cull_keeps_what_was_seen_once(void **state)
 static void test_crowding_squares_restore(void **state)
 {
     (void)state;
-    hl_map_t *a = hl_map_create(60, 3), *b = hl_map_create(60, 77);
-    for (int k = 0; k < 2; k++) {
-        hl_map_t *m = k ? b : a;
-        assert_int_equal(hl_map_set_density(m, 50, 2), HL_OK);
-        assert_int_equal(hl_map_set_crowding(m, 8, 300), HL_OK);
-    }
+    hl_map_t *a = map_with(60, 3, 50, 2, CROWDING, 8, 300);
+    hl_map_t *b = map_with(60, 77, 50, 2, CROWDING, 8, 300);
     for (int i = 0; i < 400; i++) {     /* a dense row and a sparse one */
         hl_vector_t v = i % 4 ? vec((i * 7) % 3000, 0) : vec(i * 97, 5000);
         assert_int_equal(hl_map_add(a, &v), HL_OK);
@@ -491,17 +526,29 @@ static void test_crowding_squares_restore(void **state)
 static void test_crowding_cull_arguments(void **state)
 {
     (void)state;
-    hl_map_t *m = hl_map_create(10, 1);
-    assert_int_equal(hl_map_set_crowding(NULL, 4, 0), HL_ERR_ARG);
-    assert_int_equal(hl_map_set_crowding(m, 4, 0), HL_ERR_RANGE);      /* no density bound */
-    assert_int_equal(hl_map_set_density(m, 50, 2), HL_OK);
-    assert_int_equal(hl_map_set_crowding(m, 1, 0), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_crowding(m, HL_MAP_MAX_CHOICES + 1, 0), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_crowding(m, 4, HL_MAP_MIN_SQUARE_MM - 1), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_crowding(m, 4, HL_MAP_MAX_SQUARE_MM + 1), HL_ERR_RANGE);
-    assert_int_equal(hl_map_set_crowding(m, 4, 300), HL_OK);
-    assert_int_equal(hl_map_set_crowding(m, 4, 0), HL_OK);
-    assert_int_equal(hl_map_set_density(m, 50, 0), HL_OK);          /* off: uniform again */
+    hl_map_params_t p;
+    hl_map_params_default(&p);
+    p.capacity = 10;
+    p.cull_crowded = true;
+    p.cull_choices = 4;
+    assert_non_null(hl_map_params_error(&p));      /* no density bound */
+    p.per_place = 2;
+    p.cull_choices = 1;
+    assert_non_null(hl_map_params_error(&p));
+    p.cull_choices = HL_MAP_MAX_CHOICES + 1;
+    assert_non_null(hl_map_params_error(&p));
+    p.cull_choices = 4;
+    p.crowd_square_mm = HL_MAP_MIN_SQUARE_MM - 1;
+    assert_non_null(hl_map_params_error(&p));
+    p.crowd_square_mm = HL_MAP_MAX_SQUARE_MM + 1;
+    assert_non_null(hl_map_params_error(&p));
+    assert_null(hl_map_create_with(&p));
+    p.crowd_square_mm = 300;
+    assert_null(hl_map_params_error(&p));
+    p.crowd_square_mm = 0;
+    assert_null(hl_map_params_error(&p));
+    hl_map_t *m = hl_map_create_with(&p);
+    assert_non_null(m);
     for (int i = 0; i < 30; i++) {
         hl_vector_t v = vec(i * 100, 0);
         assert_int_equal(hl_map_add(m, &v), HL_OK);

@@ -8,11 +8,13 @@
  * the new one is dropped, so old information "ages" out at random, as in the paper.
  * The random choice comes from a PCG32 held in the map, seeded at creation.
  *
- * Ownership: hl_map_create allocates everything; nothing else allocates.
+ * Ownership: hl_map_create_with (and hl_map_create) allocates everything; nothing else
+ * allocates.
  */
 #ifndef HOUGHLOC_MAP_H
 #define HOUGHLOC_MAP_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -40,11 +42,62 @@ typedef struct hl_vector {
 
 typedef struct hl_map hl_map_t;
 
-/**
- * @param capacity 1..HL_MAP_MAX_CAPACITY vectors.
- * @param seed     seeds the culling generator.
- * @return the map, or NULL on a bad capacity or out of memory.
+/*
+ * What a map is made with: its capacity, its culling generator's seed, and how it culls
+ * (all fixed for the map's life). Not in the paper, each off by default:
+ *  - the density bound (per_place): at most per_place vectors of one place, a square_mm
+ *    square seen from one side (normals in one eighth of a turn). A new vector for a full
+ *    place takes the place of one of its vectors, or is dropped, chosen uniformly at
+ *    random among them and it; the capacity then spans more of a building instead of
+ *    holding the same wall many times over (a laser re-sees every wall on every scan);
+ *  - the evidence cull (cull_choices > 1): each scan added by hl_map_add_scan first
+ *    confirms the map vectors it agrees with (a new vector within confirm_mm, normals
+ *    within 30 degrees), and a full map drops the least confirmed of cull_choices
+ *    vectors drawn at random for each new one, instead of one drawn uniformly. A sonar's
+ *    spurious echoes (multipath, side lobes) are seldom seen twice, a wall's echoes
+ *    often: the capacity goes to surfaces. The new vector is always kept. The counts are
+ *    not saved (hl_map_restore starts them at 0);
+ *  - the crowding cull (cull_crowded, with cull_choices > 1 and the density bound;
+ *    instead of the evidence cull): a full map drops, for each new vector, the most
+ *    crowded of cull_choices vectors drawn at random: the one with the most vectors in
+ *    its square of crowd_square_mm (0: its density-bound place and the 8 squares around
+ *    it), seen from the same side. The capacity then spreads over every surface seen
+ *    rather than over how often each was seen, so a corridor driven once keeps its walls
+ *    in a map of a whole building (a laser's: the global search needs every place). In
+ *    the 3 x 3 places every wall held at the density bound is equally crowded, so ties
+ *    go at random and a place seen once still thins out as fast as one seen always; a
+ *    square a few places wide tells a thinned wall from a full one.
+ * Every choice depends only on the vectors and the generator, so a restored map
+ * continues exactly.
  */
+typedef struct hl_map_params {
+    uint32_t capacity;          /* vectors, 1..HL_MAP_MAX_CAPACITY; default
+                                   HL_MAP_DEFAULT_CAPACITY */
+    uint64_t seed;              /* seeds the culling generator; default 1 */
+    uint32_t per_place;         /* 0 (no bound, the default) .. HL_MAP_MAX_PER_PLACE */
+    int32_t square_mm;          /* HL_MAP_MIN_SQUARE_MM .. HL_MAP_MAX_SQUARE_MM when
+                                   per_place > 0; default 50 */
+    uint32_t cull_choices;      /* 1 (the paper's uniform cull, the default) ..
+                                   HL_MAP_MAX_CHOICES */
+    int32_t confirm_mm;         /* 1 .. HL_MAP_MAX_SQUARE_MM for the evidence cull;
+                                   default 100 */
+    bool cull_crowded;          /* the crowding cull instead; default false */
+    int32_t crowd_square_mm;    /* 0 (the default), or HL_MAP_MIN_SQUARE_MM ..
+                                   HL_MAP_MAX_SQUARE_MM */
+} hl_map_params_t;
+
+/** Fills @p p with the defaults above: the paper's map of 1,500 vectors. */
+HL_API void hl_map_params_default(hl_map_params_t *p);
+/** A one-line description of what is wrong with @p p, or NULL if nothing. */
+HL_API const char *hl_map_params_error(const hl_map_params_t *p);
+
+/**
+ * A map made with @p p (hl_map_params_t), empty.
+ * @return the map, or NULL on bad params (hl_map_params_error) or out of memory.
+ */
+HL_API hl_map_t *hl_map_create_with(const hl_map_params_t *p);
+/** The paper's map: @p capacity vectors culled uniformly at random, the generator seeded
+ *  with @p seed (hl_map_create_with with the other params at their defaults). */
 HL_API hl_map_t *hl_map_create(uint32_t capacity, uint64_t seed);
 /** Frees the map. Accepts NULL. */
 HL_API void hl_map_destroy(hl_map_t *map);
@@ -53,55 +106,7 @@ HL_API void hl_map_destroy(hl_map_t *map);
 HL_API void hl_map_clear(hl_map_t *map);
 
 /**
- * Bounds the map's density (not in the paper): at most @p per_place vectors of one
- * place, a @p square_mm square seen from one side (normals in one eighth of a turn).
- * A new vector for a full place takes the place of one of its vectors, or is dropped,
- * chosen uniformly at random among them and it; the map's capacity then spans more of a
- * building instead of holding the same wall many times over (a laser re-sees every
- * wall on every scan). The choice depends only on the vectors and the generator, so a
- * restored map continues exactly. Call right after hl_map_create (it allocates).
- * @param per_place 0 (no bound, the default) .. HL_MAP_MAX_PER_PLACE
- * @param square_mm HL_MAP_MIN_SQUARE_MM .. HL_MAP_MAX_SQUARE_MM when per_place > 0
- * @return HL_OK, HL_ERR_RANGE, HL_ERR_NOMEM (the map then has no bound).
- */
-HL_API hl_status_t hl_map_set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place);
-
-/**
- * Culls by evidence (not in the paper): each scan added by hl_map_add_scan first confirms
- * the map vectors it agrees with (a new vector within @p confirm_mm, normals within 30
- * degrees), and a full map drops the least confirmed of @p choices vectors drawn at
- * random for each new one, instead of one drawn uniformly. A sonar's spurious echoes
- * (multipath, side lobes) are seldom seen twice, a wall's echoes often: the capacity
- * goes to surfaces. The new vector is always kept. The counts are not saved
- * (hl_map_restore starts them at 0). Call right after hl_map_create (it allocates).
- * @param choices    1 (the paper's uniform cull, the default) .. HL_MAP_MAX_CHOICES
- * @param confirm_mm 1 .. HL_MAP_MAX_SQUARE_MM when choices > 1
- * @return HL_OK, HL_ERR_RANGE, HL_ERR_NOMEM (the map then culls at random).
- */
-HL_API hl_status_t hl_map_set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm);
-
-/**
- * Culls by crowding (not in the paper): a full map drops, for each new vector, the most
- * crowded of @p choices vectors drawn at random: the one with the most vectors in its
- * square of @p square_mm (0: its density-bound place and the 8 squares around it), seen
- * from the same side. The capacity then spreads over every surface seen rather than over
- * how often each was seen, so a corridor driven once keeps its walls in a map of a whole
- * building (a laser's: the global search needs every place). In the 3 x 3
- * places every wall held at the density bound is equally crowded, so ties go at random
- * and a place seen once still thins out as fast as one seen always; a square a few
- * places wide tells a thinned wall from a full one, and the capacity spreads evenly.
- * Needs the density bound
- * (hl_map_set_density first; turning the bound off turns this off). Replaces the
- * evidence cull. Deterministic like it.
- * @param choices   2 .. HL_MAP_MAX_CHOICES
- * @param square_mm 0, or HL_MAP_MIN_SQUARE_MM .. HL_MAP_MAX_SQUARE_MM
- * @return HL_OK; HL_ERR_RANGE (bad choices or square, or no density bound); HL_ERR_NOMEM;
- *         HL_ERR_ARG on NULL.
- */
-HL_API hl_status_t hl_map_set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm);
-
-/**
- * Adds one vector, culling at random when full (hl_map_set_evidence: by evidence).
+ * Adds one vector, culling when full as the map was made to (hl_map_params_t).
  * @return HL_OK, HL_ERR_RANGE when the vector's fields are out of range (not added).
  */
 HL_API hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v);

@@ -103,17 +103,17 @@ typedef struct hl_slam_params {
                                    is made for map_capacity vectors */
     uint32_t map_capacity;      /* vectors the map keeps, 1..HL_MAP_MAX_CAPACITY; the one
                                    bound on the map's size. Default 1500 (paper) */
-    uint32_t map_per_place;     /* the map's density bound (map.h, hl_map_set_density):
+    uint32_t map_per_place;     /* the map's density bound (map.h, hl_map_params_t):
                                    at most this many vectors of one map_square_mm square
                                    seen from one side; 0 = none (paper); default 0 */
     hl_mm_t map_square_mm;      /* default 50 */
-    uint32_t cull_choices;      /* the map's evidence cull (map.h, hl_map_set_evidence):
+    uint32_t cull_choices;      /* the map's evidence cull (map.h, hl_map_params_t):
                                    a full map drops the least confirmed of this many
                                    vectors drawn at random; 1 = uniform (paper); default 1 */
     hl_mm_t confirm_mm;         /* ... a new vector confirms an old one this close;
                                    default 100 */
     bool cull_crowded;          /* with cull_choices > 1: drop the most crowded of them
-                                   instead (map.h, hl_map_set_crowding; needs
+                                   instead (map.h, hl_map_params_t; needs
                                    map_per_place); default false */
     hl_mm_t crowd_square_mm;    /* ... crowding counted in squares of this side (0 or
                                    HL_MAP_MIN_SQUARE_MM..HL_MAP_MAX_SQUARE_MM); 0 (the
@@ -205,9 +205,9 @@ typedef struct hl_slam_params {
 
 HL_API void hl_slam_params_default(hl_slam_params_t *p);
 
-/** Sets @p map's density bound and cull as hl_slam_create sets its own map's (for tools
- *  that build maps beside a slam). @return HL_OK or what the map's setter returned. */
-HL_API hl_status_t hl_slam_setup_map(hl_map_t *map, const hl_slam_params_t *p);
+/** The params hl_slam_create makes its map with (capacity, seed, density bound, cull), for
+ *  programs that build maps beside a tracker (hl_map_create_with). */
+HL_API void hl_slam_map_params(const hl_slam_params_t *p, hl_map_params_t *out);
 
 /** A one-line description of what is wrong, or NULL. */
 HL_API const char *hl_slam_params_error(const hl_slam_params_t *p);

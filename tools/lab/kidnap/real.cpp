@@ -21,7 +21,7 @@ bool prepares(const hl_slam_params_t &p)
 }  // namespace
 
 TruthMapper::TruthMapper(const hl_slam_params_t &p, const hlexp::Soundings &log)
-    : p_(p), log_(log), map_(hl_map_create(p.map_capacity, p.seed))
+    : p_(p), log_(log), map_(nullptr)
 {
     // Every scan as the slam puts it into its map: at its echo bearings and with its
     // surface normals when the parameters estimate them (the experiments' helper; the
@@ -32,7 +32,10 @@ TruthMapper::TruthMapper(const hl_slam_params_t &p, const hlexp::Soundings &log)
     for (size_t i = 0; i < placed_.size(); i++)
         placed_[i] = hlexp::as_localized(mode, log[i]->msg.scan);
     // The map as hl_slam_create makes it: capacity, culling seed, density bound, cull.
-    ok_ = map_ && hl_slam_setup_map(map_, &p) == HL_OK;
+    hl_map_params_t mp;
+    hl_slam_map_params(&p, &mp);
+    map_ = hl_map_create_with(&mp);
+    ok_ = map_ != nullptr;
     if (ok_)
         fresh_ = hl_map_rng(map_);
 }

@@ -298,8 +298,10 @@ bool close_loops(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracke
 bool write_map(const hl_slam_params_t &p, const hlexp::Soundings &tour, const Tracked &t,
                const std::string &path, std::string *err)
 {
-    std::unique_ptr<hl_map_t, MapDeleter> map(hl_map_create(p.map_capacity, p.seed));
-    if (!map || hl_slam_setup_map(map.get(), &p) != HL_OK) {
+    hl_map_params_t mp;
+    hl_slam_map_params(&p, &mp);
+    std::unique_ptr<hl_map_t, MapDeleter> map(hl_map_create_with(&mp));
+    if (!map) {
         *err = "cannot create the map";
         return false;
     }
