@@ -1,5 +1,6 @@
 # tools/lab/kidnap/kidnap.mk - make kidnap: the global relocalization (hl_slam_relocalize,
-# include/core/houghloc/reloc.h) of a robot set down anywhere in a known map, heading unknown
+# houghloc-internal/slam_search.h; include/core/houghloc/reloc.h) of a robot set down
+# anywhere in a known map, heading unknown
 # (docs/results/relocalization.md). Included by tools/lab/lab.mk.
 #
 #   make -j2 kidnap                          every row, two at a time
