@@ -75,18 +75,12 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start)
         hl_slam_closure_reset(s);
 }
 
-static int64_t dist2(hl_pose_t a, hl_pose_t b)
-{
-    int64_t dx = (int64_t)a.x_mm - b.x_mm, dy = (int64_t)a.y_mm - b.y_mm;
-    return dx * dx + dy * dy;
-}
-
 /* Guarded mode: is this localization believable? */
 static bool plausible(const hl_slam_t *s, hl_pose_t pose, hl_pose_t predicted,
                       const hl_loc_result_t *r)
 {
     bool high_enough = s->peak_avg == 0 || r->peak >= s->p.min_peak_ratio * s->peak_avg;
-    return dist2(pose, predicted) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
+    return hl_slam_dist2(pose, predicted) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
            hl_loc_confidence(r) >= s->p.min_confidence && r->votes >= s->p.min_votes &&
            high_enough;
 }
@@ -185,7 +179,7 @@ static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
 {
     const hl_pose_t origin = { 0, 0, 0 };
     if (s->p.long_drive_mm == 0 || !s->started ||
-        dist2(drive, origin) < (int64_t)s->p.long_drive_mm * s->p.long_drive_mm)
+        hl_slam_dist2(drive, origin) < (int64_t)s->p.long_drive_mm * s->p.long_drive_mm)
         return false;
     enum { MAX = 1 + 2 * HL_SLAM_MAX_DRIVE_TURNS };
     hl_pose_t pose[MAX] = { *found };

@@ -50,6 +50,13 @@ struct hl_slam {
     uint64_t scans;         /* hl_slam_update calls taken (search_every counts them) */
 };
 
+/** The squared distance between two poses' positions (mm^2). */
+static inline int64_t hl_slam_dist2(hl_pose_t a, hl_pose_t b)
+{
+    int64_t dx = (int64_t)a.x_mm - b.x_mm, dy = (int64_t)a.y_mm - b.y_mm;
+    return dx * dx + dy * dy;
+}
+
 /**
  * Tracking, the stages of one scan (prepare, localize, guard, integrate, closure) from
  * the last estimate moved by @p odometry. Either all of it happens or nothing changes:

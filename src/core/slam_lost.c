@@ -79,17 +79,11 @@ void hl_slam_stop_searching(hl_slam_t *s)
         clear_lost(s);
 }
 
-static int64_t dist2(hl_pose_t a, hl_pose_t b)
-{
-    int64_t dx = (int64_t)a.x_mm - b.x_mm, dy = (int64_t)a.y_mm - b.y_mm;
-    return dx * dx + dy * dy;
-}
-
 /* Two poses within wild_mm and the search's distinct_theta of each other. */
 static bool agree(const hl_slam_t *s, hl_pose_t a, hl_pose_t b)
 {
     int32_t dt = hl_bam_diff(a.theta, b.theta);
-    return dist2(a, b) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
+    return hl_slam_dist2(a, b) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
            (dt < 0 ? -dt : dt) < s->p.reloc.distinct_theta;
 }
 
@@ -154,7 +148,7 @@ static bool confirms(cycle_t *c, hl_pose_t *predicted)
     hl_pose_t pose;
     if (hl_slam_localize(c->s, c->scan, *predicted, &loc, &pose) != HL_OK)
         return false;
-    return dist2(pose, *predicted) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
+    return hl_slam_dist2(pose, *predicted) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
            hl_loc_confidence(&loc) >= s->p.min_confidence && loc.votes >= s->p.min_votes;
 }
 
