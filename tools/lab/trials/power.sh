@@ -18,17 +18,23 @@
 # appears, so before the rename, between it and the folder's fsync, or just after.
 #
 # A restarted daemon resumes at the pose of the last saved scan (the file's), and the
-# robot went on driving after that save: left alone, the estimate falls further behind
-# with every kill and the tour ends against the furniture. So, as an operator would, each
-# restart is told where the robot stands (houghloc-ctl set-pose at the GROUND_TRUTH the
-# standing robot sends once the new daemon is connected) before the tour goes on,
-# robot.sound_on_connect is off (a sounding at the stale pose would enter the map), and
-# the distance between the file's pose and the truth is reported ("restart_error").
+# robot went on driving after that save. The distance between the file's pose and the
+# truth is reported ("restart_error"), and whether the restarted daemon found the robot:
+# the robot sounds on connecting (robot.sound_on_connect, as in service), and the pose
+# the daemon gives that scan is "found" when it lies within FOUND_MM of the GROUND_TRUTH
+# the standing robot sends (the position alone: the sounding turns the robot in place).
+# The daemon runs with its defaults for finding a lost robot (the LOST state's keys);
+# LOST_KEYS adds "key = value" lines to its [daemon] section (for example
+# "search_every = 1" "lost_after = 2"). When it did not find the robot, as an operator
+# would, the restart is told where the robot stands (houghloc-ctl set-pose at the truth)
+# before the tour goes on: left alone, the estimate would fall further behind with every
+# kill and the tour end against the furniture.
 #
-#   RUNS=100 SAVE_EVERY=2 SPEED=20 TRIALS_SEED=1 KILL_MAX_MS=3000 BUILD=build
+#   RUNS=100 SAVE_EVERY=2 SPEED=20 TRIALS_SEED=1 KILL_MAX_MS=3000 FOUND_MM=500 BUILD=build
 #
 # Progress on stderr; the last stdout line:
-#   kill9=<loadable>/<runs> save_period=<n> max_lost_scans=<k>
+#   kill9=<loadable>/<runs> save_period=<n> max_lost_scans=<k> found=<f>/<restarts>
+#   restart_error_mm=<median>
 # Exit 0 when every run's map loaded, every restart reconnected and no run lost more than
 # one save period of integrations.
 set -u
@@ -38,6 +44,7 @@ EVERY=${SAVE_EVERY:-2}
 SPEED=${SPEED:-20}
 SEED=${TRIALS_SEED:-1}
 MAX_MS=${KILL_MAX_MS:-3000}
+FOUND_MM=${FOUND_MM:-500}
 ROUTE=tools/demo/lab.route
 
 say() { echo "power: $*" >&2; }
@@ -80,6 +87,7 @@ url = $URL
 map_file = $MAP
 save_every = $EVERY
 log_level = debug
+$(for kv in ${LOST_KEYS:-}; do echo "$kv"; done)
 [start]
 x_m = $sx
 y_m = $sy
@@ -89,7 +97,7 @@ rect = -1,-1,11,9
 [robot]
 link = tcp:127.0.0.1:$PORT
 profile = bonnie
-sound_on_connect = false
+sound_on_connect = true
 [calibration]
 gain_q16 = 70124
 offset_mm = -35
@@ -172,6 +180,12 @@ true_pose() {    # true_pose: "X,Y,DEG", the GROUND_TRUTH the robot sends now (i
     return 1
 }
 saves_beyond() { [ "$(count 'map saved to' "$T/d.err")" -gt "$saves0" ]; }
+# first_scan: "STATUS X Y" of this daemon's first scan (its debug line), or nothing yet
+first_scan() {
+    sed -n 's/^<7>houghlocd: scan [0-9]* (seq [0-9]*): \([A-Z_]*\) at (\([-0-9.]*\), \([-0-9.]*\)) m.*/\1 \2 \3/p' \
+        "$T/d.err" | head -n 1
+}
+scanned() { [ -n "$(first_scan)" ]; }
 tmp_exists() { [ -e "$MAP.tmp" ]; }
 
 lcm-logger -q -f -c POSE --lcm-url="$URL" "$T/run.lcmlog" >/dev/null 2>&1 &
@@ -188,6 +202,7 @@ done
 say "$RUNS runs, save_every=$EVERY, robot at ${SPEED}x, seed $SEED, port $PORT, files $T"
 
 t0=$(date +%s)
+restarts=0 found=0
 i=0 mid_tmp=0 loadable=0 max_lost=0 max_behind=0 logged=0 mid=0 after=0 uniform=0 empty=0 bad=0
 prev_ok=1 prev_desc="" filepose=""
 while [ $i -lt "$RUNS" ]; do
@@ -212,7 +227,7 @@ while [ $i -lt "$RUNS" ]; do
     # connection closed and stands still until told to move; GROUND_TRUTH goes out only
     # to a connected client, so it is heard now, on a recording of its own (a lagging
     # logger cannot hand over a pose from before the robot stopped).
-    truth=""
+    truth="" e=""
     [ $i -gt 1 ] && truth=$(true_pose)
     [ $i -gt 1 ] && [ -z "$truth" ] && say "run $i: no GROUND_TRUTH heard: the pose is not set"
     if [ -n "$filepose" ] && [ -n "$truth" ]; then
@@ -220,7 +235,19 @@ while [ $i -lt "$RUNS" ]; do
             awk '{ printf "%d", sqrt(($1 - $3) ^ 2 + ($2 - $4) ^ 2) * 1000 + 0.5 }')
         echo "$e" >>"$T/restart_error"
     fi
+    # the sounding made on connecting: did the restarted daemon find the robot?
+    here=no
     if [ -n "$truth" ]; then
+        restarts=$((restarts + 1))
+        wait_until 1000 scanned || say "run $i: no scan from the sounding on connecting"
+        set -- $(first_scan) $(echo "$truth" | tr ',' ' ')
+        if [ $# -ge 5 ]; then
+            off=$(echo "$2 $3 $4 $5" | awk '{ printf "%d", sqrt(($1 - $3) ^ 2 + ($2 - $4) ^ 2) * 1000 + 0.5 }')
+            echo "$1 $off ${e:-0}" >>"$T/found"
+            [ "$off" -le "$FOUND_MM" ] && here=yes found=$((found + 1))
+        fi
+    fi
+    if [ -n "$truth" ] && [ $here = no ]; then
         # shellcheck disable=SC2046
         "$BIN/houghloc-ctl" --lcm-url "$URL" --timeout 5 set-pose $(echo "$truth" | tr ',' ' ') \
             >"$T/ctl.out" 2>&1 || say "run $i: set-pose $truth: $(tail -n 1 "$T/ctl.out")"
@@ -326,6 +353,20 @@ say "$RUNS kills in $(($(date +%s) - t0)) s: $uniform at random, $after just aft
 errs=$(sort -n "$T/restart_error" 2>/dev/null | awk '{ a[NR] = $1 } END {
     if (NR) printf "median %d mm, max %d mm over %d restarts", a[int((NR + 1) / 2)], a[NR], NR }')
 say "restart_error (the file's pose against the truth at the kill): ${errs:-none}"
+# found: within FOUND_MM after the sounding on connecting; by how far the robot had
+# moved from its saved pose (restart_error), and the status of that first scan
+if [ -s "$T/found" ]; then
+    awk -v lim="$FOUND_MM" '{
+            band = $3 <= 500 ? "moved <= 0.5 m" : $3 <= 2000 ? "moved 0.5-2 m" : "moved > 2 m"
+            n[band]++; if ($2 <= lim) f[band]++; st[$1]++
+        } END {
+            for (b in n) printf "power: found %d of %d restarts that had %s\n", f[b], n[b], b
+            for (s in st) printf "power: first scan %s: %d\n", s, st[s]
+        }' "$T/found" >&2
+fi
+say "found after a restart: $found of $restarts (within $FOUND_MM mm of the truth)"
+restart_median=$(sort -n "$T/restart_error" 2>/dev/null | awk '{ a[NR] = $1 } END {
+    if (NR) print a[int((NR + 1) / 2)]; else print "-" }')
 say "scans: $logged counted from the daemons' logs, $poses POSE in the log; worst loss" \
     "$max_lost scans, $max_behind integrations (save_every=$EVERY)"
 if [ $poses -gt $logged ]; then
@@ -335,5 +376,5 @@ if [ $poses -gt $logged ]; then
 fi
 [ $max_lost -le "$EVERY" ] || say "the worst loss, $max_lost scans, is more than save_every=$EVERY:" \
     "REJECTED_WILD scans, which change nothing, do not count towards a save"
-echo "kill9=$loadable/$RUNS save_period=$EVERY max_lost_scans=$max_lost"
+echo "kill9=$loadable/$RUNS save_period=$EVERY max_lost_scans=$max_lost found=$found/$restarts restart_error_mm=$restart_median"
 [ $bad -eq 0 ] && [ $loadable -eq "$RUNS" ] && [ $max_behind -le "$EVERY" ]

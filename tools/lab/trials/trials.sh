@@ -2,7 +2,7 @@
 # trials.sh - `make trials`: every reliability trial in one run, under 15
 # minutes on a 2-core machine, progress on stderr, and the last stdout line
 #
-#   trials kill9=<loadable>/<runs> save_period=<n> max_lost_scans=<k> link=<survived>/<runs> flood_identical=<yes|no> flood_p99_ratio=<r> forged_rejected=<k>/<n> valid_accepted=<k>/<n> fuzz_crashes=<c>
+#   trials kill9=<loadable>/<runs> save_period=<n> max_lost_scans=<k> link=<survived>/<runs> flood_identical=<yes|no> flood_p99_ratio=<r> forged_rejected=<k>/<n> valid_accepted=<k>/<n> fuzz_crashes=<c> restart_found=<f>/<restarts> restart_error_mm=<median>
 #
 # The trials (each a script of its own, whose last stdout line is taken):
 #   fuzz        `make fuzz FUZZ_SECONDS=N` (tests/fuzz/fuzz.mk), then every regression
@@ -73,6 +73,7 @@ trap '[ -n "$fuzz_pid" ] && kill $fuzz_pid 2>/dev/null; exit 130' INT TERM
 run_trial sanitizers
 run_trial power
 kill9=$(field kill9) save_period=$(field save_period) max_lost=$(field max_lost_scans)
+restart_found=$(field found) restart_error=$(field restart_error_mm)
 run_trial link
 link=$(field link)
 run_trial commands
@@ -116,5 +117,5 @@ flood_identical=$(field flood_identical) flood_ratio=$(field flood_p99_ratio)
 
 say "all done in $(elapsed)"
 [ -z "$failed" ] || say "FAILED:$failed"
-echo "trials kill9=${kill9:--} save_period=${save_period:--} max_lost_scans=${max_lost:--} link=${link:--} flood_identical=${flood_identical:-no} flood_p99_ratio=${flood_ratio:--} forged_rejected=${forged:--} valid_accepted=${valid:--} fuzz_crashes=$fuzz_crashes"
+echo "trials kill9=${kill9:--} save_period=${save_period:--} max_lost_scans=${max_lost:--} link=${link:--} flood_identical=${flood_identical:-no} flood_p99_ratio=${flood_ratio:--} forged_rejected=${forged:--} valid_accepted=${valid:--} fuzz_crashes=$fuzz_crashes restart_found=${restart_found:--} restart_error_mm=${restart_error:--}"
 [ -z "$failed" ]
