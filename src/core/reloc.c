@@ -10,6 +10,7 @@
 
 #include "judge.h"
 #include "loc_params.h"
+#include "votesum.h"
 
 #define BINS 256                /* heading histogram bins: 256 BAM each, 1.4 deg */
 #define BIN_SHIFT 8
@@ -19,7 +20,15 @@ typedef struct hypothesis {
     hl_pose_t pose;
     uint32_t score;
     uint32_t explained; /* readings a map vector explains at this pose */
+    hl_pose_t at[HL_RELOC_MAX_SCANS];   /* stage 3: each scan's own pose (at[0] = pose) */
 } hypothesis_t;
+
+/* The scans searched together, each with its pose in the first scan's frame. */
+typedef struct scan_set {
+    const hl_scan_t *const *scans;
+    hl_pose_t offset[HL_RELOC_MAX_SCANS];
+    uint32_t count;
+} scan_set_t;
 
 struct hl_reloc {
     hl_reloc_params_t p;
@@ -31,6 +40,7 @@ struct hl_reloc {
     uint8_t *best_it;
     uint32_t xy_cells;
     hl_judge_t judge;
+    hl_votesum_t coarse_sum;    /* stage 2: the scans' rasters added */
     hypothesis_t hyp[HL_RELOC_MAX_HEADINGS * HL_RELOC_MAX_PEAKS];
     hypothesis_t fine_hyp[HL_RELOC_MAX_HYPOTHESES];
 };
@@ -59,6 +69,7 @@ void hl_reloc_params_default(hl_reloc_params_t *p)
     p->judge_gate = hl_bam_from_deg(90.0);
     p->max_ratio = 0.7;
     p->min_explained_pct = 35.0;
+    p->scans = 3;
 }
 
 const char *hl_reloc_params_error(const hl_reloc_params_t *p)
@@ -105,6 +116,8 @@ const char *hl_reloc_params_error(const hl_reloc_params_t *p)
         return "reloc max_ratio must be in (0, 1]";
     if (!(p->max_edge_ratio >= 0.0 && p->max_edge_ratio <= 1.0))
         return "reloc max_edge_ratio must be in 0..1";
+    if (p->scans < 1 || p->scans > HL_RELOC_MAX_SCANS)
+        return "reloc scans must be in 1..4";
     return NULL;
 }
 
@@ -124,6 +137,7 @@ void hl_reloc_destroy(hl_reloc_t *r)
     hl_loc_destroy(r->fine);
     free(r->best_xy);
     free(r->best_it);
+    free(r->coarse_sum.cells);
     hl_judge_free(&r->judge);
     free(r);
 }
@@ -159,14 +173,18 @@ hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *f
     r->fine = hl_loc_create(&r->fine_p);
     r->best_xy = calloc(r->xy_cells, sizeof *r->best_xy);
     r->best_it = calloc(r->xy_cells, sizeof *r->best_it);
+    r->coarse_sum.max_cells = r->coarse_p.max_cells;
+    r->coarse_sum.cells = calloc(r->coarse_sum.max_cells, sizeof *r->coarse_sum.cells);
     bool judge_ok = hl_judge_init(&r->judge, p, fine->max_map_vectors);
     if (!r->coarse || !r->fine || !r->best_xy || !r->best_it || !judge_ok ||
+        !r->coarse_sum.cells ||
         hl_loc_params_error(&r->fine_p)) {
         hl_reloc_destroy(r);
         return NULL;
     }
     r->mem_bytes = sizeof *r + hl_loc_mem_bytes(r->coarse) + hl_loc_mem_bytes(r->fine) +
                    (size_t)r->xy_cells * (sizeof *r->best_xy + sizeof *r->best_it) +
+                   (size_t)r->coarse_sum.max_cells * sizeof *r->coarse_sum.cells +
                    hl_judge_mem_bytes(&r->judge);
     return r;
 }
@@ -180,12 +198,15 @@ hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *f
  * sensed and the map's normal histograms, smoothed by a triangle of half-width
  * heading_smooth: the headings that turn the scan's walls onto the map's. */
 static uint32_t candidate_headings(const hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
-                                   const hl_scan_t *scan, hl_bam_t *out, uint32_t max)
+                                   const scan_set_t *set, hl_bam_t *out, uint32_t max)
 {
     uint32_t hs[BINS] = { 0 }, hm[BINS] = { 0 };
-    for (uint32_t i = 0; i < scan->count; i++)
-        if (scan->readings[i].valid)
-            hs[hl_reading_normal(&scan->readings[i], 0) >> BIN_SHIFT]++;
+    for (uint32_t k = 0; k < set->count; k++) {
+        const hl_scan_t *scan = set->scans[k];
+        for (uint32_t i = 0; i < scan->count; i++)
+            if (scan->readings[i].valid)
+                hs[hl_reading_normal(&scan->readings[i], set->offset[k].theta) >> BIN_SHIFT]++;
+    }
     for (uint32_t j = 0; j < n; j++)
         hm[map[j].normal >> BIN_SHIFT]++;
     uint64_t corr[BINS], smooth[BINS];
@@ -239,12 +260,11 @@ static bool distinct(const hl_reloc_params_t *p, hl_pose_t a, hl_pose_t b)
            (dt < 0 ? -dt : dt) >= p->distinct_theta;
 }
 
-/* The best peaks_per_heading cells of the last coarse run at least distinct_mm apart in
- * xy, appended to r->hyp; returns the new count. */
+/* The best peaks_per_heading cells of the scans' summed coarse rasters at least
+ * distinct_mm apart in xy, appended to r->hyp; returns the new count. */
 static uint32_t coarse_peaks(hl_reloc_t *r, uint32_t nhyp)
 {
-    hl_loc_surface_t s;
-    hl_loc_get_surface(r->coarse, &s);
+    const hl_loc_surface_t s = r->coarse_sum.geom;
     uint32_t plane = (uint32_t)(s.nx * s.ny);
     memset(r->best_xy, 0, plane * sizeof *r->best_xy);
     for (int32_t it = 0; it < s.nt; it++) {
@@ -299,22 +319,137 @@ static void sort_by_explained(hypothesis_t *h, uint32_t n)
         }
 }
 
-hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
-                         const hl_scan_t *scan, hl_reloc_result_t *result)
+/* ---- the judge over the scans ------------------------------------------------------- */
+
+static uint32_t set_explained(const hl_reloc_t *r, const scan_set_t *set, hl_pose_t pose,
+                              int32_t tol_mm)
 {
-    if (!r || (!map && n > 0) || !scan || !result)
+    uint32_t sum = 0;
+    for (uint32_t k = 0; k < set->count; k++)
+        sum += hl_judge_explained(&r->judge, set->scans[k],
+                                  hl_pose_compose(pose, set->offset[k]), tol_mm, NULL, NULL);
+    return sum;
+}
+
+static void set_edges(hl_reloc_t *r, const scan_set_t *set, const hypothesis_t *a,
+                      const hypothesis_t *b, uint32_t *edge, uint32_t *b_edge)
+{
+    *edge = *b_edge = 0;
+    for (uint32_t k = 0; k < set->count; k++) {
+        uint32_t e, be;
+        hl_judge_edges(&r->judge, set->scans[k], a->at[k], b->at[k], &e, &be);
+        *edge += e;
+        *b_edge += be;
+    }
+}
+
+/* ---- the stages' votes over the scans -------------------------------------------------- */
+
+/* Stage 2 of one heading window: every scan of @p set voted over the whole map with the
+ * window's headings turned by its own, their blurred rasters added in the first scan's
+ * frame (votesum.h). @return HL_OK when any scan voted; HL_ERR_EMPTY when none did;
+ * another status as hl_loc_run's. */
+static hl_status_t coarse_vote(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                               const scan_set_t *set, hl_bam_t heading)
+{
+    hl_votesum_t *sum = &r->coarse_sum;
+    sum->started = false;
+    for (uint32_t k = 0; k < set->count; k++) {
+        hl_loc_query_t q = { .predicted = { 0, 0, (hl_bam_t)(heading + set->offset[k].theta) },
+                             .window_mm = 0, .search_theta = true, .use_prior = false };
+        hl_loc_result_t lr;
+        hl_status_t st = hl_loc_run(r->coarse, map, n, set->scans[k], &q, &lr);
+        if (st == HL_ERR_EMPTY)
+            continue;
+        if (st != HL_OK)
+            return st;
+        hl_loc_surface_t s;
+        hl_loc_get_surface(r->coarse, &s);
+        if (!sum->started && !hl_votesum_start(sum, &s, set->offset[k], s.x0_mm, s.y0_mm))
+            return HL_ERR_CAPACITY;
+        hl_votesum_add(sum, &s, set->offset[k]);
+    }
+    return sum->started ? HL_OK : HL_ERR_EMPTY;
+}
+
+/* Stage 3 of one hypothesis: each scan searched finely around where the hypothesis puts
+ * it, alone (the odometry between the scans errs by a few degrees after a turn: each scan
+ * finds its own pose near its place), and judged together. @return false when no scan
+ * voted. */
+static bool fine_search(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                        const scan_set_t *set, hl_pose_t centre, hypothesis_t *h,
+                        hl_status_t *error)
+{
+    bool any = false;
+    h->explained = h->score = 0;
+    for (uint32_t k = 0; k < set->count; k++) {
+        hl_pose_t at = hl_pose_compose(centre, set->offset[k]);
+        h->at[k] = at;
+        if (!hl_pose_in_range(at))
+            continue;
+        hl_loc_query_t q = { .predicted = at, .window_mm = r->p.fine_window_mm,
+                             .search_theta = true, .use_prior = false };
+        hl_loc_result_t lr;
+        hl_status_t st = hl_loc_run(r->fine, map, n, set->scans[k], &q, &lr);
+        if (st != HL_OK && st != HL_ERR_EMPTY) {
+            *error = st;
+            return false;
+        }
+        if (st == HL_OK) {
+            h->at[k] = lr.pose;
+            if (k == 0)
+                h->score = lr.peak;
+            any = true;
+        }
+        h->explained += hl_judge_score(&r->judge, set->scans[k], h->at[k]);
+    }
+    h->pose = h->at[0];
+    return any;
+}
+
+/* Checks the arguments and gathers the scans with their poses in the first's frame. */
+static hl_status_t make_set(const hl_reloc_t *r, uint32_t n, const hl_scan_t *const *scans,
+                            const hl_pose_t *odometry, uint32_t count, scan_set_t *set,
+                            uint32_t *nvalid)
+{
+    if (count < 1 || count > HL_RELOC_MAX_SCANS || !scans || (count > 1 && !odometry))
+        return HL_ERR_ARG;
+    for (uint32_t k = 0; k < count; k++)
+        if (!scans[k])
+            return HL_ERR_ARG;
+    set->scans = scans;
+    set->count = count;
+    *nvalid = 0;
+    for (uint32_t k = 0; k < count; k++) {
+        if (hl_scan_check(scans[k]) != HL_OK)
+            return HL_ERR_RANGE;
+        set->offset[k] = (hl_pose_t){ 0, 0, 0 };
+        if (k > 0) {
+            if (!hl_pose_in_range(odometry[0]) || !hl_pose_in_range(odometry[k]))
+                return HL_ERR_RANGE;
+            set->offset[k] = hl_pose_between(odometry[0], odometry[k]);
+        }
+        *nvalid += hl_scan_valid_count(scans[k]);
+    }
+    return n > r->fine_p.max_map_vectors ? HL_ERR_CAPACITY : HL_OK;
+}
+
+hl_status_t hl_reloc_run_scans(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                               const hl_scan_t *const *scans, const hl_pose_t *odometry,
+                               uint32_t count, hl_reloc_result_t *result)
+{
+    if (!r || (!map && n > 0) || !result)
         return HL_ERR_ARG;
     memset(result, 0, sizeof *result);
-    if (hl_scan_check(scan) != HL_OK)
-        return HL_ERR_RANGE;
-    if (n > r->fine_p.max_map_vectors)
-        return HL_ERR_CAPACITY;
-    uint32_t nvalid = 0;
-    for (uint32_t i = 0; i < scan->count; i++)
-        nvalid += scan->readings[i].valid;
+    scan_set_t set;
+    uint32_t nvalid;
+    hl_status_t st = make_set(r, n, scans, odometry, count, &set, &nvalid);
+    if (st != HL_OK)
+        return st;
     result->readings = nvalid;
+    result->scans = (uint16_t)count;
     hl_bam_t headings[HL_RELOC_MAX_HEADINGS];
-    uint32_t nh = candidate_headings(r, map, n, scan, headings, r->p.headings);
+    uint32_t nh = candidate_headings(r, map, n, &set, headings, r->p.headings);
     if (n == 0 || nvalid == 0)
         return HL_ERR_EMPTY;
     result->headings_tried = (uint16_t)nh;
@@ -323,10 +458,7 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
     /* stage 2: coarse hypotheses, ranked by what they explain within a coarse cell */
     uint32_t nhyp = 0;
     for (uint32_t i = 0; i < nh; i++) {
-        hl_loc_query_t q = { .predicted = { 0, 0, headings[i] }, .window_mm = 0,
-                             .search_theta = true, .use_prior = false };
-        hl_loc_result_t lr;
-        hl_status_t st = hl_loc_run(r->coarse, map, n, scan, &q, &lr);
+        st = coarse_vote(r, map, n, &set, headings[i]);
         if (st == HL_ERR_EMPTY)
             continue;
         if (st != HL_OK)
@@ -334,23 +466,17 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
         nhyp = coarse_peaks(r, nhyp);
     }
     for (uint32_t i = 0; i < nhyp; i++)
-        r->hyp[i].explained = hl_judge_explained(&r->judge, scan, r->hyp[i].pose,
-                                                 r->p.coarse_cell_mm, NULL, NULL);
+        r->hyp[i].explained = set_explained(r, &set, r->hyp[i].pose, r->p.coarse_cell_mm);
     sort_by_explained(r->hyp, nhyp);
 
     /* stage 3: the best of them searched finely, and judged by what they explain */
     uint32_t nfine = 0;
     for (uint32_t i = 0; i < nhyp && nfine < r->p.hypotheses; i++) {
-        hl_loc_query_t q = { .predicted = r->hyp[i].pose, .window_mm = r->p.fine_window_mm,
-                             .search_theta = true, .use_prior = false };
-        hl_loc_result_t lr;
-        hl_status_t st = hl_loc_run(r->fine, map, n, scan, &q, &lr);
-        if (st == HL_ERR_EMPTY)
-            continue;
-        if (st != HL_OK)
+        st = HL_OK;
+        if (fine_search(r, map, n, &set, r->hyp[i].pose, &r->fine_hyp[nfine], &st))
+            nfine++;
+        else if (st != HL_OK)
             return st;
-        r->fine_hyp[nfine++] = (hypothesis_t){ lr.pose, lr.peak,
-                                               hl_judge_score(&r->judge, scan, lr.pose) };
     }
     result->hypotheses_tried = (uint16_t)nfine;
     if (nfine == 0)
@@ -359,16 +485,16 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
     result->pose = r->fine_hyp[0].pose;
     result->score = r->fine_hyp[0].explained;
     result->explained_pct = 100.0 * result->score / nvalid;
-    for (uint32_t i = 1; i < nfine; i++)
-        if (distinct(&r->p, r->fine_hyp[i].pose, result->pose)) {
-            result->have_runner_up = true;
-            result->runner_up = r->fine_hyp[i].pose;
-            result->runner_up_score = r->fine_hyp[i].explained;
-            break;
-        }
-    if (result->have_runner_up)
-        hl_judge_edges(&r->judge, scan, result->pose, result->runner_up, &result->edge,
-                       &result->runner_edge);
+    const hypothesis_t *runner = NULL;
+    for (uint32_t i = 1; i < nfine && !runner; i++)
+        if (distinct(&r->p, r->fine_hyp[i].pose, result->pose))
+            runner = &r->fine_hyp[i];
+    if (runner) {
+        result->have_runner_up = true;
+        result->runner_up = runner->pose;
+        result->runner_up_score = runner->explained;
+        set_edges(r, &set, &r->fine_hyp[0], runner, &result->edge, &result->runner_edge);
+    }
     else
         result->edge = result->score;
     result->found = result->explained_pct >= r->p.min_explained_pct &&
@@ -376,6 +502,14 @@ hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
                      (r->p.max_edge_ratio > 0.0 && 10u * result->edge >= nvalid &&
                       (double)result->runner_edge <= r->p.max_edge_ratio * result->edge));
     return HL_OK;
+}
+
+hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                         const hl_scan_t *scan, hl_reloc_result_t *result)
+{
+    if (!scan)
+        return HL_ERR_ARG;
+    return hl_reloc_run_scans(r, map, n, &scan, NULL, 1, result);
 }
 
 void hl_reloc_judge_poses(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,

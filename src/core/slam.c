@@ -28,6 +28,9 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     s->loc = hl_loc_create(&lp);
     s->echoed = p->echo_bearings ? malloc(sizeof *s->echoed) : NULL;
     s->fitted = p->fit_normals ? malloc(sizeof *s->fitted) : NULL;
+    s->search_echoed = p->echo_bearings ? calloc(HL_RELOC_MAX_SCANS, sizeof(hl_scan_t)) : NULL;
+    s->search_fitted = p->fit_normals ? calloc(HL_RELOC_MAX_SCANS, sizeof(hl_scan_t)) : NULL;
+    s->kept_scans = p->reloc.scans > 1 ? calloc(p->reloc.scans, sizeof(hl_scan_t)) : NULL;
     s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
     s->reloc = hl_reloc_create(&p->reloc, &lp);
     s->closure = p->close_loops ? hl_closure_create(p->closure_stops, p->map_capacity, p->seed)
@@ -37,6 +40,8 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
     if (!s->map || (spread && !s->shadow) ||
         !s->loc || (p->echo_bearings && !s->echoed) ||
         (p->fit_normals && !s->fitted) || (p->refine && !s->refiner) ||
+        (p->echo_bearings && !s->search_echoed) || (p->fit_normals && !s->search_fitted) ||
+        (p->reloc.scans > 1 && !s->kept_scans) ||
         !s->reloc || (p->close_loops && !s->closure)) {
         hl_slam_destroy(s);
         return NULL;
@@ -59,6 +64,9 @@ void hl_slam_destroy(hl_slam_t *s)
     hl_loc_destroy(s->loc);
     free(s->echoed);
     free(s->fitted);
+    free(s->search_echoed);
+    free(s->search_fitted);
+    free(s->kept_scans);
     hl_refine_destroy(s->refiner);
     hl_reloc_destroy(s->reloc);
     hl_closure_destroy(s->closure);
@@ -219,16 +227,32 @@ hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pred
 
 hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_result_t *out)
 {
-    if (!s || !scan || !out)
+    return hl_slam_relocalize_scans(s, &scan, NULL, 1, out);
+}
+
+hl_status_t hl_slam_relocalize_scans(hl_slam_t *s, const hl_scan_t *const *scans,
+                                     const hl_pose_t *odometry, uint32_t count,
+                                     hl_reloc_result_t *out)
+{
+    if (!s || !scans || !out || count < 1 || count > HL_RELOC_MAX_SCANS)
         return HL_ERR_ARG;
-    if (hl_scan_check(scan) != HL_OK)
-        return HL_ERR_RANGE;
-    scan = prepared(s, scan);
+    const hl_scan_t *ready[HL_RELOC_MAX_SCANS];
+    for (uint32_t k = 0; k < count; k++) {
+        if (!scans[k])
+            return HL_ERR_ARG;
+        if (hl_scan_check(scans[k]) != HL_OK)
+            return HL_ERR_RANGE;
+        ready[k] = k == 0 ? prepared(s, scans[0])
+                          : hl_slam_prepare(&s->p, scans[k],
+                                            s->search_echoed ? &s->search_echoed[k] : NULL,
+                                            s->search_fitted ? &s->search_fitted[k] : NULL);
+    }
     const hl_vector_t *map = hl_map_vectors(s->map);
     uint32_t n = hl_map_count(s->map);
-    hl_status_t st = hl_reloc_run(s->reloc, map, n, scan, out);
+    hl_status_t st = hl_reloc_run_scans(s->reloc, map, n, ready, odometry, count, out);
     if (st == HL_OK && s->refiner)  /* a refused refinement leaves the search's pose */
-        hl_refine_run(s->refiner, map, n, scan, out->pose, s->p.refine_heading, &out->pose);
+        hl_refine_run(s->refiner, map, n, ready[0], out->pose, s->p.refine_heading,
+                      &out->pose);
     return st;
 }
 

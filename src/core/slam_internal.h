@@ -28,6 +28,9 @@ typedef struct hl_slam_recovery {
     int32_t accepted_run;       /* ... and well-matched ones while lost */
     bool have_candidate;        /* the global search found this, to be confirmed */
     hl_pose_t candidate, candidate_odometry;
+    uint32_t kept;              /* lost scans kept for the search (kept_scans), oldest
+                                   first, each apart from the one before */
+    hl_pose_t kept_odometry[HL_RELOC_MAX_SCANS];
 } hl_slam_recovery_t;
 
 struct hl_slam {
@@ -47,6 +50,10 @@ struct hl_slam {
     hl_map_t *shadow;       /* ... the map drawn again aside (closure_redraw_readings) */
     hl_slam_matching_t matching;
     hl_slam_recovery_t recovery;
+    hl_scan_t *kept_scans;  /* reloc.scans copies when it is above 1: the scans the
+                               recovery's search takes together */
+    hl_scan_t *search_echoed, *search_fitted;   /* HL_RELOC_MAX_SCANS each, as echoed and
+                               fitted: the scans of hl_slam_relocalize_scans prepared */
     uint64_t scans;         /* hl_slam_update calls taken (search_every counts them) */
 };
 

@@ -18,8 +18,19 @@
  *    tracking resumes. Otherwise the candidate is dropped and this scan runs the search.
  * A found pose wins over tracking: a kidnapped robot's tracking may lock onto a wrong
  * place once the recent peaks have fallen (slam.h), and the search is what notices.
+ *
+ * While lost the search takes up to reloc.scans scans together (reloc.h): the lost scan
+ * and those kept before it, each kept where the odometry had moved KEEP_APART_MM or
+ * turned KEEP_APART_DEG since the one before (a scan nearer than that replaces the newest
+ * kept: the same view, fresher). Views from places apart are what tell one stretch of a
+ * corridor from the next; the odometry between them is good to a few centimetres.
  */
+#include <string.h>
+
 #include "slam_internal.h"
+
+#define KEEP_APART_MM 500
+#define KEEP_APART_DEG 30.0
 
 /* Scans tracking must match well in a row to end the lost state when lost_after is 0
  * (lost only when told): its recommended value. */
@@ -128,6 +139,49 @@ static bool tracked_pose(cycle_t *c, hl_pose_t from, hl_pose_t *out)
     return false;
 }
 
+/* Keeps the lost @p scan for the search (see above). */
+static void keep_scan(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry)
+{
+    hl_slam_recovery_t *r = &s->recovery;
+    if (!s->kept_scans)
+        return;
+    uint32_t at = r->kept;
+    if (at > 0) {
+        hl_pose_t newest = r->kept_odometry[at - 1];
+        int32_t turn = hl_bam_diff(odometry.theta, newest.theta);
+        bool apart = hl_slam_dist2(odometry, newest) >= (int64_t)KEEP_APART_MM * KEEP_APART_MM ||
+                     (turn < 0 ? -turn : turn) >= hl_bam_from_deg(KEEP_APART_DEG);
+        if (!apart)
+            at--;
+        else if (at == s->p.reloc.scans) {    /* full: the oldest goes */
+            memmove(&s->kept_scans[0], &s->kept_scans[1], (at - 1) * sizeof *s->kept_scans);
+            memmove(&r->kept_odometry[0], &r->kept_odometry[1],
+                    (at - 1) * sizeof *r->kept_odometry);
+            at--;
+        }
+    }
+    s->kept_scans[at] = *scan;
+    r->kept_odometry[at] = odometry;
+    r->kept = at + 1;
+}
+
+/* The global search on this lost scan, with the scans kept before it. */
+static hl_status_t relocalize(cycle_t *c)
+{
+    hl_slam_t *s = c->s;
+    if (!s->kept_scans)
+        return hl_slam_relocalize(s, c->scan, &c->found);
+    keep_scan(s, c->scan, c->odometry);
+    const hl_scan_t *scans[HL_RELOC_MAX_SCANS];
+    hl_pose_t odometry[HL_RELOC_MAX_SCANS];
+    uint32_t n = s->recovery.kept;
+    for (uint32_t i = 0; i < n; i++) {      /* newest (this scan) first: its pose answers */
+        scans[i] = &s->kept_scans[n - 1 - i];
+        odometry[i] = s->recovery.kept_odometry[n - 1 - i];
+    }
+    return hl_slam_relocalize_scans(s, scans, odometry, n, &c->found);
+}
+
 static void set_candidate(cycle_t *c, hl_pose_t pose)
 {
     c->s->recovery.have_candidate = true;
@@ -156,7 +210,7 @@ static bool confirms(cycle_t *c, hl_pose_t *predicted)
 static bool search(cycle_t *c)
 {
     c->searched_lost = true;
-    c->search_status = hl_slam_relocalize(c->s, c->scan, &c->found);
+    c->search_status = relocalize(c);
     if (c->search_status != HL_OK) {
         c->found = (hl_reloc_result_t){ 0 };
         return false;
@@ -238,6 +292,7 @@ static bool kidnapped(cycle_t *c)
     if (here > s->p.reloc.max_ratio * c->found.score)
         return false;   /* tracking's pose explains the scan about as well: keep it */
     enter_lost(s);
+    keep_scan(s, c->scan, c->odometry);
     c->lost_why = HL_SLAM_LOST_ELSEWHERE;
     c->tracked = local;
     c->tracked_score = here;

@@ -223,6 +223,8 @@ const hl_config_key_t hl_config_keys[] = {
       "found only when the answer explains at least this share of the readings" },
     { "reloc.max_edge_ratio", HL_KEY_DOUBLE, S(reloc.max_edge_ratio), 0, 1,
       "also found when readings favouring the runner-up are at most this share of those favouring the answer; 0: off" },
+    { "reloc.scans", HL_KEY_U16, S(reloc.scans), 1, 4,
+      "while lost, the global search takes this many of the robot's scans together, each kept 0.5 m or 30 degrees from the one before" },
     { "robot.link", HL_KEY_LINK, F(robot_link), 0, 0,
       "the robot: serial:DEVICE[,BAUD] (ARCOS, 9600 baud unless given), tcp:HOST:PORT "
       "(houghloc-sim) or file:CAPTURE (a houghloc-sim --capture, replayed); empty: SONAR and "

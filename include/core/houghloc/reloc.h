@@ -28,6 +28,16 @@
  * runner-up at most max_ratio of what it does; otherwise "ambiguous" (a symmetric
  * corridor, a scan that sees too little): say so rather than guess.
  *
+ * Several scans (hl_reloc_run_scans): one robot's scans with the odometry between them,
+ * searched together for the pose of the first. Stages 1 and 2 add up what the scans say
+ * at one pose of the first: their normal histograms turned by the odometry's headings,
+ * their coarse vote rasters moved by its translations (each scan voting with its own
+ * headings turned by the odometry). Stage 3 searches each scan finely around where a
+ * hypothesis puts it, alone (odometry errs by a few degrees over a turn), and the judge
+ * adds up the readings explained at each scan's own pose. A place that explains one scan
+ * by chance rarely explains the robot's next ones from half a metre away; the true place
+ * explains them all.
+ *
  * All memory is allocated by hl_reloc_create; hl_reloc_run allocates nothing. The
  * result depends only on the inputs (no randomness, no clock).
  */
@@ -50,6 +60,7 @@ extern "C" {
 #define HL_RELOC_MAX_HEADINGS 64
 #define HL_RELOC_MAX_PEAKS 8
 #define HL_RELOC_MAX_HYPOTHESES 64
+#define HL_RELOC_MAX_SCANS 4
 
 typedef struct hl_reloc_params {
     uint16_t headings;          /* heading windows searched (stage 1), 1..64; default 12
@@ -108,6 +119,8 @@ typedef struct hl_reloc_params {
                                    those are a tenth of the readings or more: the readings
                                    both explain tell nothing apart; 0..1, default 0 (off:
                                    the ratio of scores alone) */
+    uint16_t scans;             /* the scans a lost tracker searches together (slam.h),
+                                   1..HL_RELOC_MAX_SCANS; default 3 */
 } hl_reloc_params_t;
 
 /** Fills @p p with the defaults above. */
@@ -119,7 +132,7 @@ typedef struct hl_reloc_result {
     bool found;                 /* an answer distinct enough from the runner-up */
     hl_pose_t pose;             /* the best fine pose (also when ambiguous) */
     uint32_t score;             /* readings it explains (within verify_mm) */
-    uint32_t readings;          /* the scan's valid readings */
+    uint32_t readings;          /* the scan's valid readings (of all the scans) */
     double explained_pct;       /* score as a share of them */
     bool have_runner_up;
     hl_pose_t runner_up;        /* the best distinct other pose */
@@ -131,6 +144,7 @@ typedef struct hl_reloc_result {
     uint32_t runner_edge;       /* ... the runner-up over the answer */
     uint16_t headings_tried;    /* stage 1 candidates searched */
     uint16_t hypotheses_tried;  /* stage 3 searches run */
+    uint16_t scans;             /* scans searched together */
 } hl_reloc_result_t;
 
 /** 1 - runner_up_score / score (0..1; 1 with no runner-up, 0 with no answer). */
@@ -159,6 +173,19 @@ HL_API size_t hl_reloc_mem_bytes(const hl_reloc_t *r);
  */
 HL_API hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
                                 const hl_scan_t *scan, hl_reloc_result_t *result);
+
+/**
+ * Searches the whole map for the pose of @p scans[0], heading unknown, with
+ * @p scans[1 .. count - 1] taken by the same robot at the odometry poses
+ * @p odometry[1 ..] (@p odometry[0] is the first scan's: only the moves between them
+ * count). The result's scores and readings are summed over the scans; its poses are the
+ * first scan's. count 1 is hl_reloc_run.
+ * @return as hl_reloc_run; HL_ERR_ARG also for count outside 1..HL_RELOC_MAX_SCANS;
+ *         HL_ERR_RANGE for a bad scan or an odometry move off the coordinate range.
+ */
+HL_API hl_status_t hl_reloc_run_scans(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                                      const hl_scan_t *const *scans, const hl_pose_t *odometry,
+                                      uint32_t count, hl_reloc_result_t *result);
 
 /**
  * The score hl_reloc_run gives a pose (readings explained less readings contradicted, see

@@ -31,6 +31,15 @@ hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pred
  */
 hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_result_t *out);
 
+/**
+ * hl_slam_relocalize of @p scans[0] with the robot's other scans @p scans[1 .. count - 1]
+ * taken at the odometry poses @p odometry[1 ..] (@p odometry[0] the first's):
+ * hl_reloc_run_scans. count 1 is hl_slam_relocalize (@p odometry may then be NULL).
+ */
+hl_status_t hl_slam_relocalize_scans(hl_slam_t *s, const hl_scan_t *const *scans,
+                                     const hl_pose_t *odometry, uint32_t count,
+                                     hl_reloc_result_t *out);
+
 /** hl_reloc_judge of @p scan (at its echo bearings when the params ask) at @p pose against
  *  the current map. */
 uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose);

@@ -27,7 +27,8 @@ void usage(FILE *to)
         "                  [--seed S]\n"
         "                  | --log IMPORT [--exclude-m M]) [--detail FILE]\n"
         "       hl-kidnap --header\n"
-        "Relocalizes N scans, heading unknown, with hl_slam_relocalize and prints one row:\n"
+        "Relocalizes N robots, heading unknown, each from its first reloc.scans scans at\n"
+        "least %.1f m apart, with hl_slam_relocalize_scans, and prints one row:\n"
         "  %s\n"
         "(a success is found, not ambiguous, within %.1f m and %.0f degrees of the truth;\n"
         "times are the call alone). Progress on stderr.\n"
@@ -36,16 +37,18 @@ void usage(FILE *to)
         "  --world, --input  the row's first two cells\n"
         "A simulated world: the map is the daemon's map file MAP of its tour of the world\n"
         "FILE ('lab': the built-in lab); N soundings at random free poses, drawn with seed S\n"
-        "(default 1), are written to LOG first. --truth-map TOUR: the map is made instead of\n"
+        "(default 1), each followed by the robot's next soundings, are written to LOG first. --truth-map TOUR: the map is made instead of\n"
         "the tour log TOUR's scans at their true poses (a drift-free tour), as the slam does.\n"
         "Several maps (--map or --truth-map again, one kind): the same N soundings in each,\n"
         "one row of them all (N times the maps trials), a line for each map on stderr.\n"
         "A real building: every scan of the imported log IMPORT (houghloc-import-carmen with\n"
-        "--truth) more than M metres (default 2) from the test scan's true position makes\n"
-        "its map, at its true pose; N test scans spread evenly over the log.\n"
+        "--truth) more than M metres (default 2) from all of a trial's scans' true positions\n"
+        "makes its map, at its true pose; N test scans spread evenly over the log, each with\n"
+        "the log's next scans apart.\n"
         "  --detail FILE     one line per trial (the answer, the runner-up, the errors)\n"
         "Exit status: 0 done; 1 an error (one line on stderr); 2 bad usage.\n",
-        hlkid::kHeader, hlkid::kSuccessMm / 1000.0, hlkid::kSuccessDeg);
+        hlkid::kApartMm / 1000.0, hlkid::kHeader, hlkid::kSuccessMm / 1000.0,
+        hlkid::kSuccessDeg);
 }
 
 struct Options {
@@ -153,7 +156,7 @@ bool truth_map(const hl_slam_params_t &p, const std::string &path, hl_slam_t *sl
     if (!hlkid::load_soundings(path, &tour, err))
         return false;
     hlkid::TruthMapper mapper(p, tour);
-    if (!mapper.make(hl_pose_t{}, -1.0, err))
+    if (!mapper.make({}, -1.0, err))
         return false;
     return hlkid::restore_map(slam, hl_map_vectors(mapper.map()), hl_map_count(mapper.map()),
                               err);
@@ -186,12 +189,16 @@ bool run_sim_map(const hl_slam_params_t &p, const std::string &what, const std::
                  "cells), %zu test soundings\n",
                  what.c_str(), index, count, path.c_str(), n, w, h, cells, tests.size());
     scorer->set_map(index, count);
-    for (const auto &t : tests) {
-        if (!scorer->run(slam.get(), *t, &err)) {
+    const size_t per = p.reloc.scans, trials = tests.size() / per;
+    for (size_t k = 0; k < trials; k++) {
+        hlkid::Group group;
+        for (size_t i = 0; i < per; i++)
+            group.push_back(tests[k * per + i].get());
+        if (!scorer->run(slam.get(), group, &err)) {
             std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
             return false;
         }
-        scorer->progress(static_cast<int>(tests.size()), 20);
+        scorer->progress(static_cast<int>(trials), 20);
     }
     return true;
 }
@@ -211,8 +218,8 @@ int run(const Options &o)
     hlexp::Soundings tests;
     if (!o.sim_world.empty()) {
         const std::string world = o.sim_world == "lab" ? "" : o.sim_world;
-        if (!hlkid::write_sim_tests(world, static_cast<int>(o.trials), o.seed, o.test_log,
-                                    &err) ||
+        if (!hlkid::write_sim_tests(world, static_cast<int>(o.trials), p.reloc.scans, o.seed,
+                                    o.test_log, &err) ||
             !hlkid::load_soundings(o.test_log, &tests, &err)) {
             std::fprintf(stderr, "hl-kidnap: %s: %s\n", what.c_str(), err.c_str());
             return 1;

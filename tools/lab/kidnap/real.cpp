@@ -45,7 +45,8 @@ TruthMapper::~TruthMapper()
     hl_map_destroy(map_);
 }
 
-bool TruthMapper::make(hl_pose_t centre, double exclude_mm, std::string *err)
+bool TruthMapper::make(const std::vector<hl_pose_t> &centres, double exclude_mm,
+                       std::string *err)
 {
     if (!ok_) {
         *err = "cannot create the map (out of memory?)";
@@ -56,13 +57,26 @@ bool TruthMapper::make(hl_pose_t centre, double exclude_mm, std::string *err)
     hl_map_restore(map_, nullptr, 0, 0, fresh_);
     for (size_t i = 0; i < log_.size(); i++) {
         const hl_scan_t &scan = prepares(p_) ? placed_[i] : log_[i]->msg.scan;
-        if (hlexp::distance_mm(log_[i]->truth, centre) > exclude_mm &&
-            hl_map_add_scan(map_, &scan, log_[i]->truth, nullptr) != HL_OK) {
+        bool far = true;
+        for (const hl_pose_t &c : centres)
+            far = far && hlexp::distance_mm(log_[i]->truth, c) > exclude_mm;
+        if (far && hl_map_add_scan(map_, &scan, log_[i]->truth, nullptr) != HL_OK) {
             *err = "scan " + std::to_string(log_[i]->msg.seq) + ": cannot map it";
             return false;
         }
     }
     return true;
+}
+
+// The test scan @p t and the scans after it in the log, each the first at least kApartMm
+// from the one before, @p count in all (fewer at the log's end).
+static Group group_from(const hlexp::Soundings &log, size_t t, int count)
+{
+    Group g{ log[t].get() };
+    for (size_t i = t + 1; i < log.size() && static_cast<int>(g.size()) < count; i++)
+        if (hlexp::distance_mm(log[i]->truth, g.back()->truth) >= kApartMm)
+            g.push_back(log[i].get());
+    return g;
 }
 
 bool run_real(const hl_slam_params_t &p, const hlexp::Soundings &log, int trials,
@@ -85,8 +99,11 @@ bool run_real(const hl_slam_params_t &p, const hlexp::Soundings &log, int trials
     for (int k = 0; k < trials; k++) {
         // The middle scan of the k-th of `trials` equal stretches of the log.
         size_t t = (2 * static_cast<size_t>(k) + 1) * n / (2 * static_cast<size_t>(trials));
-        const hlexp::Sounding &test = *log[t];
-        if (!mapper.make(test.truth, exclude_mm, err))
+        Group group = group_from(log, t, p.reloc.scans);
+        std::vector<hl_pose_t> places;
+        for (const hlexp::Sounding *g : group)
+            places.push_back(g->truth);
+        if (!mapper.make(places, exclude_mm, err))
             return false;
         const hl_map_t *map = mapper.map();
         uint32_t count = hl_map_count(map);
@@ -98,7 +115,7 @@ bool run_real(const hl_slam_params_t &p, const hlexp::Soundings &log, int trials
             most_h = h;
         }
         if (!restore_map(slam.get(), hl_map_vectors(map), count, err) ||
-            !scorer->run(slam.get(), test, err))
+            !scorer->run(slam.get(), group, err))
             return false;
         scorer->progress(trials, 10);
     }

@@ -38,9 +38,27 @@ bool near_a_stop(const std::vector<Vec2> &stops, Vec2 p)
     return false;
 }
 
+// Where the robot drives next: kApartMm to 2 kApartMm from @p from in a random direction,
+// a free place (kClearanceMm) with nothing in the straight way. False when 100 draws
+// found none (a robot boxed in turns instead).
+bool next_place(const World &w, Rng &rng, Vec2 from, Vec2 *to)
+{
+    for (int draw = 0; draw < 100; draw++) {
+        double a = rng.uniform(-kPi, kPi), d = rng.uniform(kApartMm, 2.0 * kApartMm);
+        Vec2 dir{std::cos(a), std::sin(a)};
+        Vec2 p = from + dir * d;
+        Hit hit;
+        if (w.clearance(p) >= kClearanceMm && !w.cast(from, dir, d + kClearanceMm, &hit)) {
+            *to = p;
+            return true;
+        }
+    }
+    return false;
+}
+
 }  // namespace
 
-bool write_sim_tests(const std::string &world_path, int trials, uint64_t seed,
+bool write_sim_tests(const std::string &world_path, int trials, int scans, uint64_t seed,
                      const std::string &log_path, std::string *err)
 {
     World w;
@@ -85,8 +103,17 @@ bool write_sim_tests(const std::string &world_path, int trials, uint64_t seed,
         } while (w.clearance(p) < kClearanceMm || !near_a_stop(stops, p));
         Pose truth{p.x, p.y, rng.uniform(-kPi, kPi)};
         robot.wait(60.0);           // carried there
-        robot.place(truth, truth);  // its odometry does not matter: nothing is predicted
-        log.sounding(robot.sound(), i, sonar.calib);
+        robot.place(truth, truth);  // its odometry's origin does not matter: only the
+                                    // moves between a trial's soundings count
+        log.sounding(robot.sound(), i * scans, sonar.calib);
+        for (int k = 1; k < scans; k++) {
+            Vec2 to;
+            if (next_place(w, rng, robot.truth().pos(), &to))
+                robot.steer_to(to);
+            else
+                robot.turn(kPi / 4.0);
+            log.sounding(robot.sound(), i * scans + k, sonar.calib);
+        }
     }
     if (!log.close()) {
         *err = log_path + ": write failed";

@@ -147,22 +147,31 @@ static uint32_t truth_score(hl_slam_t *slam, const hl_scan_t &scan, hl_pose_t tr
     return climb(slam, scan, truth, grid[best], scores[best]);
 }
 
-bool Scorer::run(hl_slam_t *slam, const hlexp::Sounding &test, std::string *err)
+bool Scorer::run(hl_slam_t *slam, const Group &group, std::string *err)
 {
+    const hlexp::Sounding &test = *group.front();
     Trial t;
     t.map = map_;
     t.seq = test.msg.seq;
     t.truth = test.truth;
+    t.scans = static_cast<int>(group.size());
     t.map_vectors = hl_map_count(hl_slam_map(slam));
     const hl_vector_t *v = hl_map_vectors(hl_slam_map(slam));
     for (uint32_t i = 0; i < t.map_vectors; i++)
         t.near_vectors += std::hypot(static_cast<double>(v[i].x_mm) - t.truth.x_mm,
                                      static_cast<double>(v[i].y_mm) - t.truth.y_mm) <= kNearMm;
+    std::vector<const hl_scan_t *> scans;
+    std::vector<hl_pose_t> odometry;
+    for (const hlexp::Sounding *g : group) {
+        scans.push_back(&g->msg.scan);
+        odometry.push_back(g->msg.odometry);
+    }
     double t0 = now_ms();
-    t.status = hl_slam_relocalize(slam, &test.msg.scan, &t.result);
+    t.status = hl_slam_relocalize_scans(slam, scans.data(), odometry.data(),
+                                        static_cast<uint32_t>(scans.size()), &t.result);
     t.ms = now_ms() - t0;
     if (t.status != HL_OK && t.status != HL_ERR_EMPTY) {
-        *err = "scan " + std::to_string(t.seq) + ": hl_slam_relocalize: " +
+        *err = "scan " + std::to_string(t.seq) + ": hl_slam_relocalize_scans: " +
                hl_status_str(t.status);
         double w, h;
         uint64_t cells = coarse_cells_needed(reloc_, v, t.map_vectors, &w, &h);
@@ -242,17 +251,17 @@ bool Scorer::write_detail(const std::string &path, std::string *err) const
     std::fprintf(f, "seq\toutcome\tstatus\ttrue_x_mm\ttrue_y_mm\ttrue_deg\tx_mm\ty_mm\tdeg\t"
                     "error_mm\terror_deg\texplained_pct\tscore\trunner_up_score\t"
                     "runner_x_mm\trunner_y_mm\trunner_deg\tmap_vectors\tnear_vectors\tms\t"
-                    "truth_score\tedge\trunner_edge\tmap\tanswer_climbed\n");
+                    "truth_score\tedge\trunner_edge\tmap\tanswer_climbed\tscans\n");
     for (const Trial &t : trials_) {
         const hl_reloc_result_t &r = t.result;
         std::fprintf(f, "%d\t%s\t%s\t%d\t%d\t%.1f\t%d\t%d\t%.1f\t%.0f\t%.1f\t%.1f\t%u\t%u\t"
-                        "%d\t%d\t%.1f\t%u\t%u\t%.2f\t%u\t%u\t%u\t%d\t%u\n",
+                        "%d\t%d\t%.1f\t%u\t%u\t%.2f\t%u\t%u\t%u\t%d\t%u\t%d\n",
                      t.seq, outcome_name(t.outcome), hl_status_str(t.status), t.truth.x_mm,
                      t.truth.y_mm, hl_bam_to_deg(t.truth.theta), r.pose.x_mm, r.pose.y_mm,
                      hl_bam_to_deg(r.pose.theta), t.error_mm, t.error_deg, r.explained_pct,
                      r.score, r.runner_up_score, r.runner_up.x_mm, r.runner_up.y_mm,
                      hl_bam_to_deg(r.runner_up.theta), t.map_vectors, t.near_vectors, t.ms,
-                     t.truth_score, r.edge, r.runner_edge, t.map, t.answer_climbed);
+                     t.truth_score, r.edge, r.runner_edge, t.map, t.answer_climbed, t.scans);
     }
     if (std::fclose(f) != 0) {
         *err = path + ": write failed";
