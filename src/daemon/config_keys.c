@@ -199,7 +199,7 @@ const hl_config_key_t hl_config_keys[] = {
       "each reading votes at most once into a cell: votes count readings that fit, not pairs, so dense clutter does not outvote the right place" },
     { "reloc.coarse_max_cells", HL_KEY_U32, S(reloc.coarse_max_cells), 1, 67108864,
       "coarse raster cells allocated at start (10 bytes each); the map's bounding box must fit" },
-    { "reloc.peaks_per_heading", HL_KEY_U16, S(reloc.peaks_per_heading), 1, 8,
+    { "reloc.peaks_per_heading", HL_KEY_U16, S(reloc.peaks_per_heading), 1, 32,
       "separate coarse peaks kept per heading window" },
     { "reloc.hypotheses", HL_KEY_U16, S(reloc.hypotheses), 1, 64,
       "the best coarse peaks searched again finely" },

@@ -2,7 +2,8 @@
  * program embedding the library meets it. A robot told it is lost is found where it is;
  * a robot carried to another mapped place is noticed by the periodic global search, or
  * after a run of doubtful scans, relocalized and confirmed by the next scan; a pose set by
- * hand or hl_slam_stop_searching ends the lost state; the parameters are checked. */
+ * hand or hl_slam_stop_searching ends the lost state; the lost scans the search takes
+ * together are kept apart; the parameters are checked. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -167,6 +168,46 @@ static void test_set_pose_and_stop_searching_end_it(void **state)
     finish(&r);
 }
 
+/* While lost the search takes the scans kept 0.5 m or 30 degrees apart (reloc.scans of
+ * them): a scan nearer the newest kept one replaces it. The search here never answers
+ * found (a bar no pose clears), so the tracker stays lost and reports each search. */
+static void test_lost_scans_kept_apart(void **state)
+{
+    (void)state;
+    run_t r = { .w = make_walk(5), .scan = malloc(sizeof *r.scan) };
+    hl_slam_params_t p;
+    ray_sensor_defaults(&p);
+    p.lost_after = 50;          /* tracking alone does not end it within this test */
+    p.reloc.min_explained_pct = 100.0;
+    p.reloc.max_ratio = 0.01;
+    assert_int_equal(p.reloc.scans, 3);
+    r.s = hl_slam_create(&p);
+    assert_non_null(r.s);
+    hl_slam_reset(r.s, r.w->truth[0]);
+    map_the_walk(&r);
+    hl_slam_lose(r.s);
+    /* the robot stands still; its odometry says where it went */
+    hl_pose_t at = r.w->truth[MAPPED - 1], odo = r.w->odom[MAPPED - 1];
+    struct { int32_t forward_mm; double turn_deg; uint16_t scans; } moves[] = {
+        { 0, 0, 1 },        /* the first lost scan */
+        { 100, 0, 1 },      /* 0.1 m on: replaces it */
+        { 500, 0, 2 },      /* 0.6 m from the kept one */
+        { 0, 35, 3 },       /* turned 35 degrees */
+        { 200, 0, 3 },      /* near: replaces the newest */
+        { 600, 0, 3 },      /* apart: the oldest goes */
+    };
+    for (size_t i = 0; i < sizeof moves / sizeof moves[0]; i++) {
+        odo = hl_pose_compose(odo, (hl_pose_t){ moves[i].forward_mm, 0,
+                                                hl_bam_from_deg(moves[i].turn_deg) });
+        hl_slam_step_t out = sound(&r, at, odo);
+        assert_true(hl_slam_lost(r.s));
+        assert_int_equal(out.status, HL_SLAM_LOST);
+        assert_true(out.searched_lost);
+        assert_int_equal(out.search.scans, moves[i].scans);
+    }
+    finish(&r);
+}
+
 static void test_params_checked(void **state)
 {
     (void)state;
@@ -198,6 +239,7 @@ int main(void)
         cmocka_unit_test(test_carried_away_noticed_by_the_search),
         cmocka_unit_test(test_doubtful_run_makes_it_lost),
         cmocka_unit_test(test_set_pose_and_stop_searching_end_it),
+        cmocka_unit_test(test_lost_scans_kept_apart),
         cmocka_unit_test(test_params_checked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

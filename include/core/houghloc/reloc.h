@@ -58,7 +58,7 @@ extern "C" {
 #endif
 
 #define HL_RELOC_MAX_HEADINGS 64
-#define HL_RELOC_MAX_PEAKS 8
+#define HL_RELOC_MAX_PEAKS 32
 #define HL_RELOC_MAX_HYPOTHESES 64
 #define HL_RELOC_MAX_SCANS 4
 
@@ -80,7 +80,7 @@ typedef struct hl_reloc_params {
                                    the judge use them all); 0 or 1 (the default): all */
     bool coarse_vote_once;      /* stage 2 counts readings, not pairs (localize.h,
                                    vote_once); default false */
-    uint16_t peaks_per_heading; /* 1..8; default 8 (fewer miss a place whose coarse
+    uint16_t peaks_per_heading; /* 1..32; default 8 (fewer miss a place whose coarse
                                    peak is lower than a crowded corner's) */
     uint32_t coarse_max_cells;  /* stage 2's raster budget (cells of one candidate's
                                    search, 10 bytes each); default 2^18 (2.6 MB). A

@@ -51,6 +51,8 @@ struct Trial {
     double ms = 0.0;            // the hl_slam_relocalize_scans call alone (CLOCK_MONOTONIC)
     uint32_t truth_score = 0;   // hl_slam_judge's best within kTruthNearMm, kTruthNearDeg
                                 // of the truth: what the map lets the search find there
+    uint32_t truth_scans_score = 0; // ... summed over the trial's scans, each near its own
+                                    // truth (compares with result.score)
     uint32_t answer_climbed = 0;    // ... and near the answer (both climbed alike), so
                                     // that the two compare as places, not as poses
     double error_mm = 0.0, error_deg = 0.0;     // of result.pose, when it has one

@@ -187,6 +187,9 @@ bool Scorer::run(hl_slam_t *slam, const Group &group, std::string *err)
         return false;
     }
     t.truth_score = truth_score(slam, test.msg.scan, t.truth);
+    t.truth_scans_score = t.truth_score;
+    for (size_t k = 1; k < group.size(); k++)
+        t.truth_scans_score += truth_score(slam, group[k]->msg.scan, group[k]->truth);
     if (t.status == HL_OK) {
         t.answer_climbed = climb(slam, test.msg.scan, t.result.pose, t.result.pose,
                                  hl_slam_judge(slam, &test.msg.scan, t.result.pose));
@@ -251,17 +254,17 @@ bool Scorer::write_detail(const std::string &path, std::string *err) const
     std::fprintf(f, "seq\toutcome\tstatus\ttrue_x_mm\ttrue_y_mm\ttrue_deg\tx_mm\ty_mm\tdeg\t"
                     "error_mm\terror_deg\texplained_pct\tscore\trunner_up_score\t"
                     "runner_x_mm\trunner_y_mm\trunner_deg\tmap_vectors\tnear_vectors\tms\t"
-                    "truth_score\tedge\trunner_edge\tmap\tanswer_climbed\tscans\n");
+                    "truth_score\tedge\trunner_edge\tmap\tanswer_climbed\tscans\ttruth_scans_score\n");
     for (const Trial &t : trials_) {
         const hl_reloc_result_t &r = t.result;
         std::fprintf(f, "%d\t%s\t%s\t%d\t%d\t%.1f\t%d\t%d\t%.1f\t%.0f\t%.1f\t%.1f\t%u\t%u\t"
-                        "%d\t%d\t%.1f\t%u\t%u\t%.2f\t%u\t%u\t%u\t%d\t%u\t%d\n",
+                        "%d\t%d\t%.1f\t%u\t%u\t%.2f\t%u\t%u\t%u\t%d\t%u\t%d\t%u\n",
                      t.seq, outcome_name(t.outcome), hl_status_str(t.status), t.truth.x_mm,
                      t.truth.y_mm, hl_bam_to_deg(t.truth.theta), r.pose.x_mm, r.pose.y_mm,
                      hl_bam_to_deg(r.pose.theta), t.error_mm, t.error_deg, r.explained_pct,
                      r.score, r.runner_up_score, r.runner_up.x_mm, r.runner_up.y_mm,
                      hl_bam_to_deg(r.runner_up.theta), t.map_vectors, t.near_vectors, t.ms,
-                     t.truth_score, r.edge, r.runner_edge, t.map, t.answer_climbed, t.scans);
+                     t.truth_score, r.edge, r.runner_edge, t.map, t.answer_climbed, t.scans, t.truth_scans_score);
     }
     if (std::fclose(f) != 0) {
         *err = path + ": write failed";
