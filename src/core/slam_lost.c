@@ -19,8 +19,8 @@
  * A found pose wins over tracking: a kidnapped robot's tracking may lock onto a wrong
  * place once the recent peaks have fallen (slam.h), and the search is what notices.
  *
- * While lost the search takes up to reloc.scans scans together (reloc.h): the lost scan
- * and those kept before it, each kept where the odometry had moved KEEP_APART_MM or
+ * While lost the search takes the lost scan alone and, when that is ambiguous, up to
+ * reloc.scans scans together (reloc.h): the lost scan and those kept before it, each kept where the odometry had moved KEEP_APART_MM or
  * turned KEEP_APART_DEG since the one before (a scan nearer than that replaces the newest
  * kept: the same view, fresher). Views from places apart are what tell one stretch of a
  * corridor from the next; the odometry between them is good to a few centimetres.
@@ -165,13 +165,17 @@ static void keep_scan(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry)
     r->kept = at + 1;
 }
 
-/* The global search on this lost scan, with the scans kept before it. */
+/* The global search on this lost scan: alone, and when that is ambiguous, with the
+ * scans kept before it. Alone first: a sum of scores dilutes one distinctive view with
+ * the ambiguous ones before it (a runner-up explains those as well as the answer), and a
+ * found candidate is confirmed by the next scan anyway. */
 static hl_status_t relocalize(cycle_t *c)
 {
     hl_slam_t *s = c->s;
-    if (!s->kept_scans)
-        return hl_slam_relocalize(s, c->scan, &c->found);
     keep_scan(s, c->scan, c->odometry);
+    hl_status_t alone = hl_slam_relocalize(s, c->scan, &c->found);
+    if (s->recovery.kept < 2 || (alone == HL_OK && c->found.found))
+        return alone;
     const hl_scan_t *scans[HL_RELOC_MAX_SCANS];
     hl_pose_t odometry[HL_RELOC_MAX_SCANS];
     uint32_t n = s->recovery.kept;

@@ -44,6 +44,13 @@ static const hl_profile_key_t sonar_continuous[] = {
       "maps of whole buildings (up to 46 x 45 m): the global search's coarse cell doubled, "
       "a quarter of the cells for as many answers" },
     { "reloc.coarse_max_cells", "1048576", "... and room for such a map drawn at drifted poses" },
+    { "reloc.min_explained_pct", "60",
+      "a whole building's sparse map: found only when the answer explains 60 % of the "
+      "readings (make kidnap's pseudo-sonar rows: 1 % wrong or under)" },
+    { "reloc.max_ratio", "0.6", "... and its runner-up at most 0.6 of what it does" },
+    { "daemon.search_every", "50",
+      "the global search besides tracking every 50th scan (about every 5 s), not every "
+      "scan: it takes 40-60 ms, most of a scan period" },
 };
 
 /* A laser scanner: the settings of all five real buildings (docs/results/real-buildings.md). */
@@ -75,6 +82,26 @@ static const hl_profile_key_t laser[] = {
       "maps of whole buildings (up to 56 x 84 m): the global search's coarse cell doubled, "
       "a quarter of the cells" },
     { "reloc.coarse_max_cells", "2097152", "... and room for such a map drawn at drifted poses" },
+    { "reloc.headings", "8",
+      "the global search (tools/lab/kidnap/laser-search.conf, make kidnap's laser rows): "
+      "fitted normals put the true heading among the best 8 windows" },
+    { "reloc.coarse_vote_once", "true",
+      "... a reading votes once into a coarse cell: clutter does not outvote the place" },
+    { "reloc.coarse_group_mm", "100", "... the map merged into 100 mm squares for it" },
+    { "reloc.coarse_stride", "6",
+      "... every sixth reading of each scan searched together votes coarsely" },
+    { "reloc.hypotheses", "16", "... 16 hypotheses searched finely" },
+    { "reloc.judge_gate_deg", "30",
+      "... a reading explained by a surface facing its way within 30 degrees, ..." },
+    { "reloc.verify_mm", "50", "... within 50 mm across it ..." },
+    { "reloc.verify_along_mm", "300", "... and 300 mm along it" },
+    { "reloc.min_explained_pct", "55", "... found when the answer explains 55 % ..." },
+    { "reloc.max_ratio", "0.75", "... and its runner-up at most 0.75 of what it does ..." },
+    { "reloc.max_edge_ratio", "0.15",
+      "... or the readings favouring the runner-up are at most 0.15 of those favouring it" },
+    { "daemon.search_every", "50",
+      "the global search besides tracking every 50th scan (about every 5 s), not every "
+      "scan: it takes 100-250 ms, more than a scan period" },
 };
 
 #define PROFILE(name, summary, keys) { name, summary, keys, sizeof keys / sizeof keys[0] }

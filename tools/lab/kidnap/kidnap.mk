@@ -15,14 +15,16 @@
 #   tours of the world (hl-sim-logs --seed S for each S of KIDNAP_TOUR_SEEDS, replayed in
 #   batch with the compiled-in defaults and KIDNAP_TOUR_SET from the true start pose, so
 #   that a map's frame is the world's); the tests are KIDNAP_TRIALS_SIM soundings of the
-#   same robot at random free poses, random headings (tools/lab/kidnap/sim.cpp), the same in
-#   every map, relocalized with the compiled-in defaults but for what
+#   same robot at random free poses, random headings, each followed by the robot's next
+#   soundings after drives of 0.5-1 m (reloc.scans in all; tools/lab/kidnap/sim.cpp), the
+#   same in every map, relocalized with the compiled-in defaults but for what
 #   tools/lab/kidnap/WORLD.conf sets (corridor.conf: a larger coarse raster); the row counts
 #   every map's trials, and each answer is also judged in its map's own frame
 #   (tools/lab/kidnap/map_frame.sh: $(KIDNAP_OUT)/trials/WORLD_sonar.map_frame and stderr);
 # - the real buildings, laser and pseudo-sonar: KIDNAP_TRIALS_REAL test scans spread
-#   evenly over the import (tools/lab/realeval's, every scan), each relocalized in a map of
-#   every scan more than 2 m from it at its true pose (tools/lab/kidnap/real.cpp), with the
+#   evenly over the import (tools/lab/realeval's, every scan), each with the log's next
+#   scans at least 0.5 m apart (reloc.scans in all), relocalized in a map of every scan
+#   more than 2 m from all of them at its true pose (tools/lab/kidnap/real.cpp), with the
 #   parameters of tools/lab/realeval/INPUT.conf.
 # Each row runs again at every `make kidnap` (the core may have changed); the tours, maps
 # and imports are files, made again only when their inputs change. Rows, per-trial detail

@@ -9,15 +9,17 @@
 #                                pose (so that the map's frame is the world's):
 #                                KIDNAP_OUT/sim/WORLD/SEED/map.hlmap
 #   run_row.sh sim WORLD         the row WORLD sonar: the same KIDNAP_TRIALS_SIM soundings
-#                                at random free poses relocalized in the map of each tour
+#                                at random free poses, each with the robot's next ones,
+#                                relocalized in the map of each tour
 #                                of KIDNAP_TOUR_SEEDS, with the compiled-in defaults
 #                                (tools/lab/kidnap/WORLD.conf when there is one)
 #   run_row.sh real BUILDING INPUT   the row BUILDING INPUT (laser or sonar): the import
 #                                EVAL_OUT/input/BUILDING_INPUT_every.lcmlog (made by
 #                                tools/lab/realeval/realeval.mk's rule), KIDNAP_TRIALS_REAL
-#                                test scans, each relocalized in a map of the others that
-#                                leaves out those within 2 m (tools/lab/realeval/INPUT.conf,
-#                                then tools/lab/kidnap/INPUT-search.conf when there is one)
+#                                test scans with their robot's next ones, each relocalized
+#                                in a map of the others that leaves out those within 2 m
+#                                of any of them (tools/lab/realeval/INPUT.conf, then
+#                                tools/lab/kidnap/INPUT-search.conf when there is one)
 #
 # A row is one line in KIDNAP_OUT/rows/WORLD_INPUT.tsv (hl-kidnap's columns), with each
 # trial in KIDNAP_OUT/trials/WORLD_INPUT.tsv. Environment: BUILD, DATA, EVAL_OUT,
