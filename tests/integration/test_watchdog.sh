@@ -123,7 +123,9 @@ with open(sys.argv[2], "wb") as out:
 ' "$tmp/log.fifo" "$tmp/blocked.err" &
 drainer=$!; pids="$pids $drainer"
 sleep 0.3
-errfile=$tmp/log.fifo start blocked 200000 self --set daemon.log_level=debug
+# the global search off: it would make the 128 scans take seconds, not the drain above
+errfile=$tmp/log.fifo start blocked 200000 self --set daemon.log_level=debug \
+    --set daemon.search_every=0 --set daemon.lost_after=0
 sleep 0.5
 t=$(now)
 n=$(count blocked WATCHDOG=1 "$(add "$t" -0.5)" "$t")
