@@ -46,6 +46,8 @@ void usage(FILE *to)
         "makes its map, at its true pose; N test scans spread evenly over the log, each with\n"
         "the log's next scans apart.\n"
         "  --detail FILE     one line per trial (the answer, the runner-up, the errors)\n"
+        "  --alone-first     as the tracker searches a lost scan: the test scan alone first,\n"
+        "                    the scans together only when that answer is ambiguous\n"
         "Exit status: 0 done; 1 an error (one line on stderr); 2 bad usage.\n",
         hlkid::kApartMm / 1000.0, hlkid::kHeader, hlkid::kSuccessMm / 1000.0,
         hlkid::kSuccessDeg);
@@ -53,6 +55,7 @@ void usage(FILE *to)
 
 struct Options {
     std::string config, world, input, sim_world, test_log, log, detail;
+    bool alone_first = false;
     std::vector<std::string> sets, maps, truth_maps;
     long trials = 0;
     unsigned long long seed = 1;
@@ -80,7 +83,8 @@ int bad(const char *option, const char *wants, const char *got)
 // Parses argv into @p o; returns -1 to go on, else the exit status.
 int parse(int argc, char **argv, Options *o)
 {
-    enum { WORLD = 256, INPUT, SIM_WORLD, MAP, TRUTH_MAP, TEST_LOG, LOG, SEED, EXCLUDE, DETAIL, HEADER };
+    enum { WORLD = 256, INPUT, SIM_WORLD, MAP, TRUTH_MAP, TEST_LOG, LOG, SEED, EXCLUDE, DETAIL, HEADER,
+           ALONE_FIRST };
     static const struct option longs[] = {
         { "config", required_argument, nullptr, 'c' },
         { "set", required_argument, nullptr, 's' },
@@ -96,6 +100,7 @@ int parse(int argc, char **argv, Options *o)
         { "exclude-m", required_argument, nullptr, EXCLUDE },
         { "detail", required_argument, nullptr, DETAIL },
         { "header", no_argument, nullptr, HEADER },
+        { "alone-first", no_argument, nullptr, ALONE_FIRST },
         { "help", no_argument, nullptr, 'h' },
         { nullptr, 0, nullptr, 0 },
     };
@@ -127,6 +132,7 @@ int parse(int argc, char **argv, Options *o)
             o->exclude_m = v;
             break;
         case DETAIL: o->detail = optarg; break;
+        case ALONE_FIRST: o->alone_first = true; break;
         case HEADER: std::printf("%s\n", hlkid::kHeader); return 0;
         case 'h': usage(stdout); return 0;
         default: usage(stderr); return 2;
@@ -213,7 +219,7 @@ int run(const Options &o)
     }
     const hl_slam_params_t &p = *cfg;
     const std::string what = o.world + " " + o.input;
-    hlkid::Scorer scorer(o.world, o.input, p.reloc);
+    hlkid::Scorer scorer(o.world, o.input, p.reloc, o.alone_first);
     std::string err;
     hlexp::Soundings tests;
     if (!o.sim_world.empty()) {

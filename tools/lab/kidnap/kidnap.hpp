@@ -48,7 +48,7 @@ struct Trial {
     uint32_t map_vectors = 0;
     uint32_t near_vectors = 0;  // map vectors within kNearMm of the true position: how
                                 // much the map knows of the place (for the detail file)
-    double ms = 0.0;            // the hl_slam_relocalize_scans call alone (CLOCK_MONOTONIC)
+    double ms = 0.0;            // the search calls alone (CLOCK_MONOTONIC)
     uint32_t truth_score = 0;   // hl_slam_judge's best within kTruthNearMm, kTruthNearDeg
                                 // of the truth: what the map lets the search find there
     uint32_t truth_scans_score = 0; // ... summed over the trial's scans, each near its own
@@ -63,8 +63,12 @@ struct Trial {
 // Runs the trials one by one and keeps what the row and the detail file need.
 class Scorer {
 public:
-    Scorer(std::string world, std::string input, const hl_reloc_params_t &reloc)
-        : world_(std::move(world)), input_(std::move(input)), reloc_(reloc) {}
+    // @p alone_first: as the tracker searches a lost scan (slam_lost.c), the test scan
+    // alone first, the scans together only when that answer is ambiguous.
+    Scorer(std::string world, std::string input, const hl_reloc_params_t &reloc,
+           bool alone_first = false)
+        : world_(std::move(world)), input_(std::move(input)), reloc_(reloc),
+          alone_first_(alone_first) {}
 
     // Relocalizes the scans of @p group (as the sensor gave them, with their odometry) in
     // @p slam's map and scores the answer against the test scan's truth. HL_OK with
@@ -92,6 +96,7 @@ public:
 private:
     std::string world_, input_;
     hl_reloc_params_t reloc_;   // the search's parameters, for the reason of a failure
+    bool alone_first_;
     std::vector<Trial> trials_;
     int map_ = 1, maps_ = 1;
     size_t map_first_ = 0;      // the current map's first trial: its trials are the rest

@@ -167,8 +167,12 @@ bool Scorer::run(hl_slam_t *slam, const Group &group, std::string *err)
         odometry.push_back(g->msg.odometry);
     }
     double t0 = now_ms();
-    t.status = hl_slam_relocalize_scans(slam, scans.data(), odometry.data(),
-                                        static_cast<uint32_t>(scans.size()), &t.result);
+    t.status = HL_ERR_EMPTY;
+    if (alone_first_)
+        t.status = hl_slam_relocalize(slam, scans[0], &t.result);
+    if (!(t.status == HL_OK && t.result.found) && (!alone_first_ || scans.size() > 1))
+        t.status = hl_slam_relocalize_scans(slam, scans.data(), odometry.data(),
+                                            static_cast<uint32_t>(scans.size()), &t.result);
     t.ms = now_ms() - t0;
     if (t.status != HL_OK && t.status != HL_ERR_EMPTY) {
         *err = "scan " + std::to_string(t.seq) + ": hl_slam_relocalize_scans: " +

@@ -70,8 +70,10 @@ fi
 have=$("$BIN/houghloc-import-carmen" --dump "$input" | grep -c '^SONAR')
 [ "$have" -eq "$SCANS" ] || die "$input holds $have scans, not $SCANS"
 
-D="$BIN/houghlocd --config /dev/null --fresh-map --set daemon.compute_window=10000 \
-   --set lcm.queue=$QUEUE"
+# The input is a ring sounded continuously: its profile (which also keeps the LOST state
+# off: lost, a sonar-stops daemon searches every scan and falls behind a 20x replay).
+D="$BIN/houghlocd --config /dev/null --fresh-map --set slam.profile=sonar-continuous \
+   --set daemon.compute_window=10000 --set lcm.queue=$QUEUE"
 
 # ---- the batch replay: the reference -------------------------------------------------------
 say "batch replay of $SCANS scans"
