@@ -13,6 +13,7 @@
 
 #include "houghloc/reloc.h"
 #include "../../tools/lab/testkit/synthroom.h"
+#include "reloc_ring.h"
 
 typedef struct fixture {
     sr_room_t room;
@@ -27,14 +28,7 @@ static fixture_t *make_fixture(double width, double height, int boxes, uint64_t 
     fixture_t *f = calloc(1, sizeof *f);
     sr_room_make(&f->room, -2000, 1000, width, height, boxes, seed);
     f->n = sr_make_map(&f->room, 1500, 128, 8000, 10, f->map);
-    hl_reloc_params_t p;
-    hl_reloc_params_default(&p);
-    /* an ideal ring's normals are its beams' directions, which tell nothing of heading:
-     * every heading window is searched */
-    p.headings = 18;
-    hl_loc_params_t fine;
-    hl_loc_params_default(&fine);
-    f->reloc = hl_reloc_create(&p, &fine);
+    f->reloc = ring_reloc();
     assert_non_null(f->reloc);
     return f;
 }

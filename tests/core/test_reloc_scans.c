@@ -16,6 +16,7 @@
 
 #include "houghloc/reloc.h"
 #include "../../tools/lab/testkit/synthroom.h"
+#include "reloc_ring.h"
 
 #define SCANS 3
 
@@ -34,12 +35,7 @@ static fixture_t *make_fixture(double width, double height, int boxes, uint64_t 
     fixture_t *f = calloc(1, sizeof *f);
     sr_room_make(&f->room, -2000, 1000, width, height, boxes, seed);
     f->n = sr_make_map(&f->room, 1500, 128, 8000, 10, f->map);
-    hl_reloc_params_t p;
-    hl_reloc_params_default(&p);
-    p.headings = 18;    /* an ideal ring's normals tell nothing of heading (test_reloc.c) */
-    hl_loc_params_t fine;
-    hl_loc_params_default(&fine);
-    f->reloc = hl_reloc_create(&p, &fine);
+    f->reloc = ring_reloc();
     assert_non_null(f->reloc);
     for (int k = 0; k < SCANS; k++)
         f->ptr[k] = &f->scans[k];
