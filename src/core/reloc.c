@@ -10,11 +10,9 @@
 
 #include "judge.h"
 #include "loc_params.h"
+#include "reloc_headings.h"
 #include "votesum.h"
 
-#define BINS 256                /* heading histogram bins: 256 BAM each, 1.4 deg */
-#define BIN_SHIFT 8
-#define HL_RELOC_MAX_WINDOWS 1024   /* heading windows tiling the circle */
 
 typedef struct hypothesis {
     hl_pose_t pose;
@@ -187,67 +185,6 @@ hl_reloc_t *hl_reloc_create(const hl_reloc_params_t *p, const hl_loc_params_t *f
                    (size_t)r->coarse_sum.max_cells * sizeof *r->coarse_sum.cells +
                    hl_judge_mem_bytes(&r->judge);
     return r;
-}
-
-/* ---- stage 1: candidate headings ------------------------------------------------------ */
-
-/* Fills @p out with the centres of the `max` heading windows most worth a coarse search,
- * best first; returns how many. The circle is tiled with windows as wide as one coarse
- * search (2 x half_steps x step), so that searching them all covers every heading. A
- * window's worth is the highest value inside it of the circular correlation of the
- * sensed and the map's normal histograms, smoothed by a triangle of half-width
- * heading_smooth: the headings that turn the scan's walls onto the map's. */
-static uint32_t candidate_headings(const hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
-                                   const scan_set_t *set, hl_bam_t *out, uint32_t max)
-{
-    uint32_t hs[BINS] = { 0 }, hm[BINS] = { 0 };
-    for (uint32_t k = 0; k < set->count; k++) {
-        const hl_scan_t *scan = set->scans[k];
-        for (uint32_t i = 0; i < scan->count; i++)
-            if (scan->readings[i].valid)
-                hs[hl_reading_normal(&scan->readings[i], set->offset[k].theta) >> BIN_SHIFT]++;
-    }
-    for (uint32_t j = 0; j < n; j++)
-        hm[map[j].normal >> BIN_SHIFT]++;
-    uint64_t corr[BINS], smooth[BINS];
-    for (uint32_t h = 0; h < BINS; h++) {
-        uint64_t s = 0;
-        for (uint32_t b = 0; b < BINS; b++)
-            s += (uint64_t)hs[b] * hm[(b + h) & (BINS - 1)];
-        corr[h] = s;
-    }
-    int32_t w = r->p.heading_smooth >> BIN_SHIFT;
-    for (int32_t h = 0; h < BINS; h++) {
-        uint64_t s = (uint64_t)(w + 1) * corr[h];
-        for (int32_t k = 1; k <= w; k++)
-            s += (uint64_t)(w + 1 - k) * (corr[(h + k) & (BINS - 1)] + corr[(h - k) & (BINS - 1)]);
-        smooth[h] = s;
-    }
-    uint32_t span = 2u * r->p.coarse_half_steps * r->p.coarse_theta_step;
-    uint32_t nwin = span ? (65536u + span - 1) / span : 1;
-    nwin = nwin > HL_RELOC_MAX_WINDOWS ? HL_RELOC_MAX_WINDOWS : nwin;
-    uint64_t worth[HL_RELOC_MAX_WINDOWS];
-    uint32_t order[HL_RELOC_MAX_WINDOWS];
-    for (uint32_t k = 0; k < nwin; k++) {
-        /* bins whose centre lies within the window [centre - half, centre + half) */
-        int64_t lo = (int64_t)k * 65536 / nwin - 32768 / nwin, hi = lo + 65536 / nwin;
-        uint64_t best = 0;
-        for (int64_t a = lo; a < hi; a += 1 << BIN_SHIFT)
-            if (smooth[((uint32_t)a >> BIN_SHIFT) & (BINS - 1)] > best)
-                best = smooth[((uint32_t)a >> BIN_SHIFT) & (BINS - 1)];
-        worth[k] = best;
-        order[k] = k;
-    }
-    for (uint32_t i = 1; i < nwin; i++)        /* insertion sort, descending, stable */
-        for (uint32_t j = i; j > 0 && worth[order[j]] > worth[order[j - 1]]; j--) {
-            uint32_t t = order[j];
-            order[j] = order[j - 1];
-            order[j - 1] = t;
-        }
-    uint32_t m = max < nwin ? max : nwin;
-    for (uint32_t i = 0; i < m; i++)
-        out[i] = (hl_bam_t)((uint64_t)order[i] * 65536 / nwin);
-    return m;
 }
 
 /* ---- stage 2: coarse positions --------------------------------------------------------- */
@@ -449,7 +386,8 @@ hl_status_t hl_reloc_run_scans(hl_reloc_t *r, const hl_vector_t *map, uint32_t n
     result->readings = nvalid;
     result->scans = (uint16_t)count;
     hl_bam_t headings[HL_RELOC_MAX_HEADINGS];
-    uint32_t nh = candidate_headings(r, map, n, &set, headings, r->p.headings);
+    uint32_t nh = hl_reloc_headings(&r->p, map, n, set.scans, set.offset, set.count, headings,
+                                    r->p.headings);
     if (n == 0 || nvalid == 0)
         return HL_ERR_EMPTY;
     result->headings_tried = (uint16_t)nh;
