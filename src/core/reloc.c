@@ -351,13 +351,12 @@ static hl_status_t make_set(const hl_reloc_t *r, uint32_t n, const hl_scan_t *co
 {
     if (count < 1 || count > HL_RELOC_MAX_SCANS || !scans || (count > 1 && !odometry))
         return HL_ERR_ARG;
-    for (uint32_t k = 0; k < count; k++)
-        if (!scans[k])
-            return HL_ERR_ARG;
     set->scans = scans;
     set->count = count;
     *nvalid = 0;
     for (uint32_t k = 0; k < count; k++) {
+        if (!scans[k])
+            return HL_ERR_ARG;
         if (hl_scan_check(scans[k]) != HL_OK)
             return HL_ERR_RANGE;
         set->offset[k] = (hl_pose_t){ 0, 0, 0 };

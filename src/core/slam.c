@@ -242,10 +242,9 @@ hl_status_t hl_slam_relocalize_scans(hl_slam_t *s, const hl_scan_t *const *scans
             return HL_ERR_ARG;
         if (hl_scan_check(scans[k]) != HL_OK)
             return HL_ERR_RANGE;
-        ready[k] = k == 0 ? prepared(s, scans[0])
-                          : hl_slam_prepare(&s->p, scans[k],
-                                            s->search_echoed ? &s->search_echoed[k] : NULL,
-                                            s->search_fitted ? &s->search_fitted[k] : NULL);
+        ready[k] = hl_slam_prepare(&s->p, scans[k],
+                                   s->search_echoed ? &s->search_echoed[k] : NULL,
+                                   s->search_fitted ? &s->search_fitted[k] : NULL);
     }
     const hl_vector_t *map = hl_map_vectors(s->map);
     uint32_t n = hl_map_count(s->map);

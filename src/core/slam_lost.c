@@ -20,9 +20,9 @@
  * place once the recent peaks have fallen (slam.h), and the search is what notices.
  *
  * While lost the search takes the lost scan alone and, when that is ambiguous, up to
- * reloc.scans scans together (reloc.h): the lost scan and those kept before it, each kept where the odometry had moved KEEP_APART_MM or
- * turned KEEP_APART_DEG since the one before (a scan nearer than that replaces the newest
- * kept: the same view, fresher). Views from places apart are what tell one stretch of a
+ * reloc.scans scans together (reloc.h): the lost scan and those kept before it, each
+ * kept where the odometry had moved KEEP_APART_MM or turned KEEP_APART_DEG since the one
+ * before (a scan nearer than that replaces the newest kept: the same view, fresher). Views from places apart are what tell one stretch of a
  * corridor from the next; the odometry between them is good to a few centimetres.
  */
 #include <string.h>

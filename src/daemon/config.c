@@ -43,7 +43,8 @@ static void paper_preset(hl_slam_params_t *p)
  * (docs/results/relocalization.md), so that a robot moved while the daemon was down, or
  * carried while it ran, is found rather than driven from where it was. Every scan is
  * searched besides tracking (a sonar sounded at stops: about 30 ms a sounding; the
- * continuous profiles search less often), and two doubtful scans in a row make it lost.
+ * continuous profiles turn it off, profiles.c), and two doubtful scans in a row make it
+ * lost.
  * The library's tracker leaves it to its caller (hl_slam_params_default); the paper's
  * method had none. */
 static void daemon_preset(hl_slam_params_t *p)

@@ -23,8 +23,8 @@
 
 /* The LOST state off for a sensor that scans several times a second: lost, every scan
  * searches the whole map, 50-250 ms against a scan period of 100-250 ms, and the daemon
- * falls behind the sensor (the Flood trial's 20x replay: 894 of 1,200 scans published,
- * compute median 17 ms against 11 ms a scan); and the search's settings that answer wrong
+ * falls behind the sensor (the Flood trial's pseudo-sonar at 20x with the search on every
+ * scan: 894 of 1,200 scans published, compute median 17 ms against 11 ms a scan); and the search's settings that answer wrong
  * on 1 % or fewer of a building's trials were measured on maps made for the search
  * (tools/lab/kidnap/laser-search.conf, sonar-search.conf), not on the tracking maps these
  * profiles make.
