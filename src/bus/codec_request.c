@@ -18,7 +18,8 @@
 
 _Static_assert(HOUGHLOC_COMMAND_T_SET_POSE == HL_BUS_COMMAND_SET_POSE &&
                HOUGHLOC_COMMAND_T_SAVE == HL_BUS_COMMAND_SAVE &&
-               HOUGHLOC_COMMAND_T_RELOCALIZE == HL_BUS_COMMAND_RELOCALIZE,
+               HOUGHLOC_COMMAND_T_RELOCALIZE == HL_BUS_COMMAND_RELOCALIZE &&
+               HOUGHLOC_COMMAND_T_STOP == HL_BUS_COMMAND_STOP,
                "bus.h's HL_BUS_COMMAND_* disagree with lcmtypes/houghloc_command_t.lcm");
 
 _Static_assert(HL_BUS_REPLY_MAX_BYTES == REPLY_FIXED_BYTES + 4 + HL_BUS_TEXT_MAX,
@@ -83,9 +84,9 @@ hl_status_t hl_bus_decode_destination(const void *data, size_t len,
 
 static hl_status_t check_command(const hl_bus_command_t *m, char *why)
 {
-    if (m->kind < HOUGHLOC_COMMAND_T_SET_POSE || m->kind > HOUGHLOC_COMMAND_T_RELOCALIZE)
+    if (m->kind < HOUGHLOC_COMMAND_T_SET_POSE || m->kind > HOUGHLOC_COMMAND_T_STOP)
         return hl_wire_fail(why, HL_ERR_RANGE, "command", "kind %d outside %d..%d", m->kind,
-                            HOUGHLOC_COMMAND_T_SET_POSE, HOUGHLOC_COMMAND_T_RELOCALIZE);
+                            HOUGHLOC_COMMAND_T_SET_POSE, HOUGHLOC_COMMAND_T_STOP);
     return check_request("command", m->utime, m->seq, m->pose.x_mm, m->pose.y_mm, why);
 }
 

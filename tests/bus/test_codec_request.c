@@ -142,7 +142,7 @@ static hl_bus_command_t random_command(hl_rng_t *rng)
     hl_bus_command_t m = {
         .utime = tk_range(rng, 0, INT64_MAX),
         .seq = tk_range(rng, 1, INT64_MAX),
-        .kind = (int8_t)tk_range(rng, HL_BUS_COMMAND_SET_POSE, HL_BUS_COMMAND_RELOCALIZE),
+        .kind = (int8_t)tk_range(rng, HL_BUS_COMMAND_SET_POSE, HL_BUS_COMMAND_STOP),
         .pose = { coord(rng), coord(rng), (hl_bam_t)hl_rng_next(rng) },
     };
     random_mac(rng, m.mac);
@@ -204,7 +204,7 @@ static void test_command_hostile_bytes(void **state)
         { 16, 0, 8, "seq" },
         { 16, (uint64_t)INT64_MIN, 8, "seq" },
         { 24, 0, 1, "kind" },
-        { 24, 4, 1, "kind" },
+        { 24, 5, 1, "kind" },
         { 24, 0x80, 1, "kind" },
         { 25, (uint32_t)-HL_COORD_MAX_MM - 1, 4, "position" },
         { 29, HL_COORD_MAX_MM + 1, 4, "position" },
@@ -217,7 +217,7 @@ static void test_command_hostile_bytes(void **state)
     hl_bus_command_t q = m;
     q.kind = 0;
     assert_int_equal(hl_bus_encode_command(&q, b, sizeof b), -1);
-    q.kind = 4;
+    q.kind = 5;
     assert_int_equal(hl_bus_encode_command(&q, b, sizeof b), -1);
     q = m;
     q.seq = -5;

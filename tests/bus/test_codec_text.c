@@ -31,7 +31,7 @@ static int enc_reply(const void *in, void *buf, size_t cap)
     return hl_bus_encode_reply(in, buf, cap);
 }
 
-#define STATUS_TEXT_OFF 87      /* the string's length field in an encoded status */
+#define STATUS_TEXT_OFF 95      /* the string's length field in an encoded status */
 #define REPLY_TEXT_OFF 25
 
 static int32_t counter(hl_rng_t *rng)
@@ -46,7 +46,8 @@ static hl_bus_status_t random_status(hl_rng_t *rng)
         .state = (int8_t)tk_range(rng, 0, 7),
         .destination_seq = hl_rng_below(rng, 4) ? tk_range(rng, 1, INT64_MAX) : -1,
         .scans = counter(rng), .accepted = counter(rng), .rejected_wild = counter(rng),
-        .odometry_only = counter(rng), .bad_packets = counter(rng),
+        .odometry_only = counter(rng), .relocalized = counter(rng), .lost = counter(rng),
+        .bad_packets = counter(rng),
         .bad_messages = counter(rng), .rejected_requests = counter(rng),
         .map_vectors = (int32_t)tk_range(rng, 0, HL_MAP_MAX_CAPACITY),
         .map_version = counter(rng), .saves = counter(rng),
@@ -69,6 +70,8 @@ static void assert_status_matches(const hl_bus_status_t *s, const houghloc_statu
     assert_int_equal(g->accepted, s->accepted);
     assert_int_equal(g->rejected_wild, s->rejected_wild);
     assert_int_equal(g->odometry_only, s->odometry_only);
+    assert_int_equal(g->relocalized, s->relocalized);
+    assert_int_equal(g->lost, s->lost);
     assert_int_equal(g->bad_packets, s->bad_packets);
     assert_int_equal(g->bad_messages, s->bad_messages);
     assert_int_equal(g->rejected_requests, s->rejected_requests);
@@ -162,8 +165,8 @@ static void test_status_hostile_bytes(void **state)
     tk_check_bad_hash(&c, a, len);
     tk_check_small_buffers(&c, &s, len);
     check_text_field(&c, a, len, STATUS_TEXT_OFF, "last_error");
-    /* offsets: 8 utime 16 state 17 destination_seq 25 counters 65 x 69 y 73 heading
-     * 75 compute_median_us 79 p99 83 samples 87 last_error */
+    /* offsets: 8 utime 16 state 17 destination_seq 25 counters (12) 73 x 77 y 81 heading
+     * 83 compute_median_us 87 p99 91 samples 95 last_error */
     struct { size_t off; uint64_t v; size_t n; const char *field; } bad[] = {
         { 8, (uint64_t)-1, 8, "utime" },
         { 16, 8, 1, "state" },
@@ -171,13 +174,15 @@ static void test_status_hostile_bytes(void **state)
         { 17, 0, 8, "destination_seq" },
         { 17, (uint64_t)-2, 8, "destination_seq" },
         { 25, (uint32_t)-1, 4, "scans" },
-        { 25 + 4 * 6, 0x80000000u, 4, "rejected_requests" },
-        { 25 + 4 * 7, HL_MAP_MAX_CAPACITY + 1, 4, "map_vectors" },
-        { 25 + 4 * 9, (uint32_t)-1, 4, "saves" },
-        { 65, HL_COORD_MAX_MM + 1, 4, "position" },
-        { 69, (uint32_t)-HL_COORD_MAX_MM - 1, 4, "position" },
-        { 75, (uint32_t)-1, 4, "compute" },
+        { 25 + 4 * 4, (uint32_t)-1, 4, "relocalized" },
+        { 25 + 4 * 5, (uint32_t)-1, 4, "lost" },
+        { 25 + 4 * 8, 0x80000000u, 4, "rejected_requests" },
+        { 25 + 4 * 9, HL_MAP_MAX_CAPACITY + 1, 4, "map_vectors" },
+        { 25 + 4 * 11, (uint32_t)-1, 4, "saves" },
+        { 73, HL_COORD_MAX_MM + 1, 4, "position" },
+        { 77, (uint32_t)-HL_COORD_MAX_MM - 1, 4, "position" },
         { 83, (uint32_t)-1, 4, "compute" },
+        { 91, (uint32_t)-1, 4, "compute" },
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         memcpy(b, a, len);

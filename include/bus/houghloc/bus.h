@@ -53,6 +53,7 @@ extern "C" {
 #define HL_CHANNEL_COMMAND "COMMAND"
 #define HL_CHANNEL_REPLY "REPLY"
 #define HL_CHANNEL_GROUND_TRUTH "GROUND_TRUTH"
+#define HL_CHANNEL_PATH "PATH"
 
 #define HL_BUS_WHY_LEN 128
 #define HL_BUS_CHANNEL_MAX 64       /* a channel name with its prefix, with the NUL */
@@ -165,6 +166,7 @@ typedef struct hl_bus_status {
     int8_t state;               /* HL_BUS_STATE_* */
     int64_t destination_seq;    /* -1 when none, else > 0 */
     int32_t scans, accepted, rejected_wild, odometry_only;     /* all counters >= 0 */
+    int32_t relocalized, lost;  /* scans = accepted + ... + odometry_only + these two */
     int32_t bad_packets, bad_messages, rejected_requests;
     int32_t map_vectors, map_version, saves;    /* map_vectors <= HL_MAP_MAX_CAPACITY */
     hl_pose_t pose;             /* current estimate, within +-HL_COORD_MAX_MM */
@@ -183,10 +185,27 @@ enum {
     HL_BUS_STATE_LOST = 7,
 };
 
-#define HL_BUS_STATUS_MAX_BYTES (8 + 8 + 1 + 8 + 4 * 10 + 4 + 4 + 2 + 4 * 3 + 4 + HL_BUS_TEXT_MAX)
+#define HL_BUS_STATUS_MAX_BYTES (8 + 8 + 1 + 8 + 4 * 12 + 4 + 4 + 2 + 4 * 3 + 4 + HL_BUS_TEXT_MAX)
 hl_status_t hl_bus_decode_status(const void *data, size_t len, hl_bus_status_t *out,
                                  char *why);
 int hl_bus_encode_status(const hl_bus_status_t *in, void *buf, size_t cap);
+
+/* ---- PATH -------------------------------------------------------------------------- */
+
+#define HL_BUS_PATH_MAX_POINTS 64
+
+/** The planned way to a destination: npoints 0 (none) .. HL_BUS_PATH_MAX_POINTS, each
+ *  within +-HL_COORD_MAX_MM. */
+typedef struct hl_bus_path {
+    int64_t utime;
+    int64_t destination_seq;    /* -1 when none, else > 0 */
+    int32_t npoints;
+    int32_t x_mm[HL_BUS_PATH_MAX_POINTS], y_mm[HL_BUS_PATH_MAX_POINTS];
+} hl_bus_path_t;
+
+#define HL_BUS_PATH_MAX_BYTES (8 + 8 + 8 + 4 + 8 * HL_BUS_PATH_MAX_POINTS)
+hl_status_t hl_bus_decode_path(const void *data, size_t len, hl_bus_path_t *out, char *why);
+int hl_bus_encode_path(const hl_bus_path_t *in, void *buf, size_t cap);
 
 /* ---- DESTINATION, COMMAND, REPLY ------------------------------------------------- */
 
@@ -208,6 +227,7 @@ enum {
     HL_BUS_COMMAND_SET_POSE = 1,
     HL_BUS_COMMAND_SAVE = 2,
     HL_BUS_COMMAND_RELOCALIZE = 3,
+    HL_BUS_COMMAND_STOP = 4,    /* never refused: no MAC needed, any seq (command_t.lcm) */
 };
 
 typedef struct hl_bus_command {
