@@ -29,6 +29,7 @@ static const hl_arcos_cmd_spec_t SPECS[] = {
     { HL_ARCOS_SONAR, HL_ARCOS_ARG_INT, 0, 9, "SONAR" },
     { HL_ARCOS_STOP, HL_ARCOS_ARG_NONE, 0, 0, "STOP" },
     { HL_ARCOS_SONARCYCLE, HL_ARCOS_ARG_INT, 2, 120, "SONARCYCLE" },
+    { HL_ARCOS_STEP, HL_ARCOS_ARG_NONE, 0, 0, "STEP" },
 };
 
 const hl_arcos_cmd_spec_t *hl_arcos_spec_of(uint8_t number)

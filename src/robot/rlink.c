@@ -72,6 +72,15 @@ static bool queue_int(hl_rlink_t *l, uint8_t number, int32_t arg, int64_t now_ms
     return queue(l, st, len, now_ms);
 }
 
+static bool queue_str(hl_rlink_t *l, uint8_t number, const uint8_t *s, size_t n,
+                      int64_t now_ms)
+{
+    size_t len = 0;
+    hl_status_t st = hl_arcos_encode_str(l->out + l->out_len, sizeof l->out - l->out_len,
+                                         number, s, n, &len);
+    return queue(l, st, len, now_ms);
+}
+
 static void send_sync(hl_rlink_t *l, int64_t now_ms)
 {
     queue_none(l, (uint8_t)l->sync_stage, now_ms);
@@ -178,6 +187,12 @@ void hl_rlink_keepalive(hl_rlink_t *l, int64_t robot_ms)
     l->pulse_ref_ms = robot_ms;
 }
 
+void hl_rlink_hold(hl_rlink_t *l, int64_t now_ms)
+{
+    if (l->state == HL_RLINK_UP)
+        l->last_rx_ms = now_ms;
+}
+
 void hl_rlink_sent_at(hl_rlink_t *l, int64_t robot_ms)
 {
     l->pulse_ref_ms = robot_ms;
@@ -186,6 +201,12 @@ void hl_rlink_sent_at(hl_rlink_t *l, int64_t robot_ms)
 bool hl_rlink_send(hl_rlink_t *l, uint8_t number, int64_t now_ms)
 {
     return l->state == HL_RLINK_UP && queue_none(l, number, now_ms);
+}
+
+bool hl_rlink_send_str(hl_rlink_t *l, uint8_t number, const uint8_t *s, size_t n,
+                       int64_t now_ms)
+{
+    return l->state == HL_RLINK_UP && s && queue_str(l, number, s, n, now_ms);
 }
 
 bool hl_rlink_send_int(hl_rlink_t *l, uint8_t number, int32_t arg, int64_t now_ms)

@@ -99,7 +99,7 @@ static void test_every_command_round_trips(void **state)
             }
         }
     }
-    assert_int_equal(specs, 18);   /* 0..8, 10..13, 21, 23, 28, 29, 48 */
+    assert_int_equal(specs, 19);   /* 0..8, 10..13, 21, 23, 28, 29, 48, and STEP (250) */
     assert_string_equal(hl_arcos_spec_of(HL_ARCOS_SONAR)->name, "SONAR");
 }
 

@@ -183,6 +183,129 @@ static void test_gives_up_after_max_legs(void **state)
     assert_int_equal(hl_drive_init(&d, &p), HL_ERR_ARG);
 }
 
+
+/* A wall across the way at map x = WALL_X: what the base's front sonar reads while the
+ * robot drives east in the map frame (range from the centre, 0 when it faces away). */
+#define WALL_X 4000
+static int32_t wall_ahead(const hl_drive_in_t *in)
+{
+    double th = hl_bam_to_rad(in->estimate.theta);
+    if (cos(th) < 0.9)
+        return 0;
+    return (int32_t)lround((WALL_X - in->estimate.x_mm) / cos(th));
+}
+
+/* Drives towards (x, y) with the wall's readings fed in; @p via when not NULL aims each
+ * leg there (the planner's corner). Records the speeds commanded and the closest the
+ * centre came to the wall. */
+typedef struct trip {
+    int32_t speeds[64];
+    int nspeeds;
+    int32_t closest;        /* the least WALL_X - x seen */
+    int blocked;            /* legs the safety stop ended */
+} trip_t;
+
+static hl_drive_phase_t go_to_wall(hl_drive_t *d, base_t *b, int32_t x, int32_t y,
+                                   const int32_t *via, trip_t *t, int max_sips)
+{
+    hl_drive_in_t in = advance(b);
+    hl_drive_out_t out;
+    t->closest = INT32_MAX;
+    if (via)
+        hl_drive_set_via(d, via[0], via[1]);
+    hl_drive_start(d, x, y, false, 0, &in, &out);
+    obey(b, &out);
+    for (int i = 0; i < max_sips && hl_drive_phase(d) < HL_DRIVE_ARRIVED; i++) {
+        in = advance(b);
+        in.ahead_mm = wall_ahead(&in);
+        if (WALL_X - in.estimate.x_mm < t->closest)
+            t->closest = WALL_X - in.estimate.x_mm;
+        if (hl_drive_phase(d) == HL_DRIVE_SOUND) {
+            t->blocked += hl_drive_blocked(d, NULL);
+            if (via)
+                hl_drive_set_via(d, via[0], via[1]);
+            hl_drive_localized(d, &in, &out);
+        } else {
+            hl_drive_on_sip(d, &in, &out);
+        }
+        if (out.speed_mm_s > 0 && t->nspeeds < 64)
+            t->speeds[t->nspeeds++] = out.speed_mm_s;
+        obey(b, &out);
+    }
+    return hl_drive_phase(d);
+}
+
+static void test_a_leg_aims_at_the_via_point(void **state)
+{
+    (void)state;
+    hl_drive_t d;
+    setup(&d);
+    base_t b = { 0 };
+    hl_pose_t start = hl_pose_compose(MAP_FROM_ODOM, b.odo);
+    /* the goal 1 m east; the way first goes 1 m north (a corner round something) */
+    int32_t via[2] = { start.x_mm, start.y_mm + 1000 };
+    hl_drive_in_t in = advance(&b);
+    hl_drive_out_t out;
+    hl_drive_set_via(&d, via[0], via[1]);
+    hl_drive_start(&d, start.x_mm + 1000, start.y_mm, false, 0, &in, &out);
+    assert_int_equal(out.cmd, HL_DRIVE_CMD_HEAD);
+    /* north in the map frame is 0 deg in the odometry frame (MAP_FROM_ODOM turns 90) */
+    assert_int_equal(out.arg, 0);
+    obey(&b, &out);
+    for (int i = 0; i < 200 && out.cmd != HL_DRIVE_CMD_MOVE; i++) {
+        in = advance(&b);
+        hl_drive_on_sip(&d, &in, &out);
+    }
+    assert_int_equal(out.cmd, HL_DRIVE_CMD_MOVE);
+    assert_int_equal(out.arg, 1000);            /* to the via point, not the goal's 1.41 m */
+    assert_int_equal(out.speed_mm_s, 300);      /* each leg sets the speed */
+    assert_false(d.has_via);                    /* used once */
+}
+
+static void test_the_safety_stop_holds_short_of_a_wall_and_fails_blocked(void **state)
+{
+    (void)state;
+    hl_drive_t d;
+    setup(&d);
+    base_t b = { 0 };
+    b.odo.theta = 49152;    /* facing east in the map frame */
+    hl_pose_t start = hl_pose_compose(MAP_FROM_ODOM, b.odo);
+    assert_int_equal(start.x_mm, 2000);
+    /* a goal beyond the wall: the robot stops before it each time and finally fails */
+    trip_t t = { 0 };
+    assert_int_equal(go_to_wall(&d, &b, WALL_X + 1000, start.y_mm, NULL, &t, 20000),
+                     HL_DRIVE_FAILED);
+    assert_non_null(strstr(hl_drive_why(&d), "blocked: an obstacle"));
+    assert_int_equal(t.blocked, HL_DRIVE_MAX_BLOCKS + 1);
+    /* the fake base stops at once (each new leg creeps one packet, 30 mm, before its first
+     * reading stops it): the body (radius 250) never touched the wall */
+    assert_true(t.closest > 250);
+    assert_true(t.closest <= 350);
+    /* it slowed before: speeds fell from 300 towards the quarter */
+    assert_true(t.nspeeds >= 2);
+    assert_int_equal(t.speeds[0], 300);
+    int32_t least = 300;
+    for (int i = 0; i < t.nspeeds; i++)
+        least = t.speeds[i] < least ? t.speeds[i] : least;
+    assert_true(least < 150);
+    assert_true(least >= 75);
+}
+
+static void test_a_goal_short_of_the_wall_is_reached(void **state)
+{
+    (void)state;
+    hl_drive_t d;
+    setup(&d);
+    base_t b = { 0 };
+    b.odo.theta = 49152;
+    hl_pose_t start = hl_pose_compose(MAP_FROM_ODOM, b.odo);
+    /* 400 mm before the wall: the safety stop ends the last leg within reach of it */
+    trip_t t = { 0 };
+    assert_int_equal(go_to_wall(&d, &b, WALL_X - 400, start.y_mm, NULL, &t, 20000),
+                     HL_DRIVE_ARRIVED);
+    assert_true(t.closest >= 320);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -191,6 +314,9 @@ int main(void)
         cmocka_unit_test(test_a_stall_fails_at_once_and_stops),
         cmocka_unit_test(test_a_base_that_never_stops_times_out),
         cmocka_unit_test(test_gives_up_after_max_legs),
+        cmocka_unit_test(test_a_leg_aims_at_the_via_point),
+        cmocka_unit_test(test_the_safety_stop_holds_short_of_a_wall_and_fails_blocked),
+        cmocka_unit_test(test_a_goal_short_of_the_wall_is_reached),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

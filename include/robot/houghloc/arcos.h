@@ -133,6 +133,11 @@ enum {
     HL_ARCOS_SONAR = 28,      /* int: bit 0 on/off; bits 1-3 array 1..4, 0 = all arrays */
     HL_ARCOS_STOP = 29,       /* none: stop, motors stay enabled */
     HL_ARCOS_SONARCYCLE = 48, /* int: sonar cycle time, 2..120 ms */
+    /* Not ARCOS: houghloc-sim's lockstep clock (houghloc-sim --lockstep). In lockstep the
+     * simulator sends the next SIP only once the client has sent STEP for the last one,
+     * so robot time runs at the pace the client has dealt with it, never ahead of it. A
+     * real robot ignores an unknown command number. */
+    HL_ARCOS_STEP = 250,      /* none: advance one SIP period */
 };
 
 /* The argument type byte after the command number. */

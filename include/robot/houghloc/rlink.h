@@ -87,13 +87,20 @@ void hl_rlink_tick(hl_rlink_t *l, int64_t now_ms);
 
 /** Queues a PULSE when nothing was sent for pulse_ms of robot time; call once per SIP. */
 void hl_rlink_keepalive(hl_rlink_t *l, int64_t robot_ms);
+/** The client holds the robot's clock (a lockstep simulator waits for STEP, arcos.h):
+ *  no SIP comes, and that silence is no fault. Call while holding; the silence counts
+ *  from the last call. */
+void hl_rlink_hold(hl_rlink_t *l, int64_t now_ms);
 /** Notes that a command went out at @p robot_ms (no pulse is due before pulse_ms). */
 void hl_rlink_sent_at(hl_rlink_t *l, int64_t robot_ms);
 
-/** Queues a command without argument / with an integer one. @return false (and counts
- *  an overflow) when the link is not UP or the out-buffer is full. */
+/** Queues a command without argument / with an integer one / with a string of @p n bytes
+ *  (POLLING). @return false (and counts an overflow) when the link is not UP, the
+ *  out-buffer is full or the command does not encode. */
 bool hl_rlink_send(hl_rlink_t *l, uint8_t number, int64_t now_ms);
 bool hl_rlink_send_int(hl_rlink_t *l, uint8_t number, int32_t arg, int64_t now_ms);
+bool hl_rlink_send_str(hl_rlink_t *l, uint8_t number, const uint8_t *s, size_t n,
+                       int64_t now_ms);
 
 /** Queues CLOSE (motors stop, the robot ends the connection) and marks the link DOWN. */
 void hl_rlink_close(hl_rlink_t *l, const char *why, int64_t now_ms);
