@@ -76,6 +76,95 @@ static void test_options(void **state)
     }
 }
 
+// --lockstep: the flag, and --speed up to 1000 with it (up to 100 without), in either
+// order.
+static void test_lockstep_option(void **state)
+{
+    (void)state;
+    SimOptions o;
+    std::string err;
+    assert_false(o.lockstep);
+    assert_int_equal(static_cast<int>(parse({"--speed", "1000", "--lockstep"}, &o, &err)),
+                     static_cast<int>(ParseResult::Run));
+    assert_true(o.lockstep);
+    assert_near(o.speed, 1000.0, 0.0);
+    SimOptions o2;
+    assert_int_equal(static_cast<int>(parse({"--lockstep", "--speed", "250"}, &o2, &err)),
+                     static_cast<int>(ParseResult::Run));
+    assert_near(o2.speed, 250.0, 0.0);
+    SimOptions o3;
+    assert_int_equal(static_cast<int>(parse({"--speed", "100"}, &o3, &err)),
+                     static_cast<int>(ParseResult::Run));
+    assert_false(o3.lockstep);
+    const std::vector<std::vector<const char *>> bad = {
+        {"--speed", "100.5"}, {"--speed", "1000"}, {"--speed", "1001", "--lockstep"},
+        {"--speed", "0.05", "--lockstep"}, {"--lockstep", "--speed", "1e4"}};
+    for (const auto &args : bad) {
+        SimOptions x;
+        err.clear();
+        assert_int_equal(static_cast<int>(parse(args, &x, &err)),
+                         static_cast<int>(ParseResult::Error));
+        assert_true(err.find("--speed") == 0);
+        assert_true(err.find('\n') == std::string::npos);
+    }
+    char *text = nullptr;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    assert_non_null(f);
+    print_usage(f);
+    std::fclose(f);
+    assert_non_null(std::strstr(text, "--lockstep"));
+    std::free(text);
+}
+
+// The start pose: --start, else the world's start line, else its tour start; each
+// checked to be free space.
+static void test_start_pose(void **state)
+{
+    (void)state;
+    std::string err;
+    Pose p;
+    SimOptions none;
+    // The lab: its start line, in the open south-east leg.
+    World lab = World::lab();
+    assert_true(start_pose(lab, none, &p, &err));
+    assert_near(p.x, 5400.0, 0.0);
+    assert_near(p.y, 1500.0, 0.0);
+    assert_near(p.theta, 0.0, 0.0);
+    // --start wins (the old default, the tour start in the north-west corner).
+    SimOptions old;
+    assert_int_equal(static_cast<int>(parse({"--start", "0.6096,6.7056,0"}, &old, &err)),
+                     static_cast<int>(ParseResult::Run));
+    assert_true(start_pose(lab, old, &p, &err));
+    assert_near(p.x, 609.6, 1e-9);
+    assert_near(p.y, 6705.6, 1e-9);
+    // Without a start line: the tour start (snapped to the tile grid), heading 0.
+    World w;
+    const char *room = "polygon 0 0 4000 0 4000 4000 0 4000\n";
+    assert_true(w.parse(std::string(room) + "tour 1100 1300\n", "t.world", &err));
+    assert_true(start_pose(w, none, &p, &err));
+    assert_near(p.x, 2 * 609.6, 1e-9);
+    assert_near(p.y, 2 * 609.6, 1e-9);
+    assert_near(p.theta, 0.0, 0.0);
+    assert_true(w.parse(std::string(room) + "tour 1100 1300\nstart 3000 2000 90\n", "t.world",
+                        &err));
+    assert_true(start_pose(w, none, &p, &err));
+    assert_near(p.x, 3000.0, 0.0);
+    assert_near(p.theta, kPi / 2, 1e-12);
+    // A start line too close to a wall, or outside the room, is refused as --start is.
+    assert_true(w.parse(std::string(room) + "start 3900 2000 0\n", "t.world", &err));
+    assert_false(start_pose(w, none, &p, &err));
+    assert_true(err.find("the world's start: (3.900, 2.000) m is not in free space") == 0);
+    assert_true(err.find("give --start") != std::string::npos);
+    assert_true(w.parse(std::string(room) + "start 5000 2000 0\n", "t.world", &err));
+    assert_false(start_pose(w, none, &p, &err));
+    assert_true(err.find("the world's start: ") == 0);
+    // Neither: --start is needed.
+    assert_true(w.parse(room, "t.world", &err));
+    assert_false(start_pose(w, none, &p, &err));
+    assert_true(err.find("--start") == 0);
+}
+
 // --version prints "houghloc-sim <version>" like every houghloc program, and --help
 // lists it.
 static void test_version(void **state)
@@ -99,6 +188,8 @@ int main(void)
         cmocka_unit_test(test_numbers),
         cmocka_unit_test(test_options),
         cmocka_unit_test(test_version),
+        cmocka_unit_test(test_lockstep_option),
+        cmocka_unit_test(test_start_pose),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

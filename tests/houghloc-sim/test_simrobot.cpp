@@ -312,6 +312,71 @@ static void test_wall_stall(void **state)
     assert_int_equal(s.stall_bumpers, 0);
 }
 
+// A collision is a contact episode, counted and logged once at its first refused step.
+static void test_collisions(void **state)
+{
+    (void)state;
+    Rig r(Pose{2400, 0, 0});                     // 600 mm from the east wall
+    r.cmd(HL_ARCOS_ENABLE, 1);
+    r.cmd(HL_ARCOS_VEL, 300);                    // into the wall, and keeps pushing
+    for (int k = 0; k < 60; k++) {
+        r.robot.heard();
+        r.robot.step();
+    }
+    assert_true(r.robot.base().truth().x > 2700.0);
+    assert_int_equal(r.robot.collisions(), 1);
+    int logged = 0;
+    for (const std::string &l : r.lines)
+        logged += l.find("collision at (2.7") != std::string::npos &&
+                  l.find(" m, heading ") != std::string::npos &&
+                  l.find(" deg") != std::string::npos;
+    assert_int_equal(logged, 1);
+    // Stopping, standing, turning in place and pushing again: still the same contact.
+    r.none(HL_ARCOS_STOP);
+    r.until_stopped(10);
+    r.cmd(HL_ARCOS_DHEAD, 10);
+    r.until_stopped(30);
+    r.cmd(HL_ARCOS_MOVE, 300);
+    for (int k = 0; k < 20; k++) {
+        r.robot.heard();
+        r.robot.step();
+    }
+    assert_int_equal(r.robot.collisions(), 1);
+    // Back away, then drive into the wall again: a second collision.
+    r.none(HL_ARCOS_STOP);
+    r.until_stopped(10);
+    r.cmd(HL_ARCOS_MOVE, -400);
+    r.until_stopped(60);
+    assert_true(r.robot.base().truth().x < 2500.0);
+    assert_int_equal(r.robot.collisions(), 1);
+    r.cmd(HL_ARCOS_MOVE, 1000);
+    for (int k = 0; k < 60; k++) {
+        r.robot.heard();
+        r.robot.step();
+    }
+    assert_int_equal(r.robot.collisions(), 2);
+
+    // Driven along a free line, through the room and back: never.
+    Rig f(Pose{-2000, 0, 0});
+    f.cmd(HL_ARCOS_ENABLE, 1);
+    f.cmd(HL_ARCOS_MOVE, 4000);
+    assert_int_equal(f.until_stopped(200).type, HL_ARCOS_SIP_STOPPED);
+    f.cmd(HL_ARCOS_MOVE, -4000);
+    assert_int_equal(f.until_stopped(200).type, HL_ARCOS_SIP_STOPPED);
+    assert_true(f.robot.base().truth().x < -1000.0);
+    assert_int_equal(f.robot.collisions(), 0);
+    assert_false(f.logged("collision"));
+
+    // Stalled wheels (--stall-after) push against nothing: no collision.
+    Rig st;
+    st.cmd(HL_ARCOS_ENABLE, 1);
+    st.robot.stall_wheels();
+    st.cmd(HL_ARCOS_VEL, 300);
+    for (int k = 0; k < 10; k++)
+        st.robot.step();
+    assert_int_equal(st.robot.collisions(), 0);
+}
+
 static void test_stall_fault_and_motors(void **state)
 {
     (void)state;
@@ -396,6 +461,7 @@ int main(void)
         cmocka_unit_test(test_sonar_ring),
         cmocka_unit_test(test_sonar_values),
         cmocka_unit_test(test_wall_stall),
+        cmocka_unit_test(test_collisions),
         cmocka_unit_test(test_stall_fault_and_motors),
         cmocka_unit_test(test_seto_and_connection_end),
         cmocka_unit_test(test_motion_noise),

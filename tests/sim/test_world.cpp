@@ -86,7 +86,7 @@ static void test_parser_rejects(void **state)
     expect_error("segment 0 0 1e400 1\n", "t.world:1: '1e400' is not a finite number");
     expect_error("\n\nfoo 1 2\n",
                  "t.world:3: unknown keyword 'foo' (expected segment, polygon, box, rbox, "
-                 "circle, position, tiles, open, orientation, tour)");
+                 "circle, position, tiles, open, orientation, tour, start)");
     expect_error("segment 0 0 5000000 0\n", "t.world:1: coordinate 5000000 beyond +-4000000 mm");
     expect_error("circle 0 0 0\n", "t.world:1: circle radius must be at least 1 mm");
     expect_error("segment 5 5 5 5.5\n", "t.world:1: segment shorter than 1 mm");
@@ -119,6 +119,19 @@ static void test_parser_rejects(void **state)
     expect_error("tour 1 2 3\n", "t.world:1: tour needs X Y");
     expect_error("tour 0 0\n\ntour 5 5\n", "t.world:3: tour given twice");
     expect_error("tour 0 -4000001\n", "t.world:1: coordinate -4000001 beyond +-4000000 mm");
+    expect_error("start 1 2\n", "t.world:1: start needs X Y HEADING_DEG");
+    expect_error("start 1 2 3 4\n", "t.world:1: start needs X Y HEADING_DEG");
+    expect_error("start 1 2 x\n", "t.world:1: 'x' is not a finite number");
+    expect_error("start 1 inf 0\n", "t.world:1: 'inf' is not a finite number");
+    expect_error("start 4000001 0 0\n", "t.world:1: start coordinate beyond +-4000000 mm");
+    expect_error("start 0 0 -361\n", "t.world:1: heading must be within +-360 degrees");
+    expect_error("start 0 0 0\nsegment 0 0 1 1\nstart 5 5 90\n", "t.world:3: start given twice");
+    {
+        World w;
+        std::string err;
+        assert_false(w.parse("start 100 200 90\nfoo\n", "t.world", &err));
+        assert_false(w.has_start);   // a failed load leaves no start behind
+    }
     std::string longline(1001, ' ');
     expect_error(("segment 0 0 1 1\n" + longline + "\n").c_str(),
                  "t.world:2: line longer than 1000 characters");
@@ -149,6 +162,7 @@ static void test_parser_accepts(void **state)
     assert_true(w.open.empty());
     assert_false(w.has_orientation);
     assert_false(w.has_tour);
+    assert_false(w.has_start);
 }
 
 static void test_parser_surfaces_and_layout(void **state)
@@ -167,7 +181,8 @@ static void test_parser_surfaces_and_layout(void **state)
                         "open 0 0 3000 1200\n"
                         "open -600 -600 0 0\n"
                         "orientation 600 -1200.5\n"
-                        "tour 1200 0\n",
+                        "tour 1200 0\n"
+                        "start 1500.5 -300 -90\n",
                         "t.world", &err));
     assert_int_equal(w.segments.size(), 1 + 1 + 3 + 4 + 4);
     assert_int_equal(static_cast<int>(w.segments[0].surface), static_cast<int>(Surface::Smooth));
@@ -188,6 +203,10 @@ static void test_parser_surfaces_and_layout(void **state)
     assert_near(w.orientation_corner.y, -1200.5, 0.0);
     assert_true(w.has_tour);
     assert_near(w.tour_start.x, 1200.0, 0.0);
+    assert_true(w.has_start);
+    assert_near(w.start.x, 1500.5, 0.0);
+    assert_near(w.start.y, -300.0, 0.0);
+    assert_near(w.start.theta, -kPi / 2, 1e-12);
     // The ray reports the surface (and radius) of what it hit.
     Hit h;
     assert_true(w.cast({500, 500}, {0, -1}, 1e6, &h));
@@ -233,6 +252,14 @@ static void test_default_lab(void **state)
     assert_near(w.orientation_corner.y, 0.0, 0.0);
     assert_near(w.tour_start.x, lab_tour_start().x, 1e-9);
     assert_near(w.tour_start.y, lab_tour_start().y, 1e-9);
+    // houghloc-sim's default start: the open south-east leg (where make demo starts),
+    // clear of every surface by far more than the robot's radius, closed in.
+    assert_true(w.has_start);
+    assert_near(w.start.x, 5400.0, 0.0);
+    assert_near(w.start.y, 1500.0, 0.0);
+    assert_near(w.start.theta, 0.0, 0.0);
+    assert_true(w.clearance(w.start.pos()) > 1000.0);
+    assert_true(w.enclosed(w.start.pos(), &err));
     // The open floor is the west part only, and holds enough clear tile intersections.
     int clear = 0;
     for (const Rect &r : w.open) {

@@ -28,7 +28,8 @@ void append_echo(uint8_t b, std::vector<uint8_t> *out)
 
 }  // namespace
 
-Connection::Connection(SimRobot &robot, Log &log) : robot_(robot), log_(log)
+Connection::Connection(SimRobot &robot, Log &log, bool lockstep)
+    : robot_(robot), log_(log), lockstep_(lockstep)
 {
     copy_id(id_.name, "houghloc-sim");
     copy_id(id_.cls, "Pioneer");
@@ -44,10 +45,14 @@ void Connection::begin()
     seen_lengths_ = parser_.bad_lengths;
     seen_garbage_ = parser_.garbage_bytes;
     state_ = State::Sync0;
+    granted_ = false;
+    held_.clear();
 }
 
 void Connection::end()
 {
+    granted_ = false;
+    held_.clear();
     if (state_ == State::Idle)
         return;
     robot_.connection_end();
@@ -87,6 +92,31 @@ void Connection::feed(const uint8_t *in, std::size_t n, std::vector<uint8_t> *ou
 {
     if (state_ == State::Idle || state_ == State::Closed)
         return;
+    if (!wants_input()) {
+        // Lockstep, a period granted and not run: these bytes come after the grant.
+        held_.insert(held_.end(), in, in + n);
+        return;
+    }
+    process(in, n, out);
+}
+
+void Connection::period_done(std::vector<uint8_t> *out)
+{
+    if (!granted_)
+        return;
+    granted_ = false;
+    std::vector<uint8_t> bytes;
+    bytes.swap(held_);
+    // Even with nothing held the parser may hold a whole packet of its own (after a
+    // resynchronization): the empty call hands it out.
+    if (state_ != State::Idle && state_ != State::Closed)
+        process(bytes.data(), bytes.size(), out);
+}
+
+// Parses and carries out packets in order; in lockstep it stops after a packet that
+// grants a period, holding the bytes after it back for period_done().
+void Connection::process(const uint8_t *in, std::size_t n, std::vector<uint8_t> *out)
+{
     std::size_t off = 0, used = 0;
     hl_arcos_packet_t pkt;
     while (hl_arcos_parse(&parser_, in + off, n - off, &used, &pkt) == HL_OK) {
@@ -94,6 +124,10 @@ void Connection::feed(const uint8_t *in, std::size_t n, std::vector<uint8_t> *ou
         packet(pkt, out);
         if (state_ == State::Closed)
             break;   // nothing after CLOSE counts
+        if (granted_) {
+            held_.assign(in + off, in + n);
+            break;
+        }
     }
     count_parser();
 }
@@ -157,9 +191,21 @@ void Connection::take(const hl_arcos_cmd_t &cmd)
     case HL_ARCOS_PULSE:
         break;
     case HL_ARCOS_OPEN:
-        if (state_ != State::Open)
+        if (state_ != State::Open) {
             log_.line("OPEN: the SIP stream starts");
+            granted_ = lockstep_;   // lockstep: the first SIP period
+        }
         state_ = State::Open;
+        break;
+    case HL_ARCOS_STEP:
+        if (!lockstep_)
+            return;   // the lockstep clock's, and this clock is live: taken, ignored
+        if (state_ != State::Open) {
+            bad("step-before-open", "a STEP before OPEN, which grants nothing", cmd.number);
+            return;
+        }
+        granted_ = true;
+        steps_++;
         break;
     case HL_ARCOS_CLOSE:
         log_.line("CLOSE: the connection ends; the robot stops");

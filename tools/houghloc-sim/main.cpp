@@ -2,11 +2,14 @@
 // "Simulated robot"; docs/manual/arcos.md for the protocol subset).
 //
 // One thread, one poll loop: the listening socket, the client, a signalfd for SIGINT and
-// SIGTERM, and the SIP clock. Robot time runs --speed times wall time: a SIP is due every
-// 100 / K ms of wall time from the start. When the loop falls behind, no period is
-// skipped: the SIPs go out back to back, each still 100 ms of robot time (robot time is
-// what the SIPs say, and the daemon counts them), the sockets still served between them.
-// Each SIP sent is matched by one GROUND_TRUTH message with the true pose.
+// SIGTERM, and the SIP clock. The live clock: robot time runs --speed times wall time, a
+// SIP is due every 100 / K ms of wall time from the start. When the loop falls behind, no
+// period is skipped: the SIPs go out back to back, each still 100 ms of robot time (robot
+// time is what the SIPs say, and the daemon counts them), the sockets still served
+// between them. The lockstep clock (--lockstep): a period runs only when the client has
+// granted one (connection.hpp), at most one every 100 / K ms of wall time; a wait for a
+// grant starts that pace over, so no burst follows it. Each SIP sent is matched by one
+// GROUND_TRUTH message with the true pose.
 #include <lcm/lcm.h>
 #include <signal.h>
 #include <sys/signalfd.h>
@@ -22,7 +25,6 @@
 #include "houghloc/fixed.h"
 #include "houghloc/slam.h"
 #include "options.hpp"
-#include "tour.hpp"
 
 using namespace hlsim;
 
@@ -33,25 +35,6 @@ int64_t mono_ns()
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return static_cast<int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
-}
-
-// The true start pose: --start, else the world's tour start (snapped to its tile grid,
-// where hl-sim-logs starts its tour), heading 0. Checked to be free space.
-bool start_pose(const World &w, const SimOptions &o, Pose *out, std::string *err)
-{
-    if (o.has_start) {
-        *out = Pose{o.start_x_m * 1000.0, o.start_y_m * 1000.0, wrap_pi(deg2rad(o.start_deg))};
-    } else if (w.has_tour) {
-        std::vector<TourStop> stops = tour_order(w, w.tour_start, w.tile_mm, kTourClearanceMm);
-        Vec2 p = stops.empty() ? w.tour_start : stops[0].at;
-        *out = Pose{p.x, p.y, 0.0};
-    } else {
-        *err = "--start: the world declares no tour start; give --start X,Y,DEG";
-        return false;
-    }
-    // A robot stopped against a wall stands at its radius; GROUND_TRUTH's whole
-    // millimetres may put it a hair inside: check_free_pose lets it restart there.
-    return check_free_pose(w, *out, "--start", err);
 }
 
 struct Truth {
@@ -99,7 +82,7 @@ void summary(const Server &server, const Connection &connection, const SimRobot 
                  "houghloc-sim: summary: sips_sent=%llu commands=%llu bad_commands=%llu "
                  "client_garbage_bytes=%llu faults=%llu (drop %llu, garbage %llu, corrupt "
                  "%llu, stall %llu, teleport %llu) clients=%llu refused=%llu "
-                 "robot_time_s=%.1f\n",
+                 "robot_time_s=%.1f collisions=%llu\n",
                  static_cast<unsigned long long>(c.sips),
                  static_cast<unsigned long long>(connection.commands()),
                  static_cast<unsigned long long>(connection.bad_commands()),
@@ -112,24 +95,31 @@ void summary(const Server &server, const Connection &connection, const SimRobot 
                  static_cast<unsigned long long>(c.teleports),
                  static_cast<unsigned long long>(c.clients),
                  static_cast<unsigned long long>(c.refused),
-                 static_cast<double>(robot.utime()) / 1e6);
+                 static_cast<double>(robot.utime()) / 1e6,
+                 static_cast<unsigned long long>(robot.collisions()));
 }
 
 // The poll loop; returns when a signal arrives (0) or poll fails (1).
-int run(Server &server, SimRobot &robot, Truth &truth, Log &log, int sigfd, double speed)
+int run(Server &server, SimRobot &robot, Truth &truth, Log &log, int sigfd, double speed,
+        bool lockstep)
 {
     const int64_t period_ns = std::llround(1e8 / speed);   // 100 ms of robot time
-    int64_t next_ns = mono_ns() + period_ns;
+    int64_t next_ns = mono_ns() + (lockstep ? 0 : period_ns);
     for (;;) {
         struct pollfd pfd[3];
         pfd[0] = {sigfd, POLLIN, 0};
         std::size_t n = 1 + server.pollfds(pfd + 1);
-        int64_t wait = next_ns - mono_ns();
-        if (wait < 0)
-            wait = 0;
-        struct timespec ts = {static_cast<time_t>(wait / 1000000000),
-                              static_cast<long>(wait % 1000000000)};
-        int r = ppoll(pfd, n, &ts, nullptr);
+        // Live, a period is always due; lockstep, only once granted: until then the
+        // loop sleeps until the client or a signal wakes it.
+        struct timespec ts {}, *timeout = nullptr;
+        if (server.may_step()) {
+            int64_t wait = next_ns - mono_ns();
+            if (wait < 0)
+                wait = 0;
+            ts = {static_cast<time_t>(wait / 1000000000), static_cast<long>(wait % 1000000000)};
+            timeout = &ts;
+        }
+        int r = ppoll(pfd, n, timeout, nullptr);
         if (r < 0 && errno != EINTR) {
             log.line("poll: %s", std::strerror(errno));
             return 1;
@@ -142,11 +132,16 @@ int run(Server &server, SimRobot &robot, Truth &truth, Log &log, int sigfd, doub
         }
         if (r > 0)
             server.handle(pfd + 1, n - 1);
-        if (mono_ns() >= next_ns) {
+        const int64_t now = mono_ns();
+        if (server.may_step() && now >= next_ns) {
             uint64_t seq = 0;
             if (server.step(&seq))
                 truth.publish(robot, seq, log);
-            next_ns += period_ns;   // never skipped: behind, the next is due at once
+            // Live: never skipped, behind, the next is due at once. Lockstep: a period
+            // a whole period late waited for its grant; the pace starts over from now.
+            if (lockstep && now - next_ns >= period_ns)
+                next_ns = now;
+            next_ns += period_ns;
         }
     }
 }
@@ -190,7 +185,7 @@ int main(int argc, char **argv)
 
     Log log;
     SimRobot robot(world, cfg, start, log);
-    Connection connection(robot, log);
+    Connection connection(robot, log, o.lockstep);
     Server server(robot, connection, log, o.faults, o.seed);
     if (!server.listen(o.bind, o.port, &err) ||
         (!o.capture.empty() && !server.capture(o.capture, &err))) {
@@ -217,7 +212,12 @@ int main(int argc, char **argv)
              "%.1f deg, %s)", o.bind.c_str(), server.port(), o.profile.c_str(), o.speed,
              o.cone ? "cone" : "physical", start.x / 1000.0, start.y / 1000.0,
              rad2deg(start.theta), o.truth ? truth.channel : "no GROUND_TRUTH");
-    int rc = run(server, robot, truth, log, sigfd, o.speed);
+    if (o.lockstep)
+        log.line("clock lockstep: one SIP period per credit from the client (OPEN, then "
+                 "each STEP), at most %g times real time; no client, no robot time", o.speed);
+    else
+        log.line("clock live: robot time runs %g times real time", o.speed);
+    int rc = run(server, robot, truth, log, sigfd, o.speed, o.lockstep);
     server.shutdown();
     summary(server, connection, robot);
     close(sigfd);

@@ -48,6 +48,7 @@ void Base::place(const Pose &truth)
     halt();
     truth_ = truth;
     odom_ = Pose{};
+    in_contact_ = false;
 }
 
 void Base::reset_odometry()
@@ -199,12 +200,18 @@ void Base::advance(double dt)
                                   fwd * std::sin(mid) + lat * std::cos(mid)};
     if (ds != 0.0 && blocked(truth_.pos(), to)) {
         // The wheels stop against the wall: neither pose moves; a turn in place still can.
+        if (!in_contact_)
+            collisions_++;   // the rising edge: a new contact episode
+        in_contact_ = true;
         stalled_ = true;
         v_ = 0.0;
         ds = 0.0;
         move_done = false;
         dth_true = dth * (1.0 + turn_err_);
         to = truth_.pos();
+    } else if (in_contact_ && ds != 0.0 &&
+               world_.clearance(to) >= kRadiusMm + kContactReleaseMm) {
+        in_contact_ = false;   // a step away from the surface: the contact has ended
     }
 
     double mid_odom = odom_.theta + dth / 2.0;

@@ -35,6 +35,10 @@ class Base {
 public:
     /** Radius of the robot's body: its centre keeps this far from every surface. */
     static constexpr double kRadiusMm = 250.0;
+    /** A contact ends with a step that leaves the body this far clear of every surface
+     *  (a robot pushing a wall creeps the last fraction of a millimetre in steps that are
+     *  taken between those refused: still the same contact). */
+    static constexpr double kContactReleaseMm = 10.0;
 
     Base(const World &world, const RobotParams &noise, Rng &rng);
 
@@ -44,7 +48,11 @@ public:
     void reset_odometry();
     /** The kidnapped robot (fault injection): the true pose jumps to @p truth; the
      *  odometry, the commands and the velocities stay as they were. */
-    void teleport(const Pose &truth) { truth_ = truth; }
+    void teleport(const Pose &truth)
+    {
+        truth_ = truth;
+        in_contact_ = false;
+    }
 
     /* Commands, in the odometry frame. Translation (MOVE, VEL) and rotation (HEAD,
      * DHEAD, RVEL) are independent channels, as in ARCOS; a new command replaces the one
@@ -77,6 +85,14 @@ public:
     double control_heading() const;
     /** Whether a command pushed against a wall or stalled wheels since the last call. */
     bool take_stall();
+    /**
+     * Collisions so far: contact episodes, each counted at its first refused step (the
+     * first since the robot was set down or teleported, or since a step took it
+     * kContactReleaseMm clear of every surface); a robot that keeps pushing, stands, or
+     * turns in place against the wall is still in the same episode. Stalled wheels
+     * (set_wheels_stalled) are no collision.
+     */
+    uint64_t collisions() const { return collisions_; }
 
 private:
     enum class Mode { Idle, Velocity, Position };
@@ -99,6 +115,8 @@ private:
     double fwd_err_ = 0.0, lat_err_ = 0.0, drift_rad_per_mm_ = 0.0, turn_err_ = 0.0;
     bool wheels_stalled_ = false;
     bool stalled_ = false;
+    bool in_contact_ = false;      // a step was refused, and none has left the surface since
+    uint64_t collisions_ = 0;
 };
 
 }  // namespace hlsim

@@ -10,6 +10,7 @@
 #include "houghloc/bus.h"
 #include "houghloc/version.h"
 #include "simrobot.hpp"
+#include "tour.hpp"
 #include "world.hpp"
 
 namespace hlsim {
@@ -17,6 +18,8 @@ namespace hlsim {
 namespace {
 
 constexpr double kMaxSeconds = 1e7;   // fault times: about four months of robot time
+constexpr double kMaxSpeedLive = 100.0;       // --speed without --lockstep
+constexpr double kMaxSpeedLockstep = 1000.0;  // --speed with it: a cap, not a promise
 
 }  // namespace
 
@@ -30,13 +33,18 @@ void print_usage(FILE *f)
         "drifting odometry and sonar readings; the true pose goes out on LCM.\n"
         "  --port N            TCP port, 0..65535 (default 8101; 0: any free port, logged)\n"
         "  --bind ADDR         IPv4 address to listen on (default 127.0.0.1)\n"
-        "  --speed K           robot time runs K times wall time, 0.1..100 (default 1)\n"
+        "  --speed K           robot time runs K times wall time, 0.1..100 (default 1);\n"
+        "                      with --lockstep at most K times, 0.1..1000\n"
+        "  --lockstep          the lockstep clock: robot time advances one SIP period\n"
+        "                      (100 ms) per credit from the client, OPEN's and then one\n"
+        "                      per STEP (command 250), so a run does not depend on how\n"
+        "                      fast the machine or the client is; none without a client\n"
         "  --seed N            motion and sonar noise seed (default 1)\n"
         "  --world FILE        world file (default: the built-in lab)\n"
         "  --profile P         bonnie (16 transducers 22.5 deg apart, default) or pioneer3\n"
         "  --sonar-model M     physical (default) or cone, as hl-sim-logs\n"
         "  --start X,Y,DEG     true start pose, metres and degrees (default: the world's\n"
-        "                      tour start, heading 0)\n"
+        "                      start line, else its tour start, heading 0)\n"
         "  --lcm-url URL       LCM network for GROUND_TRUTH (default: liblcm's,\n"
         "                      $LCM_DEFAULT_URL)\n"
         "  --prefix P          channel prefix: P + GROUND_TRUTH (default none)\n"
@@ -144,9 +152,9 @@ bool take(const std::string &a, const char *v, SimOptions *o, std::string *err)
             return bad(err, a, "an IPv4 address such as 127.0.0.1", v);
         o->bind = v;
     } else if (a == "--speed") {
-        if (!parse_number(v, &d) || d < 0.1 || d > 100.0)
-            return bad(err, a, "a number from 0.1 to 100", v);
-        o->speed = d;
+        if (!parse_number(v, &d) || d < 0.1 || d > kMaxSpeedLockstep)
+            return bad(err, a, "a number from 0.1 to 100 (to 1000 with --lockstep)", v);
+        o->speed = d;   // above 100 only with --lockstep: parse_options checks it at the end
     } else if (a == "--seed") {
         if (!parse_count(v, UINT64_MAX, &n))
             return bad(err, a, "a non-negative integer", v);
@@ -229,6 +237,10 @@ ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err
             o->truth = false;
             continue;
         }
+        if (a == "--lockstep") {
+            o->lockstep = true;
+            continue;
+        }
         static const char *const with_value[] = {
             "--port", "--bind", "--speed", "--seed", "--world", "--profile",
             "--sonar-model", "--start", "--lcm-url", "--prefix", "--drop-after",
@@ -249,11 +261,44 @@ ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err
         if (!take(a, argv[++i], o, err))
             return ParseResult::Error;
     }
+    if (!o->lockstep && o->speed > kMaxSpeedLive) {
+        char v[32];
+        std::snprintf(v, sizeof v, "%g", o->speed);
+        *err = std::string("--speed wants a number from 0.1 to 100 without --lockstep, got '") +
+               v + "'";
+        return ParseResult::Error;
+    }
     if (o->teleport.has_to && !o->teleport.enabled()) {
         *err = "--teleport-to needs --teleport-after or --teleport-every (--help)";
         return ParseResult::Error;
     }
     return ParseResult::Run;
+}
+
+bool start_pose(const World &w, const SimOptions &o, Pose *out, std::string *err)
+{
+    const char *what = "--start";
+    if (o.has_start) {
+        *out = Pose{o.start_x_m * 1000.0, o.start_y_m * 1000.0, wrap_pi(deg2rad(o.start_deg))};
+    } else if (w.has_start) {
+        *out = w.start;
+        what = "the world's start";
+    } else if (w.has_tour) {
+        std::vector<TourStop> stops = tour_order(w, w.tour_start, w.tile_mm, kTourClearanceMm);
+        Vec2 p = stops.empty() ? w.tour_start : stops[0].at;
+        *out = Pose{p.x, p.y, 0.0};
+        what = "the world's tour start";
+    } else {
+        *err = "--start: the world declares no start and no tour start; give --start X,Y,DEG";
+        return false;
+    }
+    // A robot stopped against a wall stands at its radius; GROUND_TRUTH's whole
+    // millimetres may put it a hair inside: check_free_pose lets it restart there.
+    if (check_free_pose(w, *out, what, err))
+        return true;
+    if (!o.has_start)
+        *err += "; give --start X,Y,DEG";
+    return false;
 }
 
 }  // namespace hlsim

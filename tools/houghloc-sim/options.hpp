@@ -14,7 +14,9 @@ namespace hlsim {
 struct SimOptions {
     std::string bind = "127.0.0.1";
     int port = 8101;                 // 0: any free port (logged)
-    double speed = 1.0;              // robot time per wall time, 0.1 .. 100
+    double speed = 1.0;              // robot time per wall time, 0.1 .. 100 (live), the
+                                     // most it may be with --lockstep, 0.1 .. 1000
+    bool lockstep = false;           // --lockstep: a SIP period per client credit
     uint64_t seed = 1;
     std::string world;               // empty: the built-in lab
     std::string profile = "bonnie";
@@ -34,6 +36,13 @@ enum class ParseResult { Run, Help, Version, Error };
 
 /** Parses argv. On Error, @p err holds one line naming the option. */
 ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err);
+
+/**
+ * The true start pose: --start, else the world's `start` line, else its tour start
+ * (snapped to its tile grid, where hl-sim-logs starts its tour) with heading 0. Checked
+ * to be free space as --start is. @return false with one line in @p err.
+ */
+bool start_pose(const World &w, const SimOptions &o, Pose *out, std::string *err);
 
 /** The --help text. */
 void print_usage(FILE *f);

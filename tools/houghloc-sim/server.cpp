@@ -93,7 +93,10 @@ std::size_t Server::pollfds(struct pollfd *pfd) const
     if (listen_ >= 0)
         pfd[n++] = {listen_, POLLIN, 0};
     if (client_ >= 0)
-        pfd[n++] = {client_, static_cast<short>(POLLIN | (out_.empty() ? 0 : POLLOUT)), 0};
+        pfd[n++] = {client_,
+                    static_cast<short>((connection_.wants_input() ? POLLIN : 0) |
+                                       (out_.empty() ? 0 : POLLOUT)),
+                    0};
     return n;
 }
 
@@ -107,8 +110,12 @@ void Server::handle(const struct pollfd *pfd, std::size_t n)
         } else if (pfd[i].fd == client_ && client_ >= 0) {
             if (pfd[i].revents & POLLOUT)
                 flush();
-            if (client_ >= 0 && (pfd[i].revents & (POLLIN | POLLHUP | POLLERR)))
-                read_client();
+            // A hang-up or an error is read at once (to its end); plain input only
+            // while the connection wants it.
+            if (client_ >= 0 && (pfd[i].revents & (POLLHUP | POLLERR)))
+                read_client(true);
+            else if (client_ >= 0 && (pfd[i].revents & POLLIN))
+                read_client(false);
         }
     }
 }
@@ -141,10 +148,12 @@ void Server::accept_client()
     log_.line("client connected from %s", peer_name(a).c_str());
 }
 
-void Server::read_client()
+// Reads what the client sent while the connection wants it (@p all: everything, to the
+// end of the connection).
+void Server::read_client(bool all)
 {
     uint8_t buf[4096];
-    for (;;) {
+    while (all || connection_.wants_input()) {
         ssize_t r = recv(client_, buf, sizeof buf, 0);
         if (r > 0) {
             connection_.feed(buf, static_cast<std::size_t>(r), &out_);
@@ -164,6 +173,16 @@ void Server::read_client()
         break;
     }
     flush();
+}
+
+// After client input was carried out outside read_client (lockstep: the input held behind
+// a period): a CLOSE among it ends the connection.
+void Server::after_input()
+{
+    if (client_ >= 0 && connection_.closed()) {
+        flush();
+        close_client("the client sent CLOSE");
+    }
 }
 
 void Server::flush()
@@ -244,6 +263,9 @@ bool Server::queue_sip(const hl_arcos_sip_t &sip)
 
 bool Server::step(uint64_t *seq)
 {
+    const bool lockstep = connection_.lockstep();
+    if (!may_step())
+        return false;   // lockstep: no period granted, robot time stands
     const double t = static_cast<double>(robot_.utime()) / 1e6;
     if (!stalled_ && faults_.stall_after_s >= 0.0 && t >= faults_.stall_after_s) {
         stalled_ = true;
@@ -264,12 +286,18 @@ bool Server::step(uint64_t *seq)
         counts_.drops++;
         close_client("fault: dropping the client (--drop-every)");
     }
+    if (lockstep && client_ < 0)
+        return false;   // dropped by a fault just now: no client, no period
     hl_arcos_sip_t sip = robot_.step();
     counts_.teleports = robot_.teleports();   // the robot schedules those: they wait for it
     if (client_ < 0 || !connection_.streaming())
         return false;
     *seq = counts_.sips;
     bool queued = queue_sip(sip);
+    if (lockstep) {
+        connection_.period_done(&out_);   // what the client sent after this grant
+        after_input();
+    }
     flush();
     return queued;
 }

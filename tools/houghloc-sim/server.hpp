@@ -5,6 +5,12 @@
 // handle() does what became ready, step() runs one SIP period of the robot and queues the
 // SIP for the client. Output waits in a buffer while the socket is full; a client that
 // stops reading altogether is dropped rather than let the buffer grow.
+//
+// With the lockstep clock (the connection's, connection.hpp) a period runs only when the
+// client has granted one: may_step() says so, step() refuses otherwise, and robot time
+// stands still without a client. After the period's SIP is queued, the client input held
+// behind the grant is carried out; the socket is read only while the connection wants
+// input, so unread packets wait in the socket, in order.
 #ifndef HLSIMROBOT_SERVER_HPP
 #define HLSIMROBOT_SERVER_HPP
 
@@ -73,10 +79,20 @@ public:
     /** Handles what poll() reported for the pollfds() entries. */
     void handle(const struct pollfd *pfd, std::size_t n);
 
+    /** Whether step() would run a period now: always with the live clock; with the
+     *  lockstep clock, while a client is connected and has granted one. */
+    bool may_step() const
+    {
+        return !connection_.lockstep() || (client_ >= 0 && connection_.period_granted());
+    }
+
     /**
      * One SIP period: the faults due at this robot time, the robot's step, and the SIP
-     * queued for the client when the stream is open. @return true with @p seq set to
-     * the SIP's number (0, 1, ... over all clients) if one was queued.
+     * queued for the client when the stream is open; with the lockstep clock, then the
+     * client input held behind the grant. @return true with @p seq set to the SIP's
+     * number (0, 1, ... over all clients) if one was queued. With the lockstep clock and
+     * no period granted (or the client dropped by a fault due now) nothing happens:
+     * false, robot time unchanged.
      */
     bool step(uint64_t *seq);
 
@@ -88,7 +104,8 @@ public:
 
 private:
     void accept_client();
-    void read_client();
+    void read_client(bool all);
+    void after_input();
     void flush();
     void close_client(const char *why);
     void end_capture();

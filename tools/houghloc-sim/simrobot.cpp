@@ -235,6 +235,12 @@ void SimRobot::advance_to(int64_t t)
         next = std::min(next, teleport_.next_due_us(now_us_));
         base_.advance(static_cast<double>(next - now_us_) * 1e-6);
         now_us_ = next;
+        if (base_.collisions() != collisions_logged_) {
+            collisions_logged_ = base_.collisions();
+            const Pose &p = base_.truth();
+            log_.line("collision at (%.3f, %.3f) m, heading %.1f deg", p.x / 1000.0,
+                      p.y / 1000.0, rad2deg(p.theta));
+        }
     }
 }
 

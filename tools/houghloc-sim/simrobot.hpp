@@ -79,6 +79,8 @@ public:
     int64_t sonar_cycle_us() const { return cycle_us_; }
     const SimProfile &profile() const { return config_.profile; }
     uint64_t teleports() const { return teleport_.count(); }
+    /** Collisions so far (Base::collisions), each logged once as it happens. */
+    uint64_t collisions() const { return base_.collisions(); }
     bool teleport_pending() const { return teleport_.pending(); }
 
 private:
@@ -108,6 +110,7 @@ private:
     int64_t next_fire_us_ = 0;
     std::vector<hl_arcos_sonar_t> fired_;
     bool stall_reported_ = false;      // this stall is logged
+    uint64_t collisions_logged_ = 0;
     Teleporter teleport_;
     // Watchdog.
     bool watchdog_armed_ = false;

@@ -170,6 +170,8 @@ bool World::parse_line(const std::string &line, std::string *what)
 
     if (kw == "tiles" || kw == "open" || kw == "orientation" || kw == "tour")
         return parse_layout(w, what);
+    if (kw == "start")
+        return parse_start(w, what);
 
     // A shape line may end with a surface word.
     Surface surface = Surface::Smooth;
@@ -187,7 +189,7 @@ bool World::parse_line(const std::string &line, std::string *what)
         want = 0;  // checked below
     else {
         *what = "unknown keyword " + shown(kw) + " (expected segment, polygon, box, rbox, circle, "
-                "position, tiles, open, orientation, tour)";
+                "position, tiles, open, orientation, tour, start)";
         return false;
     }
     std::size_t n = w.size() - 1;
@@ -324,6 +326,36 @@ bool World::parse_layout(const std::vector<std::string> &w, std::string *what)
         (is_tour ? tour_start : orientation_corner) = Vec2{v[0], v[1]};
         seen = true;
     }
+    return true;
+}
+
+// start X Y HEADING_DEG: where houghloc-sim sets the robot down unless told otherwise.
+// Only the numbers are checked here; whether the point is free space depends on shapes
+// that may come after the line, so houghloc-sim checks that (as it checks --start).
+bool World::parse_start(const std::vector<std::string> &w, std::string *what)
+{
+    if (has_start) {
+        *what = "start given twice";
+        return false;
+    }
+    double v[3];
+    if (w.size() != 4) {
+        *what = "start needs X Y HEADING_DEG";
+        return false;
+    }
+    for (int i = 0; i < 3; i++)
+        if (!parse_number(w[1 + i], &v[i], what))
+            return false;
+    if (std::fabs(v[0]) > kWorldCoordMax || std::fabs(v[1]) > kWorldCoordMax) {
+        *what = "start coordinate beyond +-4000000 mm";
+        return false;
+    }
+    if (std::fabs(v[2]) > 360.0) {
+        *what = "heading must be within +-360 degrees";
+        return false;
+    }
+    start = Pose{v[0], v[1], wrap_pi(deg2rad(v[2]))};
+    has_start = true;
     return true;
 }
 

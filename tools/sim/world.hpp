@@ -75,6 +75,9 @@ public:
                                 // test's 1.5 m square
     bool has_tour = false;
     Vec2 tour_start;            // `tour X Y`: where the tour starts
+    bool has_start = false;
+    Pose start;                 // `start X Y HEADING_DEG`: houghloc-sim's default start
+                                // pose (heading in radians); at most one
 
     /**
      * Parses world text. On failure returns false and sets @p err to one line,
@@ -119,6 +122,7 @@ private:
     bool seen_tiles_ = false;  // `tiles` may be given once
     bool parse_line(const std::string &line, std::string *what);
     bool parse_layout(const std::vector<std::string> &words, std::string *what);
+    bool parse_start(const std::vector<std::string> &words, std::string *what);
 };
 
 }  // namespace hlsim
