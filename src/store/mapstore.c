@@ -11,10 +11,14 @@
 #include <fcntl.h>
 #include <inttypes.h>
 #include <limits.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -25,8 +29,11 @@ enum {
     VEC_LEN = 12,       /* x i32, y i32, normal u16, range u16 */
     CRC_LEN = 4,
     IO_LEN = 4092,      /* the stream buffer: 341 whole vectors */
-    BAD_MAX = 1000,     /* move_aside gives up after PATH.bad-1000 */
+    ASIDE_MAX = 1000,   /* move_aside gives up after PATH.bad-1000 (.old-1000) */
+    PID_TRIES = 20,     /* a lock's holder is read for up to 20 x 5 ms */
 };
+
+_Static_assert(HDR_LEN == HL_MAPSTORE_HEADER_BYTES, "mapstore.h's header size");
 
 /* ---- messages ------------------------------------------------------------------------ */
 
@@ -109,6 +116,11 @@ static void put_header(uint8_t *h, const hl_mapfile_t *m)
     put(h + 69, (uint64_t)m->last_request_seq, 8);
     put(h + 77, (uint64_t)m->last_scan_utime, 8);
     put(h + 85, m->scans, 8);
+}
+
+void hl_mapstore_header(const hl_mapfile_t *m, uint8_t out[HL_MAPSTORE_HEADER_BYTES])
+{
+    put_header(out, m);
 }
 
 /* Reads every field but the magic, version and header length (checked by the caller). */
@@ -386,21 +398,24 @@ hl_status_t hl_mapstore_load(const char *path, hl_mapfile_t *out, char *why)
     return st;
 }
 
-/* ---- moving a bad file aside --------------------------------------------------------- */
+/* ---- moving a file aside -------------------------------------------------------------- */
 
-hl_status_t hl_mapstore_move_aside(const char *path, char *moved_to, size_t cap, char *why)
+hl_status_t hl_mapstore_move_aside_as(const char *path, const char *kind, char *moved_to,
+                                      size_t cap, char *why)
 {
     if (moved_to && cap > 0)
         moved_to[0] = '\0';
     if (!path)
         return fail(HL_ERR_ARG, why, path, "move aside: no path");
+    if (!kind || !kind[0] || strlen(kind) > 16 || strchr(kind, '/'))
+        return fail(HL_ERR_ARG, why, path, "move aside: a bad suffix");
     char name[PATH_MAX];
-    for (int n = 1; n <= BAD_MAX; n++) {
-        if ((size_t)snprintf(name, sizeof name, "%s.bad-%d", path, n) >= sizeof name) {
+    for (int n = 1; n <= ASIDE_MAX; n++) {
+        if ((size_t)snprintf(name, sizeof name, "%s.%s-%d", path, kind, n) >= sizeof name) {
             errno = ENAMETOOLONG;
             return fail(HL_ERR_OS, why, path, "cannot move aside: the path is too long");
         }
-        /* link() fails with EEXIST where rename() would replace, so an older .bad-N is
+        /* link() fails with EEXIST where rename() would replace, so an older .KIND-N is
          * never overwritten, even by a concurrent mover; then the old name goes. */
         if (link(path, name) != 0) {
             if (errno == EEXIST)
@@ -424,6 +439,138 @@ hl_status_t hl_mapstore_move_aside(const char *path, char *moved_to, size_t cap,
         return done(why);
     }
     errno = EEXIST;
-    return fail(HL_ERR_OS, why, path, "cannot move aside: .bad-1 to .bad-%d all exist",
-                BAD_MAX);
+    return fail(HL_ERR_OS, why, path, "cannot move aside: .%s-1 to .%s-%d all exist", kind,
+                kind, ASIDE_MAX);
+}
+
+hl_status_t hl_mapstore_move_aside(const char *path, char *moved_to, size_t cap, char *why)
+{
+    return hl_mapstore_move_aside_as(path, "bad", moved_to, cap, why);
+}
+
+/* ---- the lock: one process per map file ---------------------------------------------- */
+
+/*
+ * Why a lock file beside the map rather than a lock on the map itself: a save replaces
+ * the map by rename(), and a lock belongs to an inode, not a name. A lock on the map would
+ * stay on the file the first save replaced, and a second process opening PATH after that
+ * save would lock the new inode, which nobody holds; the map may also not exist yet, or be
+ * moved aside (--fresh-map). PATH.lock is never replaced, renamed or removed (removing it
+ * would let one process lock a new PATH.lock while another still holds the old inode), so
+ * its one inode is the map's one lock. Nor the folder: several maps may share one.
+ *
+ * flock(2) rather than fcntl(2) record locks: a flock belongs to the open file
+ * description, so nothing else the process opens and closes can drop it (a record lock
+ * goes with the first close of any descriptor of the file), and two opens of the file in
+ * one process exclude each other too (the unit tests rely on it). The kernel drops the
+ * lock when the process ends, however it ends (kill -9 too): no stale lock survives its
+ * holder, whatever pid the file still holds.
+ */
+
+/* The pid written in the lock file, 0 when there is none. */
+static pid_t read_pid(int fd)
+{
+    char text[32];
+    ssize_t n;
+    RETRY(n, pread(fd, text, sizeof text - 1, 0));
+    if (n <= 0)
+        return 0;
+    text[n] = '\0';
+    char *end;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    if (errno != 0 || end == text || (*end != '\n' && *end != '\0') || v <= 0 || v > INT_MAX)
+        return 0;
+    return (pid_t)v;
+}
+
+/* The holder's pid, 0 when unknown. A holder writes it right after it takes the lock, so
+ * an empty file or a pid that names no process (a killed holder's, still in the file) can
+ * mean that it has not yet: read again for up to PID_TRIES x 5 ms. A pid that still names
+ * no process is not reported (a holder that could not write the file, or one in another
+ * pid namespace): better no pid than a wrong one. */
+static pid_t holder_pid(int fd)
+{
+    for (int i = 0; i < PID_TRIES; i++) {
+        pid_t pid = read_pid(fd);
+        if (pid > 0 && (kill(pid, 0) == 0 || errno == EPERM))
+            return pid;
+        nanosleep(&(struct timespec){ .tv_nsec = 5000000 }, NULL);
+    }
+    return 0;
+}
+
+int hl_mapstore_lock(const char *path, pid_t *holder, char *why)
+{
+    if (holder)
+        *holder = 0;
+    if (!path) {
+        errno = EINVAL;
+        fail(HL_ERR_ARG, why, path, "lock: no path");
+        return -1;
+    }
+    char name[PATH_MAX];
+    if ((size_t)snprintf(name, sizeof name, "%s" HL_MAPSTORE_LOCK_SUFFIX, path) >= sizeof name) {
+        errno = ENAMETOOLONG;
+        fail(HL_ERR_OS, why, path, "cannot lock: the path is too long");
+        return -1;
+    }
+    /* O_NOFOLLOW: a symlink planted at PATH.lock must not make us create or truncate
+     * another file; O_NONBLOCK: a FIFO there must not hang the start. */
+    int fd;
+    RETRY(fd, open(name, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644));
+    if (fd < 0 && errno == EACCES)  /* another user's lock file: flock needs no write */
+        RETRY(fd, open(name, O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK));
+    if (fd < 0) {
+        fail(HL_ERR_OS, why, path, "cannot open its lock file %s: %s", name, strerror(errno));
+        return -1;
+    }
+    struct stat sb;
+    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        close_quietly(fd);
+        errno = EINVAL;
+        fail(HL_ERR_OS, why, path, "its lock file %s is not a regular file", name);
+        return -1;
+    }
+    int r;
+    RETRY(r, flock(fd, LOCK_EX | LOCK_NB));
+    if (r != 0) {
+        int err = errno;
+        pid_t pid = err == EWOULDBLOCK ? holder_pid(fd) : 0;
+        close_quietly(fd);
+        if (holder)
+            *holder = pid;
+        errno = err;
+        if (err != EWOULDBLOCK)
+            fail(HL_ERR_OS, why, path, "cannot lock %s: %s", name, strerror(err));
+        else if (pid > 0)
+            fail(HL_ERR_OS, why, path, "in use by pid %ld (lock %s)", (long)pid, name);
+        else
+            fail(HL_ERR_OS, why, path, "in use by another process (lock %s)", name);
+        return -1;
+    }
+    /* The pid goes in before the old text is cut to its length, so that a reader sees one
+     * pid or the other, never an empty file (but a new one's). A failure here (a file
+     * opened read-only) keeps the lock: the lock is what counts; the pid only names the
+     * holder. */
+    char text[24];
+    int n = snprintf(text, sizeof text, "%ld\n", (long)getpid());
+    ssize_t w;
+    RETRY(w, pwrite(fd, text, (size_t)n, 0));
+    if (w == n) {
+        RETRY(r, ftruncate(fd, n));
+    }
+    done(why);
+    return fd;
+}
+
+void hl_mapstore_unlock(int fd)
+{
+    if (fd < 0)
+        return;
+    /* emptied while still held, so no later holder's pid is cut */
+    int r;
+    RETRY(r, ftruncate(fd, 0));
+    (void)r;
+    close_quietly(fd);
 }

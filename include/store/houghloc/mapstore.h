@@ -14,18 +14,23 @@
  * Saving writes PATH.tmp, fsyncs it, renames it over PATH and fsyncs the directory.
  * Loading checks the magic, version, sizes, every field's range and the checksum before
  * it returns anything. A file that fails to load is never overwritten by a save: the
- * caller moves it aside first (hl_mapstore_move_aside).
+ * caller moves it aside first (hl_mapstore_move_aside). One process at a time uses a map
+ * file: it holds the lock on PATH.lock (hl_mapstore_lock) while it does.
  */
 #ifndef HOUGHLOC_MAPSTORE_H
 #define HOUGHLOC_MAPSTORE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
+#include <sys/types.h>
 
 #include "houghloc/slam.h"
 
 #define HL_MAPSTORE_VERSION 1u
 #define HL_MAPSTORE_WHY_LEN 512
+#define HL_MAPSTORE_HEADER_BYTES 93     /* the header of format version 1 */
+#define HL_MAPSTORE_LOCK_SUFFIX ".lock" /* the lock file: PATH.lock */
 
 typedef struct hl_mapfile {
     hl_slam_state_t state;
@@ -60,7 +65,45 @@ hl_status_t hl_mapstore_load(const char *path, hl_mapfile_t *out, char *why);
 /**
  * Renames a bad map file to PATH.bad-N (the first N >= 1 not taken) so that a fresh map
  * never overwrites it. @p moved_to receives the new name (may be NULL; cap bytes).
+ * The same as hl_mapstore_move_aside_as(path, "bad", ...).
  */
 hl_status_t hl_mapstore_move_aside(const char *path, char *moved_to, size_t cap, char *why);
+
+/**
+ * Renames the map file to PATH.KIND-N, the first N from 1 to 1000 not taken, by link()
+ * then unlink(), so that no older PATH.KIND-N is ever replaced, and fsyncs the folder.
+ * @p kind is a short name without '/' ("bad": a file that does not load; "old": a good
+ * map set aside for a fresh one). @p moved_to receives the new name (may be NULL).
+ * @return HL_OK; HL_ERR_OS with errno (ENOENT: no file at PATH) and a reason; HL_ERR_ARG.
+ */
+hl_status_t hl_mapstore_move_aside_as(const char *path, const char *kind, char *moved_to,
+                                      size_t cap, char *why);
+
+/**
+ * The header hl_mapstore_save writes for @p m: the file's first HL_MAPSTORE_HEADER_BYTES
+ * bytes, every field the file holds but the vectors and the checksum. Two states with
+ * the same header differ at most in their vectors (whose changes the map version, in the
+ * header, counts: hl_map_version).
+ */
+void hl_mapstore_header(const hl_mapfile_t *m, uint8_t out[HL_MAPSTORE_HEADER_BYTES]);
+
+/**
+ * Takes the map file's lock: an exclusive flock(2) on PATH.lock (created 0644 when
+ * missing, never removed), which then holds the taker's pid in decimal and a newline
+ * (unless the file is another user's, which is locked read-only and left as it is).
+ * The lock lasts while the returned descriptor is open (close-on-exec), and the kernel
+ * drops it when the process ends, however it ends: a lock file left by a killed process
+ * is simply locked again. Neither PATH nor its folder is touched.
+ * @param[out] holder  when another process holds the lock: the pid it wrote (0 when the
+ *                     file holds none, or one that names no process); else 0. May be NULL.
+ * @return the lock's descriptor (>= 0), to keep open while the map is in use and give to
+ *         hl_mapstore_unlock; or -1 with errno (EWOULDBLOCK: held by another process) and
+ *         a one-line reason naming the lock file.
+ */
+int hl_mapstore_lock(const char *path, pid_t *holder, char *why);
+
+/** Releases the lock: empties the lock file (its pid is no longer a holder's), then
+ *  closes @p fd. Accepts -1. */
+void hl_mapstore_unlock(int fd);
 
 #endif
