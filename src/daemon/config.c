@@ -107,6 +107,7 @@ void hl_config_defaults(hl_config_t *c)
     c->robot_sound_on_connect = true;
     c->robot_lost_soundings = 3;
     c->robot_reconnect_max_ms = 5000;
+    c->robot_radius_mm = 250;       /* a Pioneer 3's, and houghloc-sim's */
     hl_sounder_params_default(&c->sounder);
     hl_drive_params_default(&c->drive);
     hl_rlink_params_default(&c->rlink);

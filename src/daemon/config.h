@@ -67,6 +67,8 @@ typedef struct hl_config {
     bool robot_sound_on_connect;
     int32_t robot_lost_soundings;
     int32_t robot_reconnect_max_ms;
+    int32_t robot_radius_mm;        /* the body (planning, the safety stop) */
+    bool robot_lockstep;            /* houghloc-sim --lockstep's clock (robot.h) */
     hl_sounder_params_t sounder;        /* with the calibration */
     hl_drive_params_t drive;
     hl_rlink_params_t rlink;

@@ -239,6 +239,13 @@ const hl_config_key_t hl_config_keys[] = {
       "map), then give up and track on from the estimate; destinations are refused meanwhile" },
     { "robot.reconnect_max_ms", HL_KEY_I32, F(robot_reconnect_max_ms), 250, 600000,
       "a lost link is retried after 0.25 s, doubling up to this" },
+    { "robot.radius_mm", HL_KEY_I32, F(robot_radius_mm), 50, 2000,
+      "the robot's body: paths keep its centre this far from walls on the map, and the "
+      "safety stop watches a strip this wide to each side" },
+    { "robot.lockstep", HL_KEY_BOOL, F(robot_lockstep), 0, 0,
+      "the robot is houghloc-sim --lockstep: its clock runs as the daemon deals with each "
+      "packet, held while the robot is idle, so a run does not depend on the machine's load "
+      "(never for a real robot)" },
     { "robot.sounding_steps", HL_KEY_I32, SND(steps), 1, 32,
       "body positions per sounding (the paper: 8, for 128 readings from 16 transducers)" },
     { "robot.sounding_step_deg", HL_KEY_DEG, SND(step), 0.01, 90,
@@ -265,11 +272,17 @@ const hl_config_key_t hl_config_keys[] = {
     { "drive.max_legs", HL_KEY_I32, F(drive.max_legs), 1, 1000,
       "legs (drive, sound, localize) before a destination fails" },
     { "drive.speed_mm_s", HL_KEY_I32, F(drive.speed_mm_s), 10, 5000,
-      "the base's driving speed, for timeouts" },
+      "the base's top speed on a leg (SETV), and its timeouts" },
     { "drive.turn_deg_s", HL_KEY_I32, F(drive.turn_deg_s), 1, 720,
       "the base's turning speed, for timeouts" },
     { "drive.slack_ms", HL_KEY_I32, F(drive.slack_ms), 0, 600000,
       "robot time added to every motion's expected duration before it times out" },
+    { "drive.stop_mm", HL_KEY_I32, F(drive.stop_mm), 0, 5000,
+      "the safety stop: a sonar reading in the way ahead this close (from the robot's centre) "
+      "stops the leg; the robot sounds and plans round it (the radius and 100 mm)" },
+    { "drive.slow_mm", HL_KEY_I32, F(drive.slow_mm), 0, 10000,
+      "a reading in the way this close slows the leg, down to a quarter of the speed at "
+      "drive.stop_mm; 0: never slow" },
     { "link.sync_timeout_ms", HL_KEY_I32, F(rlink.sync_timeout_ms), 10, 60000,
       "resend an unanswered SYNC after this" },
     { "link.sync_tries", HL_KEY_I32, F(rlink.sync_tries), 1, 100,
@@ -295,7 +308,9 @@ static const char *const operator_keys[] = {
     "slam.profile",
     "robot.link", "robot.profile",
     "calibration.gain_q16", "calibration.offset_mm",
+    "robot.radius_mm",
     "drive.arrive_mm", "drive.max_leg_mm", "drive.speed_mm_s", "drive.turn_deg_s",
+    "drive.stop_mm", "drive.slow_mm",
 };
 
 bool hl_config_key_for_operator(const hl_config_key_t *k)

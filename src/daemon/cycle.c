@@ -13,6 +13,7 @@ static const char *const chan_names[HL_CH_COUNT] = {
     [HL_CH_DESTINATION] = HL_CHANNEL_DESTINATION, [HL_CH_COMMAND] = HL_CHANNEL_COMMAND,
     [HL_CH_POSE] = HL_CHANNEL_POSE,         [HL_CH_MAP] = HL_CHANNEL_MAP,
     [HL_CH_STATUS] = HL_CHANNEL_STATUS,     [HL_CH_REPLY] = HL_CHANNEL_REPLY,
+    [HL_CH_PATH] = HL_CHANNEL_PATH,
 };
 
 const char *hl_chan_name(hl_chan_t ch)
@@ -203,6 +204,8 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     c->n.accepted += status == HL_SLAM_ACCEPTED;
     c->n.rejected_wild += status == HL_SLAM_REJECTED_WILD;
     c->n.odometry_only += status == HL_SLAM_ODOMETRY_ONLY;
+    c->n.relocalized += status == HL_SLAM_RELOCALIZED;
+    c->n.lost += status == HL_SLAM_LOST;
     publish_pose(c, in, &step);
     int64_t compute_us = c->io.now_us(c->io.ctx) - t0;
     hl_cycle_record_compute(c, compute_us);

@@ -32,6 +32,7 @@ typedef enum hl_chan {
     HL_CH_MAP,
     HL_CH_STATUS,
     HL_CH_REPLY,
+    HL_CH_PATH,             /* the planned way to a destination (the robot's) */
     HL_CH_COUNT
 } hl_chan_t;
 
@@ -46,6 +47,9 @@ typedef struct hl_cycle_io {
     /** A destination the cycle admitted (authentic, fresh, inside the fence), for the
      *  robot to answer on REPLY; NULL when no robot is attached: NO_ROBOT. */
     void (*destination)(void *ctx, const hl_bus_destination_t *d, int64_t now_us);
+    /** STOP (request @p seq): stop the robot at once and cancel its destination; NULL
+     *  when no robot is attached (the STOP is answered all the same). */
+    void (*stop)(void *ctx, int64_t seq, int64_t now_us);
     void *ctx;
 } hl_cycle_io_t;
 
@@ -70,7 +74,7 @@ typedef struct hl_cycle_params {
 
 /** Counters, as STATUS reports them. */
 typedef struct hl_cycle_counts {
-    int32_t scans, accepted, rejected_wild, odometry_only;
+    int32_t scans, accepted, rejected_wild, odometry_only, relocalized, lost;
     int32_t bad_messages, rejected_requests, saves;
     int32_t missed_scans;       /* SONAR seqs skipped: never seen (not in STATUS; logged) */
 } hl_cycle_counts_t;
@@ -110,6 +114,12 @@ bool hl_cycle_save_due(const hl_cycle_t *c);
 void hl_cycle_snapshot(const hl_cycle_t *c, hl_mapfile_t *out);
 /** The outcome of a save: answers a pending SAVE request and resets the count. */
 void hl_cycle_saved(hl_cycle_t *c, bool ok, const char *why);
+/** The seq of the SAVE request waiting for the next save, 0 when none. */
+int64_t hl_cycle_save_request(const hl_cycle_t *c);
+/** A due save that wrote nothing, the map file holding the state already: as
+ *  hl_cycle_saved(c, true, ...), it answers a pending SAVE request (ACCEPTED, "map
+ *  unchanged since the last save") and resets the count, but it counts no save. */
+void hl_cycle_save_unchanged(hl_cycle_t *c);
 
 const hl_cycle_counts_t *hl_cycle_counts(const hl_cycle_t *c);
 
@@ -122,6 +132,8 @@ hl_pose_t hl_cycle_estimate(const hl_cycle_t *c);
 bool hl_cycle_odometry(const hl_cycle_t *c, hl_pose_t *out);
 /** Publishes a REPLY to request @p seq. */
 void hl_cycle_answer(hl_cycle_t *c, int64_t seq, int8_t result, const char *message);
+/** Where destinations may lie (cycle params' fence), for the robot's planner. */
+const hl_fence_t *hl_cycle_fence(const hl_cycle_t *c);
 /** The destination STATUS reports (-1: none). */
 void hl_cycle_set_destination(hl_cycle_t *c, int64_t seq);
 /** Robot packets dropped so far, as STATUS reports them. */

@@ -96,6 +96,19 @@ static void set_pose(hl_cycle_t *c, const hl_bus_command_t *cmd, int64_t now_us)
     hl_cycle_set_state(c, c->state == HL_BUS_STATE_LOST ? HL_BUS_STATE_IDLE : c->state, now_us);
 }
 
+/* STOP is never refused: a stop must stop, whoever sends it and whatever its seq (an
+ * operator's client whose key or counter is wrong is exactly when one is needed). It needs
+ * no MAC and does not take the seq (so it cannot move the replay window of the requests
+ * that do); the seq is logged, so that a stop can be traced to its sender. */
+static void stop(hl_cycle_t *c, int64_t seq, int64_t now_us)
+{
+    hl_log(HL_LOG_NOTICE, "STOP (request seq %lld)", (long long)seq);
+    if (c->io.stop)
+        c->io.stop(c->io.ctx, seq, now_us);
+    hl_cycle_reply(c, seq, HL_BUS_REPLY_ACCEPTED,
+                   c->io.stop ? "stopped" : "stopped (no robot link is configured)");
+}
+
 void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t now_us)
 {
     char why[HL_BUS_WHY_LEN];
@@ -103,6 +116,10 @@ void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t no
     if (!hl_cycle_decoded(c, hl_bus_decode_command(data, len, &cmd, why), HL_CHANNEL_COMMAND,
                           "command decode", why))
         return;
+    if (cmd.kind == HL_BUS_COMMAND_STOP) {
+        stop(c, cmd.seq, now_us);
+        return;
+    }
     bool mac_ok = c->p.authenticate && hl_auth_check_command(&c->p.key, &cmd);
     if (!admit(c, HL_CHANNEL_COMMAND, cmd.seq, mac_ok))
         return;

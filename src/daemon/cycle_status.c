@@ -51,7 +51,8 @@ void hl_cycle_publish_status(hl_cycle_t *c)
     hl_bus_status_t s = {
         .utime = c->newest_utime, .state = c->state, .destination_seq = c->destination_seq,
         .scans = c->n.scans, .accepted = c->n.accepted, .rejected_wild = c->n.rejected_wild,
-        .odometry_only = c->n.odometry_only, .bad_messages = c->n.bad_messages,
+        .odometry_only = c->n.odometry_only, .relocalized = c->n.relocalized,
+        .lost = c->n.lost, .bad_messages = c->n.bad_messages,
         .rejected_requests = c->n.rejected_requests,
         .map_vectors = (int32_t)hl_map_count(map), .map_version = (int32_t)hl_map_version(map),
         .saves = c->n.saves, .pose = hl_cycle_estimate(c),
@@ -98,6 +99,11 @@ bool hl_cycle_odometry(const hl_cycle_t *c, hl_pose_t *out)
     hl_slam_get_state(c->slam, &st);
     *out = st.odom;
     return st.started;
+}
+
+const hl_fence_t *hl_cycle_fence(const hl_cycle_t *c)
+{
+    return &c->p.fence;
 }
 
 void hl_cycle_set_destination(hl_cycle_t *c, int64_t seq)

@@ -49,7 +49,7 @@ $(BUILD)/tests/daemon/%: $(BUILD)/asan/tests/daemon/%.o $(DAEMON_ASAN_LIB) $(ROB
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -o $@ $< $(DAEMON_ASAN_LIB) $(DAEMON_ASAN_LDLIBS) $(CMOCKA_LIBS)
 
-INTEGRATION_TESTS += tests/integration/test_daemon.sh tests/integration/test_mapmsg.sh
+INTEGRATION_TESTS += tests/integration/test_daemon.sh tests/integration/test_mapmsg.sh tests/integration/test_maplock.sh
 
 # 100 kill -9 trials of a replay (the test suite runs 20).
 .PHONY: crash-trials

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "log.h"
+#include "maplock.h"
 #include "houghloc/mapstore.h"
 
 #define WHY(...) snprintf(why, HL_CONFIG_WHY_LEN, __VA_ARGS__)
@@ -74,10 +75,18 @@ static void destination_cb(void *ctx, const hl_bus_destination_t *d, int64_t now
         hl_cycle_answer(l->cycle, d->seq, HL_BUS_REPLY_NO_ROBOT, "the robot is not attached yet");
 }
 
+static void stop_cb(void *ctx, int64_t seq, int64_t now_us)
+{
+    hl_loop_t *l = ctx;
+    if (l->robot)
+        hl_robot_halt(l->robot, seq, now_us / 1000);
+}
+
 hl_cycle_io_t hl_loop_io(hl_loop_t *l)
 {
     return (hl_cycle_io_t){ .emit = emit_cb, .now_us = clock_cb,
-                            .destination = l->p.robot ? destination_cb : NULL, .ctx = l };
+                            .destination = l->p.robot ? destination_cb : NULL,
+                            .stop = l->p.robot ? stop_cb : NULL, .ctx = l };
 }
 
 void hl_loop_attach_robot(hl_loop_t *l, hl_robot_t *robot)
@@ -249,11 +258,21 @@ bool hl_loop_save(hl_loop_t *l, hl_cycle_t *cycle)
     hl_mapfile_t m;
     char why[HL_MAPSTORE_WHY_LEN];
     hl_cycle_snapshot(cycle, &m);
+    /* Only a map that changed since it was loaded or last saved is written (maplock.h:
+     * which fields count and why); a SAVE request's own seq does not count. */
+    int64_t request = hl_cycle_save_request(cycle);
+    if (!hl_maplock_changed(&m, request != 0 && request == m.last_request_seq)) {
+        hl_log(HL_LOG_INFO, "map %s unchanged since the last save: not written", l->p.map_path);
+        hl_cycle_save_unchanged(cycle);
+        return true;
+    }
     bool ok = hl_mapstore_save(l->p.map_path, &m, why) == HL_OK;
-    if (ok)
+    if (ok) {
+        hl_maplock_saved(&m);
         hl_log(HL_LOG_DEBUG, "map saved to %s (%u vectors)", l->p.map_path, m.count);
-    else
+    } else {
         hl_log(HL_LOG_ERR, "%s", why);
+    }
     hl_cycle_saved(cycle, ok, why);
     return ok;
 }

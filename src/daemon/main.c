@@ -17,6 +17,7 @@
 #include "log.h"
 #include "loop.h"
 #include "map_location.h"
+#include "maplock.h"
 #include "houghloc/mapstore.h"
 #include "profiles.h"
 
@@ -36,8 +37,8 @@ static const char usage[] =
     "                       service; else /var/lib/houghloc/map.hlmap if that folder is\n"
     "                       writable; else $XDG_STATE_HOME/houghloc/map.hlmap, by default\n"
     "                       ~/.local/state/houghloc/, created 0700); logged at start\n"
-    "      --fresh-map      start with an empty map; a map file that does not load is\n"
-    "                       moved aside to FILE.bad-N first\n"
+    "      --fresh-map      start with an empty map; an existing map file is moved aside\n"
+    "                       first, to FILE.old-N (FILE.bad-N if it does not load)\n"
     "  -u, --lcm-url URL    listen here (default: config lcm.url, $LCM_DEFAULT_URL, else\n"
     "                       " HOST_ONLY_URL ", this host only).\n"
     "                       'file://IN.lcmlog?speed=0' replays a log as fast as possible\n"
@@ -60,7 +61,9 @@ static const char usage[] =
     "      --version        the version\n"
     "\n"
     "Channels: SONAR, ODOMETRY, DESTINATION, COMMAND in; POSE (one per scan), MAP,\n"
-    "STATUS, REPLY out. SIGTERM/SIGINT save the map and stop; SIGHUP saves it.\n"
+    "STATUS, REPLY out. SIGTERM/SIGINT save the map and stop; SIGHUP saves it; a map\n"
+    "unchanged since it was loaded or saved is not written. One daemon per map file: it\n"
+    "holds a lock on FILE.lock while it runs.\n"
     "Exit status: 0 after a clean stop or the end of a replay, 1 on a start-up error or\n"
     "a fault, 2 on bad usage. See README.md for the whole story.\n";
 
@@ -157,19 +160,19 @@ static int parse_args(int argc, char **argv, options_t *o)
 
 /* The map file: the config's (--map), else the default location (map_location.h).
  * @param create  may create the user's folder (the daemon; not --check-map).
+ * @param[out] from  where a default location came from (for the log), NULL for --map.
  * @return false after printing why. */
-static bool map_path(const hl_config_t *cfg, bool create, char *out, size_t cap)
+static bool map_path(const hl_config_t *cfg, bool create, char *out, size_t cap,
+                     const char **from)
 {
+    *from = NULL;
     if (cfg->map_file[0]) {
         snprintf(out, cap, "%s", cfg->map_file);
         return true;
     }
-    const char *from = "";
     char why[HL_MAP_LOCATION_WHY_LEN];
-    if (!hl_map_location_default(create, out, cap, &from, why))
+    if (!hl_map_location_default(create, out, cap, from, why))
         return fprintf(stderr, "houghlocd: %s\n", why), false;
-    if (create)
-        hl_log(HL_LOG_INFO, "map file %s: the default location, from %s", out, from);
     return true;
 }
 
@@ -186,7 +189,11 @@ static bool map_folder_writable(const char *path)
     return false;
 }
 
-/* Loads the map file into the cycle. @return false after printing why. */
+/* Loads the map file into the cycle, whose state then is what later saves compare with
+ * (maplock.h: only a change is written). With --fresh-map, an existing file is moved
+ * aside first, never overwritten: to FILE.old-N when it is a map (one too big for
+ * slam.map_capacity too), to FILE.bad-N when it does not load. @return false after
+ * printing why. */
 static bool load_map(hl_cycle_t *cycle, const char *path, bool fresh, uint32_t capacity)
 {
     hl_mapfile_t m = { .max_vectors = capacity };
@@ -205,21 +212,30 @@ static bool load_map(hl_cycle_t *cycle, const char *path, bool fresh, uint32_t c
             hl_capacity_advice(path, m.count, capacity, why, sizeof why);
     }
     bool ok = true;
-    if (st == HL_OK) {
-        if (fresh)
-            hl_log(HL_LOG_NOTICE, "--fresh-map: starting empty; %s will be overwritten", path);
-        else
-            hl_log(HL_LOG_INFO, "map %s: %u vectors, %llu scans", path, m.count,
-                   (unsigned long long)m.scans);
+    if (st == HL_OK && !fresh) {
+        hl_mapfile_t loaded;    /* the cycle's own view of it: only its changes count */
+        hl_cycle_snapshot(cycle, &loaded);
+        hl_maplock_saved(&loaded);
+        hl_log(HL_LOG_INFO, "map %s: %u vectors, %llu scans", path, m.count,
+               (unsigned long long)m.scans);
     } else if (st == HL_ERR_OS && errno == ENOENT) {
         hl_log(HL_LOG_INFO, "map %s does not exist yet: starting empty", path);
     } else if (fresh) {
+        bool good = st == HL_OK || st == HL_ERR_CAPACITY;
         char moved[HL_CONFIG_PATH_MAX + 16], why2[HL_MAPSTORE_WHY_LEN];
-        ok = hl_mapstore_move_aside(path, moved, sizeof moved, why2) == HL_OK;
-        if (ok)
-            hl_log(HL_LOG_NOTICE, "--fresh-map: moved the unloadable map to %s (%s)", moved, why);
-        else
+        ok = hl_mapstore_move_aside_as(path, good ? "old" : "bad", moved, sizeof moved,
+                                       why2) == HL_OK;
+        if (!ok)
             fprintf(stderr, "houghlocd: %s\n", why2);
+        else if (st == HL_OK)
+            hl_log(HL_LOG_NOTICE, "--fresh-map: moved the map (%u vectors, %llu scans) to %s; "
+                   "starting empty", m.count, (unsigned long long)m.scans, moved);
+        else if (good)
+            hl_log(HL_LOG_NOTICE, "--fresh-map: moved the map (%u vectors, more than "
+                   "slam.map_capacity) to %s; starting empty", m.needed, moved);
+        else
+            hl_log(HL_LOG_NOTICE, "--fresh-map: moved the unloadable map to %s (%s); starting "
+                   "empty", moved, why);
     } else if (too_big) {
         fprintf(stderr, "houghlocd: %s\n", why);
         ok = false;
@@ -235,7 +251,8 @@ static bool load_map(hl_cycle_t *cycle, const char *path, bool fresh, uint32_t c
 static int check_map(const hl_config_t *cfg)
 {
     char path[HL_CONFIG_PATH_MAX], why[HL_MAPSTORE_WHY_LEN];
-    if (!map_path(cfg, false, path, sizeof path))
+    const char *from;
+    if (!map_path(cfg, false, path, sizeof path, &from))     /* only reads: no lock */
         return 1;
     hl_mapfile_t m = { .max_vectors = HL_MAP_MAX_CAPACITY };
     m.vectors = calloc(HL_MAP_MAX_CAPACITY, sizeof *m.vectors);
@@ -284,7 +301,9 @@ static bool robot_params(const hl_config_t *cfg, hl_robot_params_t *p)
                               .conv = HL_ARCOS_CONV_PIONEER,
                               .reconnect_max_ms = cfg->robot_reconnect_max_ms,
                               .sound_on_connect = cfg->robot_sound_on_connect,
-                              .lost_soundings = cfg->robot_lost_soundings };
+                              .lost_soundings = cfg->robot_lost_soundings,
+                              .radius_mm = cfg->robot_radius_mm,
+                              .lockstep = cfg->robot_lockstep };
     if (!hl_link_spec_parse(cfg->robot_link, &p->link, why))
         return fprintf(stderr, "houghlocd: %s\n", why), false;
     if (hl_robot_profile_find(cfg->robot_profile, &p->profile) != HL_OK)
@@ -293,9 +312,10 @@ static bool robot_params(const hl_config_t *cfg, hl_robot_params_t *p)
     return true;
 }
 
-static int run(const hl_config_t *cfg, const options_t *o)
+/* The daemon, its map file locked (run). */
+static int run_locked(const hl_config_t *cfg, const options_t *o, const char *path)
 {
-    char path[HL_CONFIG_PATH_MAX], log_path[HL_CONFIG_PATH_MAX], why[HL_CONFIG_WHY_LEN];
+    char log_path[HL_CONFIG_PATH_MAX], why[HL_CONFIG_WHY_LEN];
     const char *env_url = getenv("LCM_DEFAULT_URL");
     const char *live = env_url && *env_url ? env_url : HOST_ONLY_URL;
     const char *in_url = cfg->lcm_url[0] ? cfg->lcm_url : live;
@@ -320,8 +340,7 @@ static int run(const hl_config_t *cfg, const options_t *o)
         return 1;
 
     hl_cycle_params_t cp;
-    if (!map_path(cfg, true, path, sizeof path) || !map_folder_writable(path) ||
-        !cycle_params(cfg, &cp))
+    if (!cycle_params(cfg, &cp))
         return 1;
     hl_loop_params_t lp = { .in_url = in_url, .out_url = out_url, .batch = reads_log == 1,
                             .prefix = cfg->prefix, .queue = cfg->queue,
@@ -354,14 +373,33 @@ static int run(const hl_config_t *cfg, const options_t *o)
         const hl_cycle_counts_t *n = hl_cycle_counts(cycle);
         struct rusage ru;
         getrusage(RUSAGE_SELF, &ru);
-        hl_log(HL_LOG_INFO, "stopped: %d scans (%d accepted, %d rejected, %d odometry only), "
-               "%d missed, %d bad messages, %d requests refused, %d saves; peak memory %ld KiB",
-               n->scans, n->accepted, n->rejected_wild, n->odometry_only, n->missed_scans,
+        hl_log(HL_LOG_INFO, "stopped: %d scans (%d accepted, %d rejected, %d odometry only, "
+               "%d relocalized, %d lost), %d missed, %d bad messages, %d requests refused, %d saves; peak memory %ld KiB",
+               n->scans, n->accepted, n->rejected_wild, n->odometry_only, n->relocalized,
+               n->lost, n->missed_scans,
                n->bad_messages, n->rejected_requests, n->saves, ru.ru_maxrss);
     }
     hl_robot_destroy(robot);
     hl_cycle_destroy(cycle);
     hl_loop_destroy(loop);
+    return rc;
+}
+
+/* The map file first: its lock decides whether this daemon may run at all, so it is taken
+ * before the map (or a log) is read, anything is written (the output log too) or logged,
+ * and a second daemon on the same map stops with one line naming the holder. */
+static int run(const hl_config_t *cfg, const options_t *o)
+{
+    char path[HL_CONFIG_PATH_MAX], why[2 * HL_CONFIG_PATH_MAX + HL_MAPSTORE_WHY_LEN];
+    const char *from;
+    if (!map_path(cfg, true, path, sizeof path, &from) || !map_folder_writable(path))
+        return 1;
+    if (!hl_maplock_take(path, why, sizeof why))
+        return fprintf(stderr, "houghlocd: %s\n", why), 1;
+    if (from)
+        hl_log(HL_LOG_INFO, "map file %s: the default location, from %s", path, from);
+    int rc = run_locked(cfg, o, path);
+    hl_maplock_release();
     return rc;
 }
 

@@ -2,6 +2,7 @@
  * the connection is robot_link.c's. */
 #include "robot.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +27,8 @@ hl_robot_t *hl_robot_create(const hl_robot_params_t *p, hl_cycle_t *cycle,
     r->dest_seq = -1;
     if (hl_rlink_init(&r->rlink, &p->rlink) != HL_OK ||
         hl_sounder_init(&r->sounder, &p->sounder, &p->profile) != HL_OK ||
-        hl_drive_init(&r->drive, &p->drive) != HL_OK || p->reconnect_max_ms < FIRST_BACKOFF_MS) {
+        hl_drive_init(&r->drive, &p->drive) != HL_OK || p->reconnect_max_ms < FIRST_BACKOFF_MS ||
+        !robot_nav_create(r)) {
         free(r);
         return NULL;
     }
@@ -45,6 +47,7 @@ void hl_robot_destroy(hl_robot_t *r)
     if (!r)
         return;
     hl_link_close(r->link);
+    robot_nav_destroy(r);
     free(r);
 }
 
@@ -87,10 +90,17 @@ void robot_command(hl_robot_t *r, uint8_t number, bool has_arg, int32_t arg, int
         hl_log(HL_LOG_WARNING, "robot command %u not sent (link down or output full)", number);
 }
 
+bool robot_busy(const hl_robot_t *r)
+{
+    return r->dest_seq >= 0 || r->dest_pending ||
+           hl_sounder_state(&r->sounder) == HL_SOUNDER_BUSY || r->last_in.moving;
+}
+
 static void end_destination(hl_robot_t *r, int8_t result, const char *what, int64_t now_ms)
 {
     if (r->dest_seq < 0)
         return;
+    robot_nav_end(r);
     hl_log(result == HL_BUS_REPLY_ARRIVED ? HL_LOG_INFO : HL_LOG_WARNING,
            "destination %lld: %s", (long long)r->dest_seq, what);
     reply(r, r->dest_seq, result, what);
@@ -102,16 +112,29 @@ static void end_destination(hl_robot_t *r, int8_t result, const char *what, int6
 
 static void start_sounding(hl_robot_t *r, int64_t now_ms)
 {
+    robot_nav_polling(r, false, now_ms);
     hl_sounder_start(&r->sounder);
     robot_set_state(r, HL_BUS_STATE_SOUNDING, now_ms);
 }
 
 static void drive_do(hl_robot_t *r, const hl_drive_out_t *out, int64_t now_ms)
 {
+    int32_t ahead;
+    if (hl_drive_blocked(&r->drive, &ahead) && r->drive.blocks != r->blocks_logged) {
+        r->blocks_logged = r->drive.blocks;
+        hl_log(HL_LOG_NOTICE, "destination %lld: safety stop: a sonar reading %.2f m ahead "
+               "(%d on this destination); sounding, then planning round it",
+               (long long)r->dest_seq, ahead / 1000.0, r->drive.blocks);
+    }
+    if (out->speed_mm_s > 0)
+        robot_command(r, HL_ARCOS_SETV, true, out->speed_mm_s, now_ms);
     switch (out->cmd) {
     case HL_DRIVE_CMD_STOP: robot_command(r, HL_ARCOS_STOP, false, 0, now_ms); break;
     case HL_DRIVE_CMD_HEAD: robot_command(r, HL_ARCOS_HEAD, true, out->arg, now_ms); break;
-    case HL_DRIVE_CMD_MOVE: robot_command(r, HL_ARCOS_MOVE, true, out->arg, now_ms); break;
+    case HL_DRIVE_CMD_MOVE:
+        robot_nav_polling(r, true, now_ms);
+        robot_command(r, HL_ARCOS_MOVE, true, out->arg, now_ms);
+        break;
     case HL_DRIVE_CMD_SOUND: start_sounding(r, now_ms); break;
     case HL_DRIVE_CMD_NONE: break;
     }
@@ -133,13 +156,42 @@ static void drive_do(hl_robot_t *r, const hl_drive_out_t *out, int64_t now_ms)
     }
 }
 
-static void begin_destination(hl_robot_t *r, const hl_bus_destination_t *d, int64_t now_ms)
+/* Plans the next leg towards the destination under way unless the robot is within reach
+ * of it (then no leg follows). @return false when there is no way: the destination has
+ * failed, with the planner's reason. */
+static bool plan_leg(hl_robot_t *r, int32_t goal_x, int32_t goal_y, int64_t now_ms)
+{
+    hl_pose_t at = hl_cycle_estimate(r->cycle);
+    if (hypot((double)goal_x - at.x_mm, (double)goal_y - at.y_mm) <= r->p.drive.arrive_mm)
+        return true;
+    char why[HL_BUS_TEXT_MAX], reason[HL_BUS_TEXT_MAX];
+    if (robot_nav_plan(r, goal_x, goal_y, reason, sizeof reason))
+        return true;
+    int32_t ahead;
+    if (hl_drive_blocked(&r->drive, &ahead))   /* the safety stop showed the way is shut */
+        snprintf(why, sizeof why, "blocked: an obstacle %.2f m ahead; %.120s",
+                 ahead / 1000.0, reason);
+    else
+        snprintf(why, sizeof why, "%s", reason);
+    hl_drive_fail(&r->drive, why);
+    robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
+    end_destination(r, HL_BUS_REPLY_FAILED, why, now_ms);
+    return false;
+}
+
+/* Starts the drive to destination @p d (its seq is r->dest_seq), planned already when
+ * @p planned. */
+static void begin_destination(hl_robot_t *r, const hl_bus_destination_t *d, bool planned,
+                              int64_t now_ms)
 {
     r->dest_seq = d->seq;
     r->last_in.estimate = hl_cycle_estimate(r->cycle);
     hl_log(HL_LOG_INFO, "destination %lld: to (%.3f, %.3f) m", (long long)d->seq,
            d->x_mm / 1000.0, d->y_mm / 1000.0);
+    if (!planned && !plan_leg(r, d->x_mm, d->y_mm, now_ms))
+        return;
     hl_drive_out_t out;
+    r->blocks_logged = 0;
     hl_drive_start(&r->drive, d->x_mm, d->y_mm, d->has_heading, d->heading, &r->last_in, &out);
     drive_do(r, &out, now_ms);
 }
@@ -167,14 +219,41 @@ void hl_robot_destination(hl_robot_t *r, const hl_bus_destination_t *d, int64_t 
         hl_drive_fail(&r->drive, what);
         end_destination(r, HL_BUS_REPLY_FAILED, what, now_ms);
     }
-    reply(r, d->seq, HL_BUS_REPLY_ACCEPTED, "under way");
+    r->halted = false;
     if (hl_sounder_state(&r->sounder) == HL_SOUNDER_BUSY) {
-        r->pending = *d;            /* the sounding in progress ends first */
+        reply(r, d->seq, HL_BUS_REPLY_ACCEPTED, "under way (after the sounding in progress)");
+        r->pending = *d;            /* the sounding in progress ends first; planned then */
         r->dest_pending = true;
         return;
     }
+    /* planned before it is accepted: a destination with no way is refused at once */
+    char why[HL_BUS_TEXT_MAX];
+    r->dest_seq = d->seq;
+    bool planned = robot_nav_plan(r, d->x_mm, d->y_mm, why, sizeof why);
+    r->dest_seq = -1;
+    if (!planned) {
+        hl_log(HL_LOG_WARNING, "destination %lld: %s", (long long)d->seq, why);
+        reply(r, d->seq, HL_BUS_REPLY_FAILED, why);
+        hl_cycle_note_error(r->cycle, why);
+        return;
+    }
+    reply(r, d->seq, HL_BUS_REPLY_ACCEPTED, "under way");
     robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
-    begin_destination(r, d, now_ms);
+    begin_destination(r, d, true, now_ms);
+}
+
+void hl_robot_halt(hl_robot_t *r, int64_t seq, int64_t now_ms)
+{
+    char why[HL_BUS_TEXT_MAX];
+    snprintf(why, sizeof why, "stopped by STOP (request seq %lld)", (long long)seq);
+    r->halted = true;
+    r->halted_epoch = hl_cycle_lost_epoch(r->cycle);
+    if (!r->up)
+        return;
+    robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
+    robot_flush(r, now_ms);         /* at once, before anything else is dealt with */
+    robot_abandon(r, why, now_ms);
+    robot_set_state(r, HL_BUS_STATE_IDLE, now_ms);
 }
 
 /* ---- the robot's packets -------------------------------------------------------------- */
@@ -226,6 +305,8 @@ static bool lost_sound(hl_robot_t *r, int64_t now_ms)
 {
     if (!hl_cycle_lost(r->cycle))
         return false;
+    if (r->halted && r->halted_epoch == hl_cycle_lost_epoch(r->cycle))
+        return false;               /* stopped by STOP: still until told to move */
     if (r->dest_seq >= 0 || r->dest_pending)
         robot_abandon(r, "lost: the pose is unknown (the daemon is relocalizing)", now_ms);
     if (r->lost_epoch != hl_cycle_lost_epoch(r->cycle)) {
@@ -263,8 +344,12 @@ static void finish_sounding(hl_robot_t *r, int64_t now_ms)
         return;
     if (r->dest_pending) {
         r->dest_pending = false;
-        begin_destination(r, &r->pending, now_ms);
+        begin_destination(r, &r->pending, false, now_ms);
     } else if (r->dest_seq >= 0 && hl_drive_phase(&r->drive) == HL_DRIVE_SOUND) {
+        if (hl_drive_blocked(&r->drive, NULL))
+            robot_nav_blocked(r);
+        if (!plan_leg(r, r->drive.goal_x, r->drive.goal_y, now_ms))
+            return;
         hl_drive_out_t out;
         hl_drive_localized(&r->drive, &r->last_in, &out);
         drive_do(r, &out, now_ms);
@@ -316,7 +401,12 @@ void robot_on_sip(void *ctx, const hl_arcos_sip_t *sip)
     r->last_in = (hl_drive_in_t){
         .robot_ms = r->robot_ms, .estimate = hl_cycle_estimate(r->cycle),
         .odometry = robot_frame, .moving = sip->type == HL_ARCOS_SIP_MOVING,
-        .stalled = (sip->stall_bumpers & (HL_ARCOS_STALL_LEFT | HL_ARCOS_STALL_RIGHT)) != 0 };
+        .stalled = (sip->stall_bumpers & (HL_ARCOS_STALL_LEFT | HL_ARCOS_STALL_RIGHT)) != 0,
+        .ahead_mm = 0 };
+    r->step_owed = r->p.lockstep;
+    if (r->dest_seq >= 0 && hl_drive_phase(&r->drive) == HL_DRIVE_MOVE &&
+        !hl_drive_blocked(&r->drive, NULL))
+        r->last_in.ahead_mm = robot_nav_ahead(r, sip);
     if (hl_sounder_state(&r->sounder) == HL_SOUNDER_BUSY) {
         sounder_step(r, sip, robot_frame, c->now_ms);
     } else if (lost_sound(r, c->now_ms)) {
@@ -331,6 +421,7 @@ void robot_on_sip(void *ctx, const hl_arcos_sip_t *sip)
 void robot_link_up(hl_robot_t *r, int64_t now_ms)
 {
     r->anchored = false;
+    r->polling_ahead = false;       /* a robot's firing order starts as the whole ring */
     if (r->p.sound_on_connect && !r->sounded_once)
         start_sounding(r, now_ms);
     else

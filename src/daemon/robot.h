@@ -8,7 +8,14 @@
  *
  * Time: link timeouts run on the wall clock; sounding and driving on robot time, counted
  * from the robot's own packets (one SIP per 100 ms), so they scale with a simulated
- * robot that runs faster than real time. A lost link is retried with a doubling backoff;
+ * robot that runs faster than real time. With a lockstep simulator (lockstep, arcos.h's
+ * STEP) the daemon also sets that pace: each SIP is answered with STEP once it has been
+ * dealt with, and while the robot is idle (no destination, no sounding, at rest) the
+ * daemon holds the clock, so that a run is the same on an idle and on a busy machine.
+ *
+ * Driving: each destination is planned on the robot's own map (robot_nav.c, plan.h) and
+ * driven leg by leg, replanned after each sounding; the sonar readings of each SIP feed
+ * the safety stop (safety.h, drive.h). STOP (hl_robot_halt) stops the base at once. A lost link is retried with a doubling backoff;
  * the map and the pose are kept, and the odometry is re-anchored on reconnection so a
  * robot whose odometry restarted at zero does not jump. A file link (a recorded stream)
  * has no wall-clock timeouts and no second try: its end ends the daemon
@@ -38,6 +45,10 @@ typedef struct hl_robot_params {
     bool sound_on_connect;          /* sound once when the link first comes up */
     int32_t lost_soundings;         /* soundings made standing still when the daemon is
                                        lost, before it gives up relocalizing */
+    int32_t radius_mm;              /* the robot's body: the planner keeps its centre this
+                                       far from walls, the safety stop watches this wide */
+    bool lockstep;                  /* the robot is houghloc-sim --lockstep: answer each
+                                       SIP with STEP, hold the clock while idle */
 } hl_robot_params_t;
 
 typedef struct hl_robot hl_robot_t;
@@ -61,6 +72,11 @@ void hl_robot_tick(hl_robot_t *r, int64_t now_ms);
 /** A destination the cycle admitted (authentic, fresh, inside the fence); the robot
  *  answers it on REPLY: ACCEPTED, then ARRIVED or FAILED; NO_ROBOT when the link is down. */
 void hl_robot_destination(hl_robot_t *r, const hl_bus_destination_t *d, int64_t now_ms);
+
+/** STOP (request @p seq): the base stops at once and stays still; the sounding and any
+ *  destination are given up (FAILED). The robot moves again for the next destination
+ *  (or a RELOCALIZE's soundings). Nothing happens when the link is down. */
+void hl_robot_halt(hl_robot_t *r, int64_t seq, int64_t now_ms);
 
 /** A replayed capture (robot.link = file:CAPTURE) has ended: the daemon stops as at the
  *  end of a replayed log. @return 0 while it goes on (or for a live link), 1 at the end

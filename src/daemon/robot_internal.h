@@ -3,6 +3,7 @@
 #ifndef HOUGHLOC_DAEMON_ROBOT_INTERNAL_H
 #define HOUGHLOC_DAEMON_ROBOT_INTERNAL_H
 
+#include "houghloc/plan.h"
 #include "robot.h"
 
 #define SIP_PERIOD_MS 100           /* ARCOS's standard SIP cycle: robot time per SIP */
@@ -37,6 +38,18 @@ struct hl_robot {
     hl_pose_t published;            /* last published odometry pose */
     hl_drive_in_t last_in;          /* the last SIP, as the drive sees it */
 
+    /* lockstep (robot.lockstep) */
+    bool step_owed;                 /* a SIP was dealt with and no STEP sent for it yet */
+    /* STOP: still until the next destination, or a new lost epoch's soundings */
+    bool halted;
+    uint32_t halted_epoch;
+
+    /* navigation (robot_nav.c) */
+    hl_planner_t *planner;
+    hl_mm_t block_x, block_y;       /* where the reading that stopped the leg lies (map) */
+    int32_t blocks_logged;          /* the drive's safety stops logged so far */
+    bool polling_ahead;             /* the sonar fires the front transducers alone */
+
     int64_t robot_ms;               /* robot time: SIP_PERIOD_MS per SIP */
     int64_t epoch_us;               /* utime of robot time 0 (the wall clock at start) */
     int32_t scan_seq;
@@ -62,5 +75,32 @@ void robot_abandon(hl_robot_t *r, const char *why, int64_t now_ms);
 void robot_set_state(hl_robot_t *r, int8_t state, int64_t now_ms);
 /** Queues a command for the base (logged when it cannot be sent). */
 void robot_command(hl_robot_t *r, uint8_t number, bool has_arg, int32_t arg, int64_t now_ms);
+/** Whether the robot has something to do: a destination, a sounding, or it still moves
+ *  (a lockstep clock runs only then). */
+bool robot_busy(const hl_robot_t *r);
+
+/* robot_link.c */
+/** Writes what the ARCOS connection has queued (and a lockstep STEP when due) now. */
+void robot_flush(hl_robot_t *r, int64_t now_ms);
+
+/* robot_nav.c */
+bool robot_nav_create(hl_robot_t *r);
+void robot_nav_destroy(hl_robot_t *r);
+/** Plans from the estimate to the destination under way (@p goal_x, @p goal_y), aims the
+ *  drive's next leg at the way's first corner and publishes PATH. @return false with one
+ *  line in @p why when there is no way. */
+bool robot_nav_plan(hl_robot_t *r, int32_t goal_x, int32_t goal_y, char *why, size_t cap);
+/** The destination has ended: an empty PATH, the safety stops' obstacles forgotten. */
+void robot_nav_end(hl_robot_t *r);
+/** The nearest reading of @p sip in the way ahead, mm (0: none); where it lies is kept
+ *  for robot_nav_blocked. */
+int32_t robot_nav_ahead(hl_robot_t *r, const hl_arcos_sip_t *sip);
+/** The last leg was stopped by the safety stop: its reading becomes an obstacle. */
+void robot_nav_blocked(hl_robot_t *r);
+/** The sonar's firing order (POLLING): @p ahead, the front transducers alone, the ones
+ *  nearest ahead twice (while a leg is driven: the safety stop hears ahead about every
+ *  0.15 s instead of every 0.6 s); else the whole ring (a sounding needs a fresh reading
+ *  of every transducer at each step). Sent only when it changes. */
+void robot_nav_polling(hl_robot_t *r, bool ahead, int64_t now_ms);
 
 #endif

@@ -95,9 +95,26 @@ static void check_connection(hl_robot_t *r, int64_t now_ms)
     robot_link_up(r, now_ms);
 }
 
-static void flush(hl_robot_t *r, int64_t now_ms)
+/* A lockstep simulator's clock: the SIP just dealt with is answered with STEP when the
+ * robot has something to do; while it is idle the clock is held (the STEP stays owed until
+ * a destination, a sounding or a STOP's braking gives it something to do again), and the
+ * silence that follows is no fault. */
+static void lockstep(hl_robot_t *r, int64_t now_ms)
+{
+    if (!r->step_owed || !r->up)
+        return;
+    if (!robot_busy(r)) {
+        hl_rlink_hold(&r->rlink, now_ms);
+        return;
+    }
+    r->step_owed = false;
+    robot_command(r, HL_ARCOS_STEP, false, 0, now_ms);
+}
+
+void robot_flush(hl_robot_t *r, int64_t now_ms)
 {
     char why[HL_LINK_WHY_LEN];
+    lockstep(r, now_ms);
     size_t n;
     const uint8_t *out = hl_rlink_pending(&r->rlink, &n);
     while (r->link && !hl_link_connecting(r->link) && n > 0) {
@@ -170,7 +187,7 @@ void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms)
         }
     }
     check_connection(r, now_ms);
-    flush(r, now_ms);
+    robot_flush(r, now_ms);
 }
 
 void hl_robot_tick(hl_robot_t *r, int64_t now_ms)
@@ -182,7 +199,7 @@ void hl_robot_tick(hl_robot_t *r, int64_t now_ms)
         hl_rlink_tick(&r->rlink, now_ms);
     }
     check_connection(r, now_ms);
-    flush(r, now_ms);
+    robot_flush(r, now_ms);
 }
 
 void hl_robot_stop(hl_robot_t *r, int64_t now_ms)
@@ -191,7 +208,7 @@ void hl_robot_stop(hl_robot_t *r, int64_t now_ms)
     if (r->link && r->up) {
         robot_command(r, HL_ARCOS_STOP, false, 0, now_ms);
         hl_rlink_close(&r->rlink, "houghlocd stopped", now_ms);
-        flush(r, now_ms);
+        robot_flush(r, now_ms);
     }
     hl_link_close(r->link);
     r->link = NULL;

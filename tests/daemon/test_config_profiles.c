@@ -181,7 +181,7 @@ static void test_operator_printout_of_the_defaults(void **state)
         if (hl_config_key_for_operator(k))
             assert_non_null(strstr(text, line));
     }
-    assert_int_equal(keys, 19);
+    assert_int_equal(keys, 22);
     assert_true(lines < 80);
     assert_null(strstr(text, "\nmap_capacity = "));
     assert_null(strstr(text, "\nmode = "));

@@ -67,7 +67,8 @@ static void test_one_pose_per_scan(void **state)
     }
     const hl_cycle_counts_t *n = hl_cycle_counts(c);
     assert_int_equal(n->scans, 12);
-    assert_int_equal(n->accepted + n->rejected_wild + n->odometry_only, 12);
+    assert_int_equal(n->accepted + n->rejected_wild + n->odometry_only + n->relocalized +
+                     n->lost, 12);
     assert_true(n->accepted >= 9);
     hl_cycle_tick(c, 0);
     hl_bus_status_t s = last_status(cap);

@@ -82,6 +82,32 @@ static int64_t dist_mm(hl_pose_t a, hl_pose_t b)
     return (int64_t)sqrt(dx * dx + dy * dy);
 }
 
+/* STATUS counts every scan by what became of it: its counters, one per POSE status, add
+ * up to its scans and agree with the POSE stream. */
+static void assert_counts_match_poses(run_t *r)
+{
+    int32_t by_status[5] = { 0 };
+    size_t n = capture_count(&r->cap, HL_CH_POSE);
+    for (size_t k = 0; k < n; k++) {
+        hl_bus_pose_t p = nth_pose(r, k);
+        assert_in_range(p.status, 0, 4);
+        by_status[p.status]++;
+    }
+    hl_cycle_tick(r->c, 0);
+    const out_msg_t *m = capture_nth(&r->cap, HL_CH_STATUS, capture_count(&r->cap, HL_CH_STATUS) - 1);
+    hl_bus_status_t s;
+    assert_int_equal(hl_bus_decode_status(m->data, m->len, &s, NULL), HL_OK);
+    assert_int_equal(s.scans, (int32_t)n);
+    assert_int_equal(s.accepted, by_status[HL_BUS_POSE_ACCEPTED]);
+    assert_int_equal(s.rejected_wild, by_status[HL_BUS_POSE_REJECTED_WILD]);
+    assert_int_equal(s.odometry_only, by_status[HL_BUS_POSE_ODOMETRY_ONLY]);
+    assert_int_equal(s.relocalized, by_status[HL_BUS_POSE_RELOCALIZED]);
+    assert_int_equal(s.lost, by_status[HL_BUS_POSE_LOST]);
+    assert_true(s.relocalized >= 1);
+    assert_int_equal(s.accepted + s.rejected_wild + s.odometry_only + s.relocalized + s.lost,
+                     s.scans);
+}
+
 /* The robot, at the end of the tour, is carried back to where scan 100 was sounded; its
  * odometry goes on from the tour's last reading. */
 static void test_kidnapped_robot_is_found_again(void **state)
@@ -127,6 +153,7 @@ static void test_kidnapped_robot_is_found_again(void **state)
     assert_in_range(found_at, lost_at, lost_at + 2);
     assert_int_equal(tracking_at, found_at + 1);
     assert_false(hl_cycle_lost(r->c));
+    assert_counts_match_poses(r);
     finish(r);
 }
 

@@ -6,3 +6,7 @@ INTEGRATION_TESTS += tests/integration/test_robot.sh
 # The kidnapped robot: houghloc-sim teleports the robot; the daemon notices, is lost, finds
 # it again within three soundings (docs/results/relocalization.md).
 INTEGRATION_TESTS += tests/integration/test_lost.sh
+# Driving that can be trusted: the sonar's safety stop at a wall and at a chair leg, a
+# path planned round a box, STOP from houghloc-ctl and from Ctrl-C on houghloc-goto, and
+# the robot stopped when the daemon stalls or dies (tests/integration/worlds/chairleg.world).
+INTEGRATION_TESTS += tests/integration/test_drive.sh

@@ -76,7 +76,11 @@ typedef enum hl_slam_status {
                                    away, at the step's pose; the next scan must confirm it
                                    before tracking goes on from there */
     HL_SLAM_LOST = 4,           /* lost, and the global search found nothing that stands
-                                   out: the pose is a guess (the prediction) */
+                                   out: the scan is tracked as usual (the robot may only
+                                   have entered unmapped space), so the pose is tracking's
+                                   (the prediction when tracking rejected the scan) and a
+                                   scan tracking accepted extends the map; a run of
+                                   well-tracked scans ends the lost state */
 } hl_slam_status_t;
 
 /* Why the tracker became lost with a scan (hl_slam_step_t.lost_why). */
