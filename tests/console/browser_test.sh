@@ -5,11 +5,15 @@
 # loads the page, waits for the map, clicks a point near the robot, and checks that a
 # DESTINATION with those coordinates (within one 24 mm map cell) was published
 # (lcm-logger records it) and that the daemon's reply (NO_ROBOT: no robot is attached)
-# appears on the page. It saves $BUILD/console/screenshot.png and ends with one line:
+# appears on the page; then presses Escape and clicks the Stop button, and checks that each
+# published one STOP COMMAND (recorded too) whose reply appears on the page; then publishes
+# a PATH of 5 points and checks that the page draws them, and that an empty PATH clears
+# them. It saves $BUILD/console/screenshot.png (with the way drawn) and ends with one line:
 #
-#   console browser=<name> vectors_drawn=<n> destination_roundtrip=<ok|failed> frame_ms=<x>
+#   console browser=<name> vectors_drawn=<n> destination_roundtrip=<ok|failed> frame_ms=<x> stop=<ok|failed> path_points=<n>
 #
-# where frame_ms is the median redraw time of a 15,000-vector map pushed to the page.
+# where frame_ms is the median redraw time of a 15,000-vector map pushed to the page and
+# path_points the number of the PATH's points the page drew (5).
 # It needs /usr/bin/chromium and /usr/bin/chromedriver (make deps installs them): without
 # them it fails with one line, unless HOUGHLOC_SKIP_BROWSER=1 asks to skip it.
 set -u
@@ -45,7 +49,7 @@ URL="udpm://239.255.76.67:$(( 7300 + n ))?ttl=0"
 HPORT=$(( 18100 + n ))
 DPORT=$(( 18600 + n ))
 
-lcm-logger -q -f -c 'DESTINATION' --lcm-url="$URL" "$tmp/dest.lcmlog" >/dev/null 2>&1 &
+lcm-logger -q -f -c 'DESTINATION|COMMAND' --lcm-url="$URL" "$tmp/dest.lcmlog" >/dev/null 2>&1 &
 logger=$!
 pids="$logger"
 # The daemon at its default start pose: the console draws the truth in the map frame (its
@@ -67,7 +71,7 @@ pids="$pids $!"
 
 python3 tests/console/browser_test.py --driver "http://127.0.0.1:$DPORT" \
     --page "http://127.0.0.1:$HPORT/" --profile "$tmp/profile" --replayed "$tmp/replayed" \
-    --dest-log "$tmp/dest.lcmlog" --logger-pid "$logger" --out "$OUT"
+    --dest-log "$tmp/dest.lcmlog" --logger-pid "$logger" --out "$OUT" --lcm-url "$URL"
 rc=$?
 if [ $rc -ne 0 ]; then
     echo "test-console: failed; the console said:" >&2

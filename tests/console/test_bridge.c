@@ -1,6 +1,6 @@
 /* Tests for tools/console/bridge.c and jbuf.c: every message the console forwards as the
- * exact JSON the page reads (empty and full maps, every field, names of every state and
- * result, escaping of hostile text), and the buffer's bound. */
+ * exact JSON the page reads (empty and full maps and paths, every field, names of every
+ * state and result, escaping of hostile text), and the buffer's bound. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -132,7 +132,8 @@ static void test_status(void **state)
     bridge_status(&b, &s);
     assert_string_equal(b.data,
                         "{\"utime\":7,\"state\":\"MOVING\",\"destination_seq\":null,\"scans\":10,"
-                        "\"accepted\":8,\"rejected_wild\":1,\"odometry_only\":1,\"bad_packets\":2,"
+                        "\"accepted\":8,\"rejected_wild\":1,\"odometry_only\":1,"
+                        "\"relocalized\":0,\"lost\":0,\"bad_packets\":2,"
                         "\"bad_messages\":3,\"rejected_requests\":4,\"map_vectors\":1500,"
                         "\"map_version\":77,\"saves\":5,\"x_mm\":1,\"y_mm\":2,\"heading_deg\":0,"
                         "\"compute_median_us\":1700,\"compute_p99_us\":2500,\"compute_samples\":128,"
@@ -175,6 +176,88 @@ static void test_reply_and_sent(void **state)
     jbuf_free(&b);
 }
 
+/* PATH: the points flat, x then y, in order; the destination's seq as a string. */
+static void test_path(void **state)
+{
+    (void)state;
+    hl_bus_path_t p = { .utime = 9, .destination_seq = 1700000000123456789, .npoints = 3,
+                        .x_mm = { 100, -4194304, 2500 }, .y_mm = { -200, 4194304, 0 } };
+    jbuf_t b;
+    jbuf_init(&b, 0);
+    bridge_path(&b, &p);
+    assert_false(b.failed);
+    assert_string_equal(b.data, "{\"utime\":9,\"seq\":\"1700000000123456789\","
+                                "\"points\":[100,-200,-4194304,4194304,2500,0]}");
+    /* beyond 2^53 exactly, and the largest */
+    p.destination_seq = INT64_MAX;
+    p.npoints = 1;
+    jbuf_reset(&b);
+    bridge_path(&b, &p);
+    assert_string_equal(b.data, "{\"utime\":9,\"seq\":\"9223372036854775807\","
+                                "\"points\":[100,-200]}");
+    jbuf_free(&b);
+}
+
+/* The destination has ended: no points, and no seq when there is none. */
+static void test_path_empty(void **state)
+{
+    (void)state;
+    hl_bus_path_t p = { .utime = 0, .destination_seq = -1, .npoints = 0, .x_mm = { 1 },
+                        .y_mm = { 2 } };
+    jbuf_t b;
+    jbuf_init(&b, 0);
+    bridge_path(&b, &p);
+    assert_string_equal(b.data, "{\"utime\":0,\"seq\":null,\"points\":[]}");
+    /* ended, but still naming the destination that ended */
+    p.destination_seq = 5;
+    jbuf_reset(&b);
+    bridge_path(&b, &p);
+    assert_string_equal(b.data, "{\"utime\":0,\"seq\":\"5\",\"points\":[]}");
+    jbuf_free(&b);
+}
+
+/* A full path: 64 points, 128 integers, in order. */
+static void test_path_full(void **state)
+{
+    (void)state;
+    hl_bus_path_t p = { .utime = 1, .destination_seq = 2, .npoints = HL_BUS_PATH_MAX_POINTS };
+    for (int i = 0; i < HL_BUS_PATH_MAX_POINTS; i++) {
+        p.x_mm[i] = 1000 * i;
+        p.y_mm[i] = -i;
+    }
+    jbuf_t b;
+    jbuf_init(&b, 0);
+    bridge_path(&b, &p);
+    const char *q = strstr(b.data, "\"points\":[");
+    assert_non_null(q);
+    q += 10;
+    for (int i = 0; i < HL_BUS_PATH_MAX_POINTS; i++) {
+        char *end;
+        assert_int_equal(strtol(q, &end, 10), 1000 * i);
+        assert_true(*end == ',');
+        assert_int_equal(strtol(end + 1, &end, 10), -i);
+        assert_true(*end == (i + 1 < HL_BUS_PATH_MAX_POINTS ? ',' : ']'));
+        q = end + 1;
+    }
+    assert_string_equal(q, "}");
+    jbuf_free(&b);
+}
+
+/* POST /stop's answer: the seq as a string. */
+static void test_stop(void **state)
+{
+    (void)state;
+    hl_bus_command_t c = { .utime = 4, .seq = INT64_MAX, .kind = HL_BUS_COMMAND_STOP };
+    jbuf_t b;
+    jbuf_init(&b, 0);
+    bridge_stop(&b, &c, false);
+    assert_string_equal(b.data, "{\"utime\":4,\"seq\":\"9223372036854775807\",\"signed\":false}");
+    jbuf_reset(&b);
+    bridge_stop(&b, &c, true);
+    assert_non_null(strstr(b.data, "\"signed\":true}"));
+    jbuf_free(&b);
+}
+
 /* A bounded buffer refuses to grow past its bound and says so once, for the caller. */
 static void test_jbuf_bound(void **state)
 {
@@ -206,6 +289,10 @@ int main(void)
         cmocka_unit_test(test_pose_status_and_state_names),
         cmocka_unit_test(test_status),
         cmocka_unit_test(test_reply_and_sent),
+        cmocka_unit_test(test_path),
+        cmocka_unit_test(test_path_empty),
+        cmocka_unit_test(test_path_full),
+        cmocka_unit_test(test_stop),
         cmocka_unit_test(test_jbuf_bound),
     };
     return cmocka_run_group_tests_name("console_bridge", tests, NULL, NULL);

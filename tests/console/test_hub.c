@@ -73,6 +73,8 @@ static void test_late_page_snapshot(void **state)
     publish(&h, HUB_POSE, "{\"p\":2}", 3, 4);
     publish(&h, HUB_TRUTH, "{\"t\":1}", -5, 6);
     publish(&h, HUB_STATUS, "{\"s\":1}", 0, 0);
+    publish(&h, HUB_PATH, "{\"path\":1}", 0, 0);
+    publish(&h, HUB_PATH, "{\"path\":2}", 0, 0);
     for (int i = 0; i < HUB_REPLIES_KEPT + 3; i++) {
         char r[32];
         snprintf(r, sizeof r, "{\"r\":%d}", i);
@@ -88,6 +90,7 @@ static void test_late_page_snapshot(void **state)
         "event: status\ndata: {\"s\":1}\n\n"
         "event: pose\ndata: {\"p\":2}\n\n"
         "event: truth\ndata: {\"t\":1}\n\n"
+        "event: path\ndata: {\"path\":2}\n\n"      /* the last way planned */
         "event: sent\ndata: {\"d\":1}\n\n"
         "event: reply\ndata: {\"r\":3}\n\n";       /* the oldest reply kept */
     assert_memory_equal(all, want_start, strlen(want_start));

@@ -133,6 +133,8 @@ void bridge_status(jbuf_t *b, const hl_bus_status_t *s)
     int_field(b, "accepted", s->accepted);
     int_field(b, "rejected_wild", s->rejected_wild);
     int_field(b, "odometry_only", s->odometry_only);
+    int_field(b, "relocalized", s->relocalized);
+    int_field(b, "lost", s->lost);
     int_field(b, "bad_packets", s->bad_packets);
     int_field(b, "bad_messages", s->bad_messages);
     int_field(b, "rejected_requests", s->rejected_requests);
@@ -176,6 +178,43 @@ void bridge_sent(jbuf_t *b, const hl_bus_destination_t *d, bool is_signed)
         jbuf_num(b, hl_bam_to_deg(d->heading), 2);
     else
         jbuf_puts(b, "null");
+    key(b, "signed", false);
+    jbuf_puts(b, is_signed ? "true" : "false");
+    jbuf_putc(b, '}');
+}
+
+void bridge_path(jbuf_t *b, const hl_bus_path_t *p)
+{
+    jbuf_putc(b, '{');
+    key(b, "utime", true);
+    jbuf_int(b, p->utime);
+    if (p->destination_seq < 0) {
+        key(b, "seq", false);
+        jbuf_puts(b, "null");
+    } else {
+        seq_field(b, "seq", p->destination_seq);
+    }
+    key(b, "points", false);
+    jbuf_putc(b, '[');
+    int32_t n = p->npoints < 0 ? 0 : p->npoints;
+    if (n > HL_BUS_PATH_MAX_POINTS)
+        n = HL_BUS_PATH_MAX_POINTS;
+    for (int32_t i = 0; i < n; i++) {
+        if (i)
+            jbuf_putc(b, ',');
+        jbuf_int(b, p->x_mm[i]);
+        jbuf_putc(b, ',');
+        jbuf_int(b, p->y_mm[i]);
+    }
+    jbuf_puts(b, "]}");
+}
+
+void bridge_stop(jbuf_t *b, const hl_bus_command_t *c, bool is_signed)
+{
+    jbuf_putc(b, '{');
+    key(b, "utime", true);
+    jbuf_int(b, c->utime);
+    seq_field(b, "seq", c->seq);
     key(b, "signed", false);
     jbuf_puts(b, is_signed ? "true" : "false");
     jbuf_putc(b, '}');

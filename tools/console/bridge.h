@@ -35,5 +35,13 @@ void bridge_status(jbuf_t *b, const hl_bus_status_t *s);
 void bridge_reply(jbuf_t *b, const hl_bus_reply_t *r, bool mine);
 /** A DESTINATION the console published: seq, x_mm, y_mm, heading (null), signed. */
 void bridge_sent(jbuf_t *b, const hl_bus_destination_t *d, bool is_signed);
+/**
+ * PATH: {"utime","seq","points":[x_mm,y_mm,...]}: seq the destination's (null when
+ * none), the points flat, two integers each, the robot's estimate first and the
+ * destination last; [] when the destination has ended.
+ */
+void bridge_path(jbuf_t *b, const hl_bus_path_t *p);
+/** A STOP command the console published (POST /stop's answer): utime, seq, signed. */
+void bridge_stop(jbuf_t *b, const hl_bus_command_t *c, bool is_signed);
 
 #endif

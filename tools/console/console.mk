@@ -13,8 +13,9 @@
 MHD_CFLAGS := $(shell pkg-config --cflags libmicrohttpd 2>/dev/null)
 MHD_LIBS   := $(shell pkg-config --libs libmicrohttpd 2>/dev/null)
 
-# The pure modules, unit-tested under the sanitizers; the rest touches sockets and LCM.
-CONSOLE_PURE := jbuf bridge destreq access hub
+# The pure modules (libsodium apart), unit-tested under the sanitizers; the rest touches
+# sockets and LCM.
+CONSOLE_PURE := jbuf bridge destreq stamp access hub
 CONSOLE_OBJS := $(patsubst %,$(BUILD)/obj/tools/console/%.o,$(CONSOLE_PURE) args http sender main) \
                 $(BUILD)/obj/gen/console_page.o $(BUILD)/obj/tools/eval/truth_frame.o \
                 $(BUILD)/obj/tools/goto/request.o

@@ -115,6 +115,22 @@ static enum MHD_Result open_stream(http_t *h, struct MHD_Connection *c)
     return rc;
 }
 
+/* A callback's answer with its status (a 4xx or 5xx counts as refused). */
+static enum MHD_Result answer(http_t *h, struct MHD_Connection *c, unsigned status, jbuf_t *a)
+{
+    if (a->failed) {
+        jbuf_free(a);
+        return MHD_NO;
+    }
+    if (status >= 400)
+        h->refused++;
+    jbuf_putc(a, '\n');
+    enum MHD_Result rc = respond(c, status, "application/json", a->data, a->len,
+                                 MHD_RESPMEM_MUST_COPY);
+    jbuf_free(a);
+    return rc;
+}
+
 static enum MHD_Result finish_destination(http_t *h, struct MHD_Connection *c, request_t *q)
 {
     if (q->too_large)
@@ -123,24 +139,23 @@ static enum MHD_Result finish_destination(http_t *h, struct MHD_Connection *c, r
     char why[DESTREQ_WHY_LEN];
     if (destreq_parse(q->body, q->len, &d, why) != HL_OK)
         return refuse(h, c, MHD_HTTP_BAD_REQUEST, why);
-    jbuf_t answer;
-    jbuf_init(&answer, 4096);
-    unsigned status = h->on_destination(h->user, &d, &answer);
-    if (answer.failed) {
-        jbuf_free(&answer);
-        return MHD_NO;
-    }
-    if (status >= 400)
-        h->refused++;
-    jbuf_putc(&answer, '\n');
-    enum MHD_Result rc = respond(c, status, "application/json", answer.data, answer.len,
-                                 MHD_RESPMEM_MUST_COPY);
-    jbuf_free(&answer);
-    return rc;
+    jbuf_t a;
+    jbuf_init(&a, 4096);
+    unsigned status = h->on_destination(h->user, &d, &a);
+    return answer(h, c, status, &a);
 }
 
-/* The first call for a request: access, route and method; the page and the stream are
- * answered at once, a destination goes on to read its body. */
+/* POST /stop: published at once, without waiting for a body (any body is dropped). */
+static enum MHD_Result stop_robot(http_t *h, struct MHD_Connection *c)
+{
+    jbuf_t a;
+    jbuf_init(&a, 4096);
+    unsigned status = h->on_stop_robot(h->user, &a);
+    return answer(h, c, status, &a);
+}
+
+/* The first call for a request: access, route and method; the page, the stream and a
+ * stop are answered at once, a destination goes on to read its body. */
 static enum MHD_Result first_call(http_t *h, struct MHD_Connection *c, const char *url,
                                   const char *method, request_t *q)
 {
@@ -165,11 +180,13 @@ static enum MHD_Result first_call(http_t *h, struct MHD_Connection *c, const cha
         break;
     }
     const bool page = strcmp(url, "/") == 0, events = strcmp(url, "/events") == 0;
-    const bool dest = strcmp(url, "/destination") == 0;
-    if (!page && !events && !dest)
+    const bool dest = strcmp(url, "/destination") == 0, stop = strcmp(url, "/stop") == 0;
+    if (!page && !events && !dest && !stop)
         return refuse(h, c, MHD_HTTP_NOT_FOUND, "no such page");
-    if ((dest && !post) || (!dest && !get))
+    if (((dest || stop) && !post) || (!dest && !stop && !get))
         return refuse(h, c, MHD_HTTP_METHOD_NOT_ALLOWED, "method not allowed here");
+    if (stop)
+        return stop_robot(h, c);
     if (page)
         return respond(c, MHD_HTTP_OK, "text/html; charset=utf-8", h->page, h->page_len,
                        MHD_RESPMEM_PERSISTENT);
@@ -258,9 +275,11 @@ static bool build_page(http_t *h, const char *token, char *why)
 }
 
 bool http_start(http_t *h, const struct sockaddr *addr, hub_t *hub,
-                const access_policy_t *policy, http_destination_fn fn, void *user, char *why)
+                const access_policy_t *policy, http_destination_fn dest,
+                http_stop_robot_fn stop, void *user, char *why)
 {
-    *h = (http_t){ .hub = hub, .policy = policy, .on_destination = fn, .user = user };
+    *h = (http_t){ .hub = hub, .policy = policy, .on_destination = dest,
+                   .on_stop_robot = stop, .user = user };
     if (!build_page(h, policy->token, why))
         return false;
     unsigned flags = MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ERROR_LOG;

@@ -5,11 +5,13 @@
  * resumed by the hub's wake when a message arrives: no busy loop).
  *
  * Routes: GET / the page (HEAD too), GET /events the Server-Sent Events stream,
- * POST /destination {x_m, y_m, heading_deg?}. Every request passes access_decide first
- * (403 bad Host, 401 no token); then 404 for another path, 405 for another method
- * (OPTIONS included: no CORS preflight is ever granted), 400 for a body that is not
- * Content-Type application/json or does not parse (destreq.h) or is longer than
- * DESTREQ_MAX_BYTES. A refused request changes nothing.
+ * POST /destination {x_m, y_m, heading_deg?}, POST /stop (no body needed; any body is
+ * ignored). Every request passes access_decide first (403 bad Host, 401 no token); then
+ * 404 for another path, 405 for another method (OPTIONS included: no CORS preflight is
+ * ever granted); for /destination 400 for a body that is not Content-Type
+ * application/json or does not parse (destreq.h) or is longer than DESTREQ_MAX_BYTES.
+ * A refused request changes nothing. A stop is carried out on the request's first call,
+ * before any body is read, and nothing else limits it: no rate limit applies.
  */
 #ifndef HOUGHLOC_TOOLS_CONSOLE_HTTP_H
 #define HOUGHLOC_TOOLS_CONSOLE_HTTP_H
@@ -33,6 +35,12 @@
  */
 typedef unsigned (*http_destination_fn)(void *user, const destreq_t *r, jbuf_t *answer);
 
+/**
+ * Carries out POST /stop. Writes the JSON answer into @p answer.
+ * @return 202 when published, or another HTTP status (the answer then has "error").
+ */
+typedef unsigned (*http_stop_robot_fn)(void *user, jbuf_t *answer);
+
 typedef struct http {
     struct MHD_Daemon *daemon;
     hub_t *hub;
@@ -40,6 +48,7 @@ typedef struct http {
     char *page;                 /* the page with the token in it */
     size_t page_len;
     http_destination_fn on_destination;
+    http_stop_robot_fn on_stop_robot;
     void *user;
     bool stopping;
     unsigned long requests, refused;    /* refused: any 4xx */
@@ -47,11 +56,13 @@ typedef struct http {
 
 /**
  * Builds the page (the embedded one with the policy's token put in) and starts serving
- * on @p addr. @p hub's wake must be http_wake with @p h as its user.
+ * on @p addr. @p hub's wake must be http_wake with @p h as its user. @p dest and
+ * @p stop are called with @p user.
  * @return false with one line in @p why (ACCESS_WHY_LEN bytes) when it cannot.
  */
 bool http_start(http_t *h, const struct sockaddr *addr, hub_t *hub,
-                const access_policy_t *policy, http_destination_fn fn, void *user, char *why);
+                const access_policy_t *policy, http_destination_fn dest,
+                http_stop_robot_fn stop, void *user, char *why);
 
 /** The hub's wake callback: resumes the suspended stream @p s. @p user is the http_t. */
 void http_wake(void *user, hub_stream_t *s);

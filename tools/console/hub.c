@@ -6,7 +6,7 @@
 
 static const char *const kind_names[HUB_KINDS] = {
     [HUB_HELLO] = "hello", [HUB_MAP] = "map", [HUB_POSE] = "pose", [HUB_STATUS] = "status",
-    [HUB_TRUTH] = "truth", [HUB_REPLY] = "reply", [HUB_SENT] = "sent",
+    [HUB_TRUTH] = "truth", [HUB_REPLY] = "reply", [HUB_SENT] = "sent", [HUB_PATH] = "path",
 };
 
 const char *hub_kind_name(hub_kind_t k)
@@ -147,7 +147,7 @@ hub_stream_t *hub_stream_open(hub_t *h, void *conn)
     tracks_json(h, &tracks);
     frame(q, "tracks", tracks.data ? tracks.data : "{}", tracks.len);
     jbuf_free(&tracks);
-    static const hub_kind_t order[] = { HUB_MAP, HUB_STATUS, HUB_POSE, HUB_TRUTH };
+    static const hub_kind_t order[] = { HUB_MAP, HUB_STATUS, HUB_POSE, HUB_TRUTH, HUB_PATH };
     for (size_t i = 0; i < sizeof order / sizeof order[0]; i++)
         if (h->latest[order[i]].len)
             jbuf_put(q, h->latest[order[i]].data, h->latest[order[i]].len);

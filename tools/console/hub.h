@@ -5,7 +5,7 @@
  * layer reads the queues and is told (the wake callback) when a queue it left empty has
  * something again, so that it can resume the stream it suspended.
  *
- * Kept for late pages: the last MAP, POSE, STATUS, GROUND_TRUTH and hello, the last
+ * Kept for late pages: the last MAP, POSE, STATUS, GROUND_TRUTH, PATH and hello, the last
  * HUB_REPLIES_KEPT replies and destinations sent, and the trajectories (estimate and
  * truth) as polylines of at most HUB_TRACK_MAX points. A page that reads too slowly
  * (a queue above HUB_QUEUE_MAX bytes) is cut off rather than let the console's memory
@@ -32,6 +32,7 @@ typedef enum hub_kind {
     HUB_TRUTH,
     HUB_REPLY,          /* kept as a list, not only the last */
     HUB_SENT,           /* a DESTINATION the console published; kept as a list */
+    HUB_PATH,           /* the way planned to the destination */
     HUB_KINDS,
 } hub_kind_t;
 
@@ -83,7 +84,7 @@ void hub_keepalive(hub_t *h);
 
 /**
  * Opens a stream for the connection @p conn with everything kept queued at once: the
- * hello, the trajectories, the map, status, pose, truth, then the kept replies and
+ * hello, the trajectories, the map, status, pose, truth, path, then the kept replies and
  * destinations, oldest first. @return NULL when out of memory.
  */
 hub_stream_t *hub_stream_open(hub_t *h, void *conn);

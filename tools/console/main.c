@@ -4,8 +4,9 @@
  * One thread, one pselect() over the LCM socket and libmicrohttpd's sockets: LCM
  * messages are decoded by the bus codecs, turned into JSON (bridge.c) and pushed to
  * every open page (hub.c); the pages' clicks come back as POST /destination (http.c)
- * and leave as DESTINATION messages (sender.c). Nothing runs between events: the only
- * timers are libmicrohttpd's connection timeouts and a keepalive every 15 s.
+ * and leave as DESTINATION messages, their Stop button and Escape key as POST /stop
+ * and leave as a STOP COMMAND (sender.c). Nothing runs between events: the only timers
+ * are libmicrohttpd's connection timeouts and a keepalive every 15 s.
  */
 #include <errno.h>
 #include <signal.h>
@@ -29,10 +30,10 @@
 #define KEEPALIVE_MS 15000
 #define LOG(...) (fprintf(stderr, PROG ": " __VA_ARGS__), fputc('\n', stderr))
 
-enum { CH_MAP, CH_POSE, CH_STATUS, CH_REPLY, CH_TRUTH, CH_COUNT };
+enum { CH_MAP, CH_POSE, CH_STATUS, CH_REPLY, CH_TRUTH, CH_PATH, CH_COUNT };
 static const char *const base_names[CH_COUNT] = {
     HL_CHANNEL_MAP, HL_CHANNEL_POSE, HL_CHANNEL_STATUS, HL_CHANNEL_REPLY,
-    HL_CHANNEL_GROUND_TRUTH,
+    HL_CHANNEL_GROUND_TRUTH, HL_CHANNEL_PATH,
 };
 
 typedef struct console {
@@ -124,6 +125,12 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
                 r.message[0] ? ": " : "", r.message);
         bridge_reply(&c->json, &r, mine);
         publish_json(c, HUB_REPLY, 0, 0);
+    } else if (ch == CH_PATH) {
+        hl_bus_path_t p;
+        if (hl_bus_decode_path(rbuf->data, rbuf->data_size, &p, why) != HL_OK)
+            return undecodable(c, ch, why);
+        bridge_path(&c->json, &p);
+        publish_json(c, HUB_PATH, 0, 0);
     }
 }
 
@@ -146,6 +153,23 @@ static unsigned on_destination(void *user, const destreq_t *r, jbuf_t *answer)
     bridge_sent(&c->json, &d, c->sender.has_key);
     publish_json(c, HUB_SENT, 0, 0);
     bridge_sent(answer, &d, c->sender.has_key);
+    return 202;
+}
+
+/* POST /stop: one STOP on COMMAND at once, and its seq to the page that asked. */
+static unsigned on_stop_robot(void *user, jbuf_t *answer)
+{
+    console_t *c = user;
+    hl_bus_command_t cmd;
+    hl_status_t st = sender_stop(&c->sender, &cmd);
+    if (st != HL_OK) {
+        LOG("a STOP could not be %s", st == HL_ERR_OS ? "published" : "encoded");
+        jbuf_puts(answer, st == HL_ERR_OS ? "{\"error\":\"LCM refused to publish\"}"
+                                          : "{\"error\":\"the STOP does not encode\"}");
+        return st == HL_ERR_OS ? 503 : 500;
+    }
+    LOG("STOP seq %lld, %s", (long long)cmd.seq, c->sender.has_key ? "signed" : "unsigned");
+    bridge_stop(answer, &cmd, c->sender.has_key);
     return 202;
 }
 
@@ -254,7 +278,7 @@ static int start(console_t *c)
     }
     hello(c);
     if (!http_start(&c->http, (const struct sockaddr *)&c->opt.addr, &c->hub, &c->policy,
-                    on_destination, c, why)) {
+                    on_destination, on_stop_robot, c, why)) {
         LOG("%s", why);
         return EXIT_ERROR;
     }

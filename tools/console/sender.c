@@ -1,4 +1,4 @@
-/* sender.c - stamping, signing and publishing the console's destinations (sender.h). */
+/* sender.c - stamping, signing and publishing the console's requests (sender.h). */
 #include "sender.h"
 
 #include <stdio.h>
@@ -7,11 +7,14 @@
 
 #include <sodium.h>
 
+#include "stamp.h"
+
 hl_status_t sender_init(sender_t *s, lcm_t *lcm, const char *prefix, const char *key_file,
                         char *why)
 {
     *s = (sender_t){ .lcm = lcm };
-    if (!hl_bus_channel(prefix, HL_CHANNEL_DESTINATION, s->channel))
+    if (!hl_bus_channel(prefix, HL_CHANNEL_DESTINATION, s->channel) ||
+        !hl_bus_channel(prefix, HL_CHANNEL_COMMAND, s->command_channel))
         return HL_ERR_ARG; /* the command line checked the prefix already */
     if (!key_file)
         return HL_OK;
@@ -31,27 +34,43 @@ static int64_t wall_us(void)
     return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
 }
 
-hl_status_t sender_send(sender_t *s, hl_bus_destination_t *d)
+/* Publishes @p len bytes of a request stamped @p seq and remembers the seq as mine. */
+static hl_status_t publish(sender_t *s, const char *channel, const uint8_t *buf, int len,
+                           int64_t seq)
 {
-    /* The wall clock in microseconds, and above the last one even if the clock stepped
-     * back: the daemon accepts only increasing seqs (REJECTED_REPLAY otherwise). */
-    int64_t now = wall_us();
-    d->seq = now > s->last_seq ? now : s->last_seq + 1;
-    d->utime = now;
-    memset(d->mac, 0, sizeof d->mac);
-    if (s->has_key && !hl_auth_sign_destination(&s->key, d))
-        return HL_ERR_RANGE;
-    uint8_t buf[HL_BUS_DESTINATION_BYTES];
-    int len = hl_bus_encode_destination(d, buf, sizeof buf);
     if (len < 0)
         return HL_ERR_RANGE;
-    if (lcm_publish(s->lcm, s->channel, buf, (unsigned)len) != 0)
+    if (lcm_publish(s->lcm, channel, buf, (unsigned)len) != 0)
         return HL_ERR_OS;
-    s->last_seq = d->seq;
-    s->mine[s->next] = d->seq;
+    s->last_seq = seq;
+    s->mine[s->next] = seq;
     s->next = (s->next + 1) % SENDER_KEPT;
-    s->sent++;
     return HL_OK;
+}
+
+hl_status_t sender_send(sender_t *s, hl_bus_destination_t *d)
+{
+    /* The daemon accepts only increasing seqs (REJECTED_REPLAY otherwise): stamp_seq. */
+    int64_t now = wall_us();
+    uint8_t buf[STAMP_MAX_BYTES];
+    int len = stamp_destination(d, now, stamp_seq(now, s->last_seq),
+                                s->has_key ? &s->key : NULL, buf, sizeof buf);
+    hl_status_t st = publish(s, s->channel, buf, len, d->seq);
+    if (st == HL_OK)
+        s->sent++;
+    return st;
+}
+
+hl_status_t sender_stop(sender_t *s, hl_bus_command_t *c)
+{
+    int64_t now = wall_us();
+    uint8_t buf[STAMP_MAX_BYTES];
+    int len = stamp_stop(c, now, stamp_seq(now, s->last_seq), s->has_key ? &s->key : NULL,
+                         buf, sizeof buf);
+    hl_status_t st = publish(s, s->command_channel, buf, len, c->seq);
+    if (st == HL_OK)
+        s->stops++;
+    return st;
 }
 
 bool sender_is_mine(const sender_t *s, int64_t seq)

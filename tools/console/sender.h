@@ -1,10 +1,11 @@
 /*
- * sender.h - the console's DESTINATION messages (private to tools/console): stamped
- * with a seq from the wall clock (as houghloc-goto does, so that the console and the
- * command-line clients share the daemon's increasing seq), signed with the daemon's key
- * when one was given (the key is loaded once, by src/daemon's keyfile loader, and never
- * leaves this module), encoded by the bus codec and published on the console's own LCM
- * instance, without waiting: the answer comes back on REPLY like any other.
+ * sender.h - the console's DESTINATION and STOP messages (private to tools/console):
+ * stamped with a seq from the wall clock (stamp.h: as houghloc-goto does, so that the
+ * console and the command-line clients share the daemon's increasing seq), signed with
+ * the daemon's key when one was given (the key is loaded once, by the store's keyfile
+ * loader, and never leaves this module), encoded by the bus codec and published on the
+ * console's own LCM instance, without waiting: the answer comes back on REPLY like any
+ * other. Nothing here limits how often a STOP may leave.
  */
 #ifndef HOUGHLOC_TOOLS_CONSOLE_SENDER_H
 #define HOUGHLOC_TOOLS_CONSOLE_SENDER_H
@@ -22,17 +23,18 @@
 
 typedef struct sender {
     lcm_t *lcm;
-    char channel[HL_BUS_CHANNEL_MAX];
+    char channel[HL_BUS_CHANNEL_MAX];           /* DESTINATION, with the prefix */
+    char command_channel[HL_BUS_CHANNEL_MAX];   /* COMMAND, with the prefix */
     bool has_key;
     hl_auth_key_t key;
     int64_t last_seq;
     int64_t mine[SENDER_KEPT];
     unsigned next;
-    unsigned long sent;
+    unsigned long sent, stops;
 } sender_t;
 
 /**
- * Prepares to publish on @p prefix + DESTINATION with @p lcm, loading the key file
+ * Prepares to publish on @p prefix + DESTINATION and COMMAND with @p lcm, loading the key file
  * @p key_file (NULL: unsigned).
  * @return HL_OK, or the key file loader's status with one line in @p why
  *         (HL_KEYFILE_WHY_LEN bytes).
@@ -45,6 +47,12 @@ hl_status_t sender_init(sender_t *s, lcm_t *lcm, const char *prefix, const char 
  * @return HL_OK; HL_ERR_RANGE when it does not encode; HL_ERR_OS when LCM refuses it.
  */
 hl_status_t sender_send(sender_t *s, hl_bus_destination_t *d);
+
+/**
+ * Stamps, signs (with the key, when there is one) and publishes one STOP command on
+ * COMMAND; @p c receives what was sent. @return as sender_send.
+ */
+hl_status_t sender_stop(sender_t *s, hl_bus_command_t *c);
 
 /** @return true when @p seq is one of the last SENDER_KEPT the console sent. */
 bool sender_is_mine(const sender_t *s, int64_t seq);
