@@ -1,19 +1,25 @@
 #!/bin/sh
-# Integration test of the README's simulated-robot recipe, followed as a user types it:
+# Integration test of the README's simulated-robot recipe, pasted into a shell as one
+# block, as a user does:
 #
 #   houghloc-sim &
-#   houghlocd --set robot.link=tcp:127.0.0.1:8101 --set robot.profile=houghloc-sim
-#   houghloc-goto 0.5 -1.5
+#   houghlocd --set robot.link=tcp:127.0.0.1:8101 --set robot.profile=houghloc-sim &
+#   houghloc-goto 2 1
 #   houghloc-goto 0 0
 #
 # with three differences that keep parallel runs apart and the test short: the simulator
-# takes any free port (--port 0, read from its log) and runs 10 times faster than real
-# time, and every program finds an LCM group of the test's own in $LCM_DEFAULT_URL (as
-# every LCM program does). HOME and XDG_STATE_HOME point into a temporary folder, so the
-# daemon's default map location for a user is exercised. Both houghloc-goto calls use
-# their default timeout, which must follow the robot's progress (the trip takes longer
-# than it): each must exit 0 with ARRIVED. Then the map file must be where the default
-# says. Every wait is on a condition, with a generous bound; nothing is timed.
+# listens on a port of this test's own (--port, chosen from the process id) and runs 10
+# times faster than real time, and every program finds an LCM group of the test's own in
+# $LCM_DEFAULT_URL (as every LCM program does). Nothing waits between the lines: the
+# first houghloc-goto starts while the daemon is still connecting to the robot, and must
+# wait for it (within its default timeout) rather than fail. The robot starts at the
+# simulator's default start; "2 1" lies 2 m ahead and 1 m to the left. HOME and
+# XDG_STATE_HOME point into a temporary folder, so the daemon's default map location for
+# a user is exercised. Both houghloc-goto calls use their default timeout, which must
+# follow the robot's progress (the trip takes longer than it): each must exit 0 with
+# ARRIVED. Then the map file must be where the default says, and the robot must never
+# have touched anything (the simulator's collision count). Every wait is on a condition,
+# with a generous bound; nothing is timed.
 set -u
 BIN=${BUILD:-build}/bin
 tmp=$(mktemp -d)
@@ -52,20 +58,14 @@ if [ -d /var/lib/houghloc ] && [ -w /var/lib/houghloc ]; then
     map_opt="--map $MAP"
 fi
 
-# houghloc-sim &
-"$BIN/houghloc-sim" --port 0 --speed 10 2>"$tmp/sim.err" &
+# The recipe, pasted at once.
+PORT=$((20000 + $$ % 20000))
+"$BIN/houghloc-sim" --port $PORT --speed 10 2>"$tmp/sim.err" &
 sim=$!; pids="$sim"
-wait_for "$tmp/sim.err" "listening on" 100
-PORT=$(sed -n 's/.*listening on 127\.0\.0\.1:\([0-9]*\).*/\1/p' "$tmp/sim.err" | head -n 1)
-check "houghloc-sim listens on a free port (${PORT:-none})" test -n "$PORT"
-
-# houghlocd --set robot.link=... --set robot.profile=houghloc-sim
-profile_sets="--set robot.profile=houghloc-sim"
 # shellcheck disable=SC2086  # lists of options
-"$BIN/houghlocd" $map_opt --set "robot.link=tcp:127.0.0.1:$PORT" $profile_sets 2>"$tmp/d.err" &
+"$BIN/houghlocd" $map_opt --set "robot.link=tcp:127.0.0.1:$PORT" \
+    --set robot.profile=houghloc-sim 2>"$tmp/d.err" &
 daemon=$!; pids="$daemon $pids"
-check "houghlocd connects to the robot" wait_for "$tmp/d.err" "robot .* connected" 300
-check "houghlocd runs with the default map location" kill -0 $daemon
 
 goto() {        # goto X Y: as typed, default timeout; must exit 0 with ARRIVED
     start=$(date +%s)
@@ -80,13 +80,16 @@ goto() {        # goto X Y: as typed, default timeout; must exit 0 with ARRIVED
         tail -n 5 "$tmp/d.err" | sed 's/^/    houghlocd: /'
     fi
 }
-goto 0.5 -1.5
+goto 2 1
 goto 0 0
+check "houghlocd ran with the default map location" kill -0 $daemon
 
 kill -TERM $daemon; wait $daemon
 check "SIGTERM stops houghlocd with exit 0" test $? -eq 0
 kill -TERM $sim; wait $sim
 pids=""
+check "the robot never touched anything (houghloc-sim: collisions=0)" \
+    grep -q "summary:.* collisions=0$" "$tmp/sim.err"
 check "the map file is where the default says: $MAP" test -s "$MAP"
 check "the daemon's map folder is private (0700)" \
     test "$(stat -c %a "$(dirname "$MAP")")" = 700

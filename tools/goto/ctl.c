@@ -1,5 +1,5 @@
 /*
- * ctl.c - houghloc-ctl: sends one COMMAND to houghlocd (set-pose, save, relocalize) and
+ * ctl.c - houghloc-ctl: sends one COMMAND to houghlocd (set-pose, save, relocalize, stop) and
  * waits for the REPLY that carries its seq.
  *
  * Sending and waiting are in request.c (shared with houghloc-goto), the command line in

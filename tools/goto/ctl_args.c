@@ -22,6 +22,9 @@ static const char usage_text[] =
     "      forget the pose: the daemon is LOST, and its next scans search the whole\n"
     "      map until one finds the robot and the next confirms it (STATUS shows\n"
     "      LOST until then; a robot stands still and sounds, robot.lost_soundings)\n"
+    "  stop\n"
+    "      stop the robot at once and give up its destination (and a sounding); it\n"
+    "      stays still until the next destination. Never refused: no --key needed\n"
     "\n"
     "Options:\n"
     "  --lcm-url URL  the LCM network (default $LCM_DEFAULT_URL, else\n"
@@ -46,6 +49,8 @@ static const char usage_text[] =
     "      robot1 is back at the origin of its map, facing +x\n"
     "  " CTL_PROG " --timeout 30 relocalize\n"
     "      ask the daemon to find the robot on the whole map\n"
+    "  " CTL_PROG " stop\n"
+    "      stop the robot now\n"
     "\n"
     "Exit status:\n"
     "  0  done: the daemon accepted the command (save: the map file is written)\n"
@@ -68,9 +73,10 @@ static const command_t commands[] = {
     { "set-pose", HL_BUS_COMMAND_SET_POSE, 3, "pose set; map kept" },
     { "save", HL_BUS_COMMAND_SAVE, 0, "map saved" },
     { "relocalize", HL_BUS_COMMAND_RELOCALIZE, 0, "relocalizing" },
+    { "stop", HL_BUS_COMMAND_STOP, 0, "stopped" },
 };
 #define NCOMMANDS ((int)(sizeof commands / sizeof commands[0]))
-#define COMMAND_LIST "set-pose, save or relocalize"
+#define COMMAND_LIST "set-pose, save, relocalize or stop"
 
 static const char *const arg_names[3] = { "X", "Y", "HEADING" };
 static const char *const missing[3] = { "X, Y and HEADING", "Y and HEADING", "HEADING" };

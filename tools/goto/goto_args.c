@@ -7,7 +7,10 @@
 static const char usage_text[] =
     "Usage: " PROG " [options] X Y [HEADING]\n"
     "\n"
-    "Sends the robot to (X, Y) through houghlocd and waits until it arrives.\n"
+    "Sends the robot to (X, Y) through houghlocd and waits until it arrives. The daemon\n"
+    "plans the way on its map and drives round what it knows; a destination with no way\n"
+    "is refused (FAILED). Ctrl-C (SIGINT or SIGTERM) while waiting sends STOP: the robot\n"
+    "stops, and the destination is given up.\n"
     "X and Y are metres in the map frame, within +-4194.304 m. HEADING is the heading\n"
     "to arrive with, in degrees counter-clockwise from the map's +x axis (any finite\n"
     "value; 370 is 10); without it the robot arrives with any heading. Negative numbers\n"
@@ -21,11 +24,14 @@ static const char usage_text[] =
     "                 mode 600), as a daemon configured with a key requires;\n"
     "                 unsigned otherwise\n"
     "  --timeout S    the longest silence, 0.1 to 3600 seconds (default 10): the wait\n"
-    "                 for the first answer, then, while the robot is on its way, for\n"
+    "                 for the first answer (a daemon that is starting, or whose robot\n"
+    "                 link is not up yet, is asked again meanwhile), then, while the\n"
+    "                 robot is on its way, for\n"
     "                 the next sign of progress in the daemon's STATUS (once a second:\n"
     "                 this destination under way, the robot moved, turned or sounded)\n"
     "  --deadline S   the longest whole wait, 0.1 to 86400 seconds (default none)\n"
-    "  --no-wait      exit 0 as soon as the daemon accepts the destination\n"
+    "  --no-wait      exit 0 as soon as the daemon accepts the destination (Ctrl-C then\n"
+    "                 sends no STOP)\n"
     "  --help         this text\n"
     "  --version      the version\n"
     "\n"
@@ -49,10 +55,11 @@ static const char usage_text[] =
     "  3  rejected: outside the geofence (REJECTED_FENCE), missing or wrong MAC\n"
     "     (REJECTED_AUTH), seq not above the last one (REJECTED_REPLAY), a field out\n"
     "     of range (REJECTED_INVALID)\n"
-    "  4  no robot is connected to the daemon (NO_ROBOT)\n"
+    "  4  no robot is connected to the daemon (NO_ROBOT) within --timeout\n"
     "  5  the daemon could not do it (FAILED)\n"
     "  6  no answer within --timeout, no sign of progress for --timeout once\n"
-    "     under way, or no ARRIVED within --deadline\n";
+    "     under way, or no ARRIVED within --deadline\n"
+    "  130, 143  interrupted by SIGINT or SIGTERM; STOP was sent\n";
 
 static const char *const pos_names[3] = { "X", "Y", "HEADING" };
 

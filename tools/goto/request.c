@@ -8,6 +8,7 @@
 #include <errno.h>
 #include <math.h>
 #include <poll.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +24,25 @@
 #include "houghloc/keyfile.h"
 
 #define COORD_MAX_M (HL_COORD_MAX_MM / 1000.0)
+
+/* wait_for_robot: how soon a destination is sent again after NO_ROBOT (the link comes
+ * up within a second or two of the daemon's start), and after no answer at all (the
+ * daemon may not be listening yet). */
+#define NO_ROBOT_AGAIN_US 250000
+#define SILENCE_AGAIN_US 1000000
+/* stop_on_signal: the longest wait for the STOP's answer. */
+#define STOP_WAIT_S 2.0
+
+/* Not exit codes: why wait_for_answer returned early. */
+enum { REQ_AGAIN = -3, REQ_INTERRUPTED = -4 };
+
+/* The signal that interrupts a wait (stop_on_signal): noted here, acted on by the loop. */
+static volatile sig_atomic_t interrupted;
+
+static void note_signal(int sig)
+{
+    interrupted = sig;
+}
 
 static int64_t clock_us(clockid_t id)
 {
@@ -158,6 +178,9 @@ typedef struct waiter {
     const char *prog;
     int64_t seq;
     req_request_t *r;
+    bool answered;              /* a REPLY to seq came (other than a waited-out NO_ROBOT) */
+    bool no_robot;              /* a NO_ROBOT was waited out */
+    int64_t again_us;           /* wait_for_robot: monotonic time to send again */
     int undecodable;    /* REPLY messages that did not decode */
     int result;         /* WAITING, or the exit code */
     int64_t progress_us;        /* monotonic time of the last sign of progress (or of
@@ -207,6 +230,15 @@ static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user
         return; /* another client's request */
     if (r.result == HL_BUS_REPLY_ACCEPTED && w->r->accepted)
         return; /* a repeated answer */
+    if (r.result == HL_BUS_REPLY_NO_ROBOT && w->r->wait_for_robot) {
+        if (!w->no_robot)
+            fprintf(stderr, "%s: waiting for the robot link (NO_ROBOT%s%.100s)\n", w->prog,
+                    r.message[0] ? ": " : "", r.message);
+        w->no_robot = true;
+        w->again_us = clock_us(CLOCK_MONOTONIC) + NO_ROBOT_AGAIN_US;
+        return;
+    }
+    w->answered = true;
     /* The text came over the network: print it as one line of plain characters. */
     for (char *c = r.message; *c; c++)
         if (iscntrl((unsigned char)*c))
@@ -286,6 +318,8 @@ static int wait_for_answer(lcm_t *lcm, waiter_t *w, const req_options_t *o, int6
                                                : INT64_MAX;
     const int fd = lcm_get_fileno(lcm);
     while (w->result == WAITING) {
+        if (interrupted)
+            return REQ_INTERRUPTED;
         const int64_t now = clock_us(CLOCK_MONOTONIC);
         int64_t left = w->progress_us + silence_us - now;
         *ended = ENDED_SILENCE;
@@ -294,7 +328,13 @@ static int wait_for_answer(lcm_t *lcm, waiter_t *w, const req_options_t *o, int6
             *ended = ENDED_DEADLINE;
         }
         if (left <= 0)
-            return EXIT_TIMEOUT;
+            return w->no_robot && !w->answered ? EXIT_NO_ROBOT : EXIT_TIMEOUT;
+        if (w->r->wait_for_robot && !w->answered) {
+            if (now >= w->again_us)
+                return REQ_AGAIN;
+            if (w->again_us - now < left)
+                left = w->again_us - now;
+        }
         if (left > 1000000)
             left = 1000000;     /* progress moves the end: look again at least each second */
         struct pollfd p = { .fd = fd, .events = POLLIN };
@@ -380,6 +420,57 @@ static int stamp_sign_encode(const char *prog, const req_options_t *o, req_reque
     return len;
 }
 
+/* Stamps, signs, encodes and publishes @p r on @p channel; the waiter then waits for
+ * its seq. @return false after a one-line message. */
+static bool send_request(lcm_t *lcm, const char *prog, const req_options_t *o,
+                         req_request_t *r, const char *channel, waiter_t *w)
+{
+    _Static_assert(HL_BUS_COMMAND_BYTES <= HL_BUS_DESTINATION_BYTES, "buffer size");
+    uint8_t buf[HL_BUS_DESTINATION_BYTES];
+    int len = stamp_sign_encode(prog, o, r, buf, sizeof buf);
+    if (len < 0)
+        return false;
+    w->seq = r->kind == REQ_COMMAND ? r->msg.command.seq : r->msg.destination.seq;
+    w->again_us = clock_us(CLOCK_MONOTONIC) + SILENCE_AGAIN_US;
+    if (lcm_publish(lcm, channel, buf, (unsigned int)len) != 0) {
+        fprintf(stderr, "%s: cannot publish on %s\n", prog, channel);
+        return false;
+    }
+    return true;
+}
+
+/* Interrupted by @p sig while a request of ours may be under way: STOP, so that the robot
+ * does not drive on without its operator, and a short wait for its answer. */
+static int stop_after_signal(lcm_t *lcm, const char *prog, const req_options_t *o,
+                             const char *command_channel, waiter_t *w, int sig)
+{
+    fprintf(stderr, "%s: %s: sending STOP\n", prog, sig == SIGTERM ? "SIGTERM" : "SIGINT");
+    interrupted = 0;    /* a second signal interrupts the wait for STOP's answer */
+    req_request_t stop = { .kind = REQ_COMMAND, .accepted_ends = true,
+                           .accepted_text = "stopped" };
+    stop.msg.command = (hl_bus_command_t){ .kind = HL_BUS_COMMAND_STOP };
+    req_options_t quick = *o;
+    quick.timeout_s = STOP_WAIT_S;
+    quick.deadline_s = 0;
+    *w = (waiter_t){ .prog = prog, .r = &stop, .result = WAITING,
+                     .progress_us = clock_us(CLOCK_MONOTONIC) };
+    ended_t ended;
+    if (send_request(lcm, prog, &quick, &stop, command_channel, w) &&
+        wait_for_answer(lcm, w, &quick, w->progress_us, &ended) == EXIT_TIMEOUT)
+        fprintf(stderr, "%s: no answer to STOP within %g s: is the daemon running?\n", prog,
+                STOP_WAIT_S);
+    return EXIT_SIGNAL + sig;
+}
+
+static void catch_signals(void)
+{
+    struct sigaction sa = { .sa_handler = note_signal };
+    sigemptyset(&sa.sa_mask);
+    /* no SA_RESTART: poll returns EINTR and the wait sees the signal at once */
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
 int req_run(const char *prog, const req_options_t *o, req_request_t *r)
 {
     const char *url = o->url;
@@ -389,51 +480,55 @@ int req_run(const char *prog, const req_options_t *o, req_request_t *r)
     }
     const bool is_cmd = r->kind == REQ_COMMAND;
     char req_channel[HL_BUS_CHANNEL_MAX], reply_channel[HL_BUS_CHANNEL_MAX];
+    char command_channel[HL_BUS_CHANNEL_MAX], status_channel[HL_BUS_CHANNEL_MAX];
     if (!hl_bus_channel(o->prefix, is_cmd ? HL_CHANNEL_COMMAND : HL_CHANNEL_DESTINATION,
                         req_channel) ||
-        !hl_bus_channel(o->prefix, HL_CHANNEL_REPLY, reply_channel))
+        !hl_bus_channel(o->prefix, HL_CHANNEL_REPLY, reply_channel) ||
+        !hl_bus_channel(o->prefix, HL_CHANNEL_COMMAND, command_channel) ||
+        !hl_bus_channel(o->prefix, HL_CHANNEL_STATUS, status_channel))
         return req_usage_error(prog, "--prefix \"%s\" is too long", o->prefix);
 
     r->accepted = false;
-    _Static_assert(HL_BUS_COMMAND_BYTES <= HL_BUS_DESTINATION_BYTES, "buffer size");
-    uint8_t buf[HL_BUS_DESTINATION_BYTES];
-    int len = stamp_sign_encode(prog, o, r, buf, sizeof buf);
-    if (len < 0)
-        return EXIT_ERROR;
-
     lcm_t *lcm = lcm_create(url);
     if (!lcm) {
         fprintf(stderr, "%s: cannot start LCM with URL \"%s\"\n", prog, url);
         return EXIT_ERROR;
     }
     /* Subscribe before publishing, so that no answer can come before we listen. */
-    waiter_t w = { .prog = prog, .seq = is_cmd ? r->msg.command.seq : r->msg.destination.seq,
-                   .r = r, .result = WAITING };
+    waiter_t w = { .prog = prog, .r = r, .result = WAITING };
     if (!lcm_subscribe(lcm, reply_channel, on_reply, &w)) {
         fprintf(stderr, "%s: cannot subscribe to %s\n", prog, reply_channel);
         lcm_destroy(lcm);
         return EXIT_ERROR;
     }
-    char status_channel[HL_BUS_CHANNEL_MAX];
-    if (r->follow_progress &&
-        (!hl_bus_channel(o->prefix, HL_CHANNEL_STATUS, status_channel) ||
-         !lcm_subscribe(lcm, status_channel, on_status, &w))) {
+    if (r->follow_progress && !lcm_subscribe(lcm, status_channel, on_status, &w)) {
         fprintf(stderr, "%s: cannot subscribe to STATUS\n", prog);
         lcm_destroy(lcm);
         return EXIT_ERROR;
     }
+    if (r->stop_on_signal)
+        catch_signals();
     const int64_t sent_us = clock_us(CLOCK_MONOTONIC);
     w.progress_us = sent_us;
-    if (lcm_publish(lcm, req_channel, buf, (unsigned int)len) != 0) {
-        fprintf(stderr, "%s: cannot publish on %s with LCM URL \"%s\"\n", prog, req_channel,
-                url);
-        lcm_destroy(lcm);
-        return EXIT_ERROR;
-    }
     ended_t ended = ENDED_SILENCE;
-    int rc = wait_for_answer(lcm, &w, o, sent_us, &ended);
+    int rc;
+    do {    /* wait_for_robot: again with a new seq until the robot link answers */
+        if (!send_request(lcm, prog, o, r, req_channel, &w)) {
+            lcm_destroy(lcm);
+            return EXIT_ERROR;
+        }
+        rc = wait_for_answer(lcm, &w, o, sent_us, &ended);
+    } while (rc == REQ_AGAIN);
+    if (rc == REQ_INTERRUPTED) {
+        rc = stop_after_signal(lcm, prog, o, command_channel, &w, (int)interrupted);
+        lcm_destroy(lcm);
+        return rc;
+    }
     lcm_destroy(lcm);
-    if (rc == EXIT_TIMEOUT && (r->accepted || w.seen_status))
+    if (rc == EXIT_NO_ROBOT)
+        fprintf(stderr, "%s: NO_ROBOT: the daemon's robot link did not come up within %g s\n",
+                prog, o->timeout_s);
+    else if (rc == EXIT_TIMEOUT && (r->accepted || w.seen_status))
         report_stalled(&w, o, ended);
     else if (rc == EXIT_TIMEOUT && ended == ENDED_DEADLINE)
         fprintf(stderr, "%s: no reply from houghlocd within the --deadline of %g s\n", prog,

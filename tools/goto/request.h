@@ -29,6 +29,7 @@ enum {
     EXIT_NO_ROBOT = 4,
     EXIT_FAILED = 5,
     EXIT_TIMEOUT = 6,
+    EXIT_SIGNAL = 128,  /* + the signal: interrupted (SIGINT 130, SIGTERM 143) */
     WAITING = -1,       /* not an exit code: go on */
     REQ_NOT_MINE = -2,  /* not an exit code: req_parse_option does not know the option */
 };
@@ -114,6 +115,11 @@ typedef struct req_request {
                                under way and something changed (state, scans, the
                                estimate), restart the o->timeout_s wait */
     const char *accepted_text;  /* printed for an ACCEPTED whose message is empty */
+    bool wait_for_robot;    /* a destination: NO_ROBOT, or no answer at all (the daemon
+                               is starting), is asked again (a new seq) until an answer
+                               other than NO_ROBOT comes or o->timeout_s passes */
+    bool stop_on_signal;    /* SIGINT or SIGTERM while waiting: send STOP before exiting
+                               (the robot must not drive on without its operator) */
     bool accepted;          /* out: an ACCEPTED came (tells a timeout after it apart) */
 } req_request_t;
 
@@ -133,8 +139,14 @@ typedef struct req_request {
  * last state STATUS showed.
  *
  * @param[in,out] r  the request (not NULL); r->msg's stamps and r->accepted are written.
+ * With r->wait_for_robot, NO_ROBOT and silence are waited out as it says; with
+ * r->stop_on_signal, SIGINT or SIGTERM sends a STOP command (unsigned unless a key is
+ * given: the daemon takes STOP from anyone), waits up to two seconds for its answer and
+ * ends with EXIT_SIGNAL + the signal.
+ *
  * @return the exit code: EXIT_DONE on ARRIVED, or ACCEPTED when r->accepted_ends;
  *         EXIT_REJECTED, EXIT_NO_ROBOT, EXIT_FAILED per the answer; EXIT_TIMEOUT;
+ *         EXIT_SIGNAL + the signal when interrupted;
  *         EXIT_USAGE for a prefix that does not fit; EXIT_ERROR when the key file is
  *         refused, LCM does not start or stops, or the message does not encode (each
  *         after a one-line message).
