@@ -26,8 +26,8 @@ check "--print-config exits 0" test $? -eq 0
 $BIN/houghlocd --config "$tmp/a.conf" --print-config >"$tmp/b.conf"
 check "--print-config output reads back to the same values" cmp -s "$tmp/a.conf" "$tmp/b.conf"
 check "packaging/houghlocd.conf is the commented defaults" cmp -s "$tmp/a.conf" packaging/houghlocd.conf
-check "packaging/houghlocd.conf: the operator's 19 keys, under 80 lines" \
-    sh -c 'test "$(grep -c "^[a-z_0-9]* = " "$1")" -eq 19 && test "$(wc -l <"$1")" -lt 80' - packaging/houghlocd.conf
+check "packaging/houghlocd.conf: the operator's 22 keys, under 80 lines" \
+    sh -c 'test "$(grep -c "^[a-z_0-9]* = " "$1")" -eq 22 && test "$(wc -l <"$1")" -lt 80' - packaging/houghlocd.conf
 $D --print-config=all >"$tmp/all.conf"
 $BIN/houghlocd --config "$tmp/all.conf" --print-config=all >"$tmp/all2.conf"
 check "--print-config=all prints every key, and reads back the same" \
