@@ -75,7 +75,7 @@ void hl_cycle_on_destination(hl_cycle_t *c, const void *data, size_t len, int64_
     if (c->io.destination)
         c->io.destination(c->io.ctx, &d, now_us);   /* the robot answers it */
     else
-        hl_cycle_reply(c, d.seq, HL_BUS_REPLY_NO_ROBOT, "no robot link is configured (robot.link)");
+        hl_cycle_reply(c, d.seq, HL_BUS_REPLY_NO_ROBOT, HL_BUS_NO_ROBOT_UNCONFIGURED);
 }
 
 static void set_pose(hl_cycle_t *c, const hl_bus_command_t *cmd, int64_t now_us)

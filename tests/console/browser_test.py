@@ -106,6 +106,15 @@ def events(path):
     return out
 
 
+def exited(pid):
+    """True once pid has exited (a zombie its parent has not reaped yet counts)."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] == "Z" or None
+    except OSError:
+        return True
+
+
 def destinations(path):
     """(seq, x_mm, y_mm) of every DESTINATION in an LCM event log."""
     return [struct.unpack(">qqqii", p[:32])[2:] for c, p in events(path)
@@ -294,7 +303,8 @@ def run(d, a):
           % (len(way), path_points, "yes" if cleared else "no"))
 
     os.kill(a.logger_pid, signal.SIGINT)  # lcm-logger writes its file out on SIGINT
-    found = wait_for("the DESTINATION in the log", lambda: destinations(a.dest_log), 5) or []
+    wait_for("lcm-logger to finish its file", lambda: exited(a.logger_pid), 10)
+    found = destinations(a.dest_log)
     cmds = commands(a.dest_log)
     stops = [(seq, mac) for seq, kind, mac in cmds if kind == 4]
     print("browser_test: COMMANDs published: %s"

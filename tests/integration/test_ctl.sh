@@ -46,8 +46,8 @@ stop_daemon() {     # stop_daemon NAME: SIGTERM, wait, a clean exit
 }
 
 # ---- bad usage: exit 2, one line naming the bad argument and pointing at --help -----------
-exits "no command" 2 "missing COMMAND (set-pose, save or relocalize)" "$CTL"
-exits "unknown command" 2 'unknown command "go" (expected set-pose, save or relocalize)' "$CTL" go 1 2
+exits "no command" 2 "missing COMMAND (set-pose, save, relocalize or stop)" "$CTL"
+exits "unknown command" 2 'unknown command "go" (expected set-pose, save, relocalize or stop)' "$CTL" go 1 2
 exits "a number is no command" 2 'unknown command "-1"' "$CTL" -1 2 3
 exits "set-pose without arguments" 2 "set-pose: missing X, Y and HEADING" "$CTL" set-pose
 exits "set-pose without Y" 2 "set-pose: missing Y and HEADING" "$CTL" set-pose 1

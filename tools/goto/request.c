@@ -230,7 +230,9 @@ static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user
         return; /* another client's request */
     if (r.result == HL_BUS_REPLY_ACCEPTED && w->r->accepted)
         return; /* a repeated answer */
-    if (r.result == HL_BUS_REPLY_NO_ROBOT && w->r->wait_for_robot) {
+    /* a daemon with no link configured will never have one: that NO_ROBOT is final */
+    if (r.result == HL_BUS_REPLY_NO_ROBOT && w->r->wait_for_robot &&
+        strncmp(r.message, HL_BUS_NO_ROBOT_UNCONFIGURED, sizeof r.message) != 0) {
         if (!w->no_robot)
             fprintf(stderr, "%s: waiting for the robot link (NO_ROBOT%s%.100s)\n", w->prog,
                     r.message[0] ? ": " : "", r.message);
@@ -525,7 +527,7 @@ int req_run(const char *prog, const req_options_t *o, req_request_t *r)
         return rc;
     }
     lcm_destroy(lcm);
-    if (rc == EXIT_NO_ROBOT)
+    if (rc == EXIT_NO_ROBOT && !w.answered)
         fprintf(stderr, "%s: NO_ROBOT: the daemon's robot link did not come up within %g s\n",
                 prog, o->timeout_s);
     else if (rc == EXIT_TIMEOUT && (r->accepted || w.seen_status))

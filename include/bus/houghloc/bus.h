@@ -255,6 +255,11 @@ enum {
     HL_BUS_REPLY_REJECTED_INVALID = 7,
 };
 
+/* The message of a NO_ROBOT that will not change: the daemon has no robot link
+ * configured. Any other NO_ROBOT means the link is not up yet, and a client may ask
+ * again. */
+#define HL_BUS_NO_ROBOT_UNCONFIGURED "no robot link is configured (robot.link)"
+
 typedef struct hl_bus_reply {
     int64_t utime;
     int64_t seq;                /* the request's, as it came: any value */
