@@ -25,6 +25,7 @@
 
 // cmocka last: its macros (fail, ...) clash with standard headers included after it.
 #include "test_support.hpp"
+#include "server_rig.hpp"
 
 using namespace hlsim;
 
@@ -196,38 +197,9 @@ static void test_step_on_live_clock(void **state)
 namespace {
 
 // A server on loopback, the robot in a world, and the server's side of the loop.
-struct Rig {
-    World world;
-    std::vector<std::string> lines;
-    Log log{[this](const std::string &s) { lines.push_back(s); }};
-    SimConfig cfg;
-    SimRobot robot;
-    Connection connection;
-    Server server;
+struct Rig : ServerRig {
     Rig(const World &w, const SimConfig &c, const Pose &start, const Faults &f = Faults{})
-        : world(w), cfg(c), robot(world, cfg, start, log), connection(robot, log, true),
-          server(robot, connection, log, f, 7)
-    {
-        std::string err;
-        assert_true(server.listen("127.0.0.1", 0, &err));
-    }
-    void serve(int ms)
-    {
-        struct pollfd pfd[2];
-        std::size_t n = server.pollfds(pfd);
-        if (poll(pfd, n, ms) > 0)
-            server.handle(pfd, n);
-    }
-    int connect_client()
-    {
-        int fd = socket(AF_INET, SOCK_STREAM, 0);
-        struct sockaddr_in a {};
-        a.sin_family = AF_INET;
-        a.sin_port = htons(server.port());
-        inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
-        assert_int_equal(connect(fd, reinterpret_cast<struct sockaddr *>(&a), sizeof a), 0);
-        return fd;
-    }
+        : ServerRig(w, c, start, f, true, 7) {}
 };
 
 void send_all(int fd, const Bytes &b)

@@ -12,27 +12,15 @@
 
 // cmocka last: its macros (fail, ...) clash with standard headers included after it.
 #include "test_support.hpp"
+#include "server_rig.hpp"
 
 using namespace hlsim;
 
 namespace {
 
-struct Rig {
-    World world;
-    std::vector<std::string> lines;
-    Log log{[this](const std::string &s) { lines.push_back(s); }};
-    SimConfig cfg;
-    SimRobot robot;
-    Connection connection;
-    Server server;
-    explicit Rig(const Faults &f)
-        : world(make_world()), cfg(config()), robot(world, cfg, Pose{}, log),
-          connection(robot, log), server(robot, connection, log, f, 1)
-    {
-        std::string err;
-        assert_true(server.listen("127.0.0.1", 0, &err));
-        assert_true(server.port() > 0);
-    }
+// The room and the robot of every test here, on the live clock.
+struct Rig : ServerRig {
+    explicit Rig(const Faults &f) : ServerRig(make_world(), config(), Pose{}, f, false, 1) {}
     static World make_world()
     {
         World w;
@@ -46,14 +34,6 @@ struct Rig {
         sim_profile("bonnie", &c.profile);
         return c;
     }
-    // Serves the sockets for up to @p ms (until nothing happens for that long).
-    void serve(int ms = 20)
-    {
-        struct pollfd pfd[2];
-        std::size_t n = server.pollfds(pfd);
-        if (poll(pfd, n, ms) > 0)
-            server.handle(pfd, n);
-    }
     // Serves the sockets until @p done holds (at most 2 s).
     template <class F> void serve_until(F done)
     {
@@ -63,12 +43,7 @@ struct Rig {
     }
     int connect_client()
     {
-        int fd = socket(AF_INET, SOCK_STREAM, 0);
-        struct sockaddr_in a {};
-        a.sin_family = AF_INET;
-        a.sin_port = htons(server.port());
-        inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
-        assert_int_equal(connect(fd, reinterpret_cast<struct sockaddr *>(&a), sizeof a), 0);
+        int fd = ServerRig::connect_client();
         serve();
         return fd;
     }
