@@ -48,7 +48,7 @@ short hl_robot_events(const hl_robot_t *r)
 static void note_fault(hl_robot_t *r, const char *why)
 {
     char what[HL_BUS_TEXT_MAX];
-    snprintf(what, sizeof what, "%s; retrying in %.2f s", why, r->backoff_ms / 1000.0);
+    snprintf(what, sizeof what, "%.120s; retrying in %.2f s", why, r->backoff_ms / 1000.0);
     if (strcmp(why, r->last_fault) != 0)
         hl_log(HL_LOG_WARNING, "robot link: %s (retrying, the wait doubling from %.2f s to "
                "%.1f s; logged again when the fault changes)", why, r->backoff_ms / 1000.0,
@@ -57,15 +57,19 @@ static void note_fault(hl_robot_t *r, const char *why)
     hl_cycle_note_error(r->cycle, what);
 }
 
-static void drop_link(hl_robot_t *r, const char *why, int64_t now_ms)
+static void drop_link(hl_robot_t *r, const char *cause, int64_t now_ms)
 {
+    /* a copy: the cause may be the ARCOS link's own text (hl_rlink_why), which
+     * hl_rlink_lost below rewrites */
+    char why[HL_LINK_WHY_LEN];
+    snprintf(why, sizeof why, "%s", cause);
     char what[HL_BUS_TEXT_MAX];
     note_fault(r, why);
     hl_link_close(r->link);
     r->link = NULL;
     r->up = false;
     hl_rlink_lost(&r->rlink, why);
-    snprintf(what, sizeof what, "robot link lost: %s", why);
+    snprintf(what, sizeof what, "robot link lost: %.140s", why);
     robot_abandon(r, what, now_ms);
     r->retry_at_ms = now_ms + r->backoff_ms;
     r->backoff_ms = r->backoff_ms * 2 > r->p.reconnect_max_ms ? r->p.reconnect_max_ms

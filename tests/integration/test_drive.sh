@@ -107,6 +107,18 @@ check "box: the way has corners (planned round the box)" grep -q "planned [3-9] 
 stop_robot box
 check "box: no contact, no stall" no_contact box
 
+# ---- a robot that falls silent while driving: the destination fails, naming why --------
+run_robot mute lockstep -- robot.sound_on_connect=false
+goto mute 3.5 0.6 &
+client=$!; pids="$pids $client"
+wait_for "$tmp/mute.d" "state .* -> MOVING" 1 300
+kill -STOP $sim
+wait $client
+kill -CONT $sim
+check "mute: the destination fails with the link's loss and its cause: $(cat "$tmp/mute.err")" \
+    grep -q "FAILED: robot link lost: [a-z]" "$tmp/mute.err"
+stop_robot mute
+
 # ---- stops: STOP, Ctrl-C, a stalled daemon, a daemon that exits -----------------------
 # moving NAME: waits until the robot drives; still NAME: its true pose now and half a
 # second (5 s of robot time) later are the same.
