@@ -44,8 +44,8 @@ check "max error >= ATE RMSE" \
 # (--start, default the origin, where this daemon started), so the first scan, placed at
 # the start, is 0 mm off; told the wrong start (the world's), it is off by that much.
 "$BIN/hl-eval" score "$LOG" "$tmp/o.lcmlog" >"$tmp/hlfull"
-check "hl-eval score: the first scan 0 mm from the truth in the map frame" \
-    grep -qE '^stop +1 +scan +0 +error +0 mm' "$tmp/hlfull"
+check "hl-eval score: the first scan 0 mm and 0 degrees from the truth in the map frame" \
+    grep -qE '^stop +1 +scan +0 +error +0 mm +[+-]0\.0 deg  odometry +0 mm +[+-]0\.0 deg$' "$tmp/hlfull"
 "$BIN/hl-eval" score --start "$(hl_start=$("$BIN/hl-eval" start "$LOG"); echo "$hl_start" | tr ' ' ',')" \
     "$LOG" "$tmp/o.lcmlog" >"$tmp/hlworld"
 check "hl-eval score --start at the world's start: the first scan 6734 mm off (the origin)" \

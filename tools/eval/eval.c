@@ -79,6 +79,12 @@ static double dist(hl_pose_t a, hl_pose_t b)
     return hypot((double)a.x_mm - b.x_mm, (double)a.y_mm - b.y_mm);
 }
 
+/* a's heading minus b's, in degrees, the short way round */
+static double heading_error_deg(hl_pose_t a, hl_pose_t b)
+{
+    return hl_bam_diff(a.theta, b.theta) * 360.0 / HL_BAM_PER_TURN;
+}
+
 static int cmd_start(const char *in)
 {
     hl_runlog_t r = { .prog = "hl-eval" };
@@ -149,7 +155,9 @@ static int score(hl_runlog_t *r, int rc, const char *in, const char *out, const 
         wild += s->status == HL_BUS_POSE_ACCEPTED && e > WILD_MM;
         n++;
         if (!quiet)
-            printf("stop %4zu  scan %5d  error %7.0f mm  odometry %7.0f mm\n", n, s->seq, e, e_odo);
+            printf("stop %4zu  scan %5d  error %7.0f mm %+6.1f deg  odometry %7.0f mm %+6.1f deg\n",
+                   n, s->seq, e, heading_error_deg(s->pose, s->truth), e_odo,
+                   heading_error_deg(odo, s->truth));
     }
     if (rc == 0 && missing > 0) {
         fprintf(stderr, "hl-eval: %s: %zu scans of %s have no POSE\n", out, missing, in);
