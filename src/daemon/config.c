@@ -1,5 +1,5 @@
-/* config.c - defaults, INI file (libinih), presets, overrides, validation (printing:
- * config_print.c). */
+/* config.c - defaults, INI file (libinih), presets, overrides (the file read and checked:
+ * config_file.c; the rules over several keys: config_check.c; printing: config_print.c). */
 #include "config.h"
 
 #include <ctype.h>
@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "config_check.h"
+#include "config_file.h"
 #include "config_keys.h"
 #include "houghloc-internal/daemon_config.h"
 #include "houghloc/sounder.h"
@@ -62,7 +64,6 @@ static void apply_mode(hl_config_t *c)
         daemon_preset(&c->slam);
 }
 
-static const hl_config_key_t *find_full_key(const char *full);
 static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, char *why);
 
 /* The presets, in order: slam.mode sets the method's parameters afresh, slam.profile's
@@ -74,7 +75,7 @@ bool hl_config_apply_presets(hl_config_t *c, char *why)
     apply_mode(c);
     const hl_sensor_profile_t *sp = hl_sensor_profile_find(c->profile);
     for (size_t i = 0; sp && i < sp->n_keys; i++) {
-        const hl_config_key_t *k = find_full_key(sp->keys[i].key);
+        const hl_config_key_t *k = hl_config_key_find(sp->keys[i].key);
         char reason[200];
         if (!k || !set_value(c, k, sp->keys[i].value, reason))
             return snprintf(why, HL_CONFIG_WHY_LEN, "config: slam.profile %s: cannot set %s",
@@ -324,24 +325,15 @@ static const hl_config_key_t *find_key(const char *section, const char *name)
     return NULL;
 }
 
-static const hl_config_key_t *find_full_key(const char *full)
-{
-    for (size_t i = 0; i < hl_config_nkeys; i++)
-        if (strcmp(hl_config_keys[i].name, full) == 0)
-            return &hl_config_keys[i];
-    return NULL;
-}
-
 /* ---- the file and the overrides ------------------------------------------------------ */
 
 typedef struct parse_ctx {
     hl_config_t *c;
-    const char *path;
     bool presets_only;  /* first pass: only the presets (slam.mode, slam.profile,
                            robot.profile); second pass: all other keys */
     bool failed;
     char *why;
-    FILE *file;
+    const char *next;   /* the text not read yet (config_file.c: it holds no NUL) */
     int line;           /* the line being read: the one a handler call comes from */
     bool at_line_start;
     int long_line;      /* the first line longer than libinih reads, 0 if none */
@@ -349,19 +341,29 @@ typedef struct parse_ctx {
     int fail_line;
 } parse_ctx_t;
 
-/* libinih's reader, counting lines so that our own errors can name theirs. */
+/* libinih's reader over the file's text, as fgets reads a file (at most num - 1 bytes, up
+ * to and with the newline), counting lines so that our own errors can name theirs. */
 static char *read_line(char *str, int num, void *stream)
 {
     parse_ctx_t *p = stream;
-    char *r = fgets(str, num, p->file);
-    if (r && p->at_line_start)
+    if (*p->next == '\0' || num < 2)
+        return NULL;
+    size_t n = strcspn(p->next, "\n");
+    if (p->next[n] == '\n')
+        n++;
+    if (n > (size_t)num - 1)
+        n = (size_t)num - 1;
+    memcpy(str, p->next, n);
+    str[n] = '\0';
+    p->next += n;
+    if (p->at_line_start)
         p->line++;
-    p->at_line_start = r && strchr(r, '\n');
-    if (r && !p->at_line_start && !feof(p->file) && !p->long_line) {
+    p->at_line_start = str[n - 1] == '\n';
+    if (!p->at_line_start && *p->next && !p->long_line) {
         p->long_line = p->line;     /* libinih would read the rest as another line */
         p->max_line = num - 2;     /* the buffer also holds the newline and the NUL */
     }
-    return r;
+    return str;
 }
 
 static int on_key(void *user, const char *section, const char *name, const char *value)
@@ -385,20 +387,14 @@ static int on_key(void *user, const char *section, const char *name, const char 
     return 0;
 }
 
-/* Runs one pass over the file. @return false with the reason in why. */
-static bool parse_file(hl_config_t *c, const char *path, bool presets_only, char *why)
+/* Runs one pass over the file's @p text. @return false with the reason in why. */
+static bool parse_text(hl_config_t *c, const char *path, const char *text, bool presets_only,
+                       char *why)
 {
     char reason[KEY_MSG_LEN];
-    parse_ctx_t p = { .c = c, .path = path, .presets_only = presets_only, .why = reason,
+    parse_ctx_t p = { .c = c, .presets_only = presets_only, .why = reason, .next = text,
                       .at_line_start = true };
-    p.file = fopen(path, "r");
-    if (!p.file)
-        return WHY("%s: cannot open: %s", path, strerror(errno)), false;
     int rc = ini_parse_stream(read_line, &p, on_key, &p);
-    bool read_error = ferror(p.file);
-    fclose(p.file);
-    if (read_error)
-        return WHY("%s: read error", path), false;
     if (rc == -2)
         return WHY("%s: out of memory while reading", path), false;
     if (p.long_line && (rc == 0 || rc >= p.long_line))
@@ -439,40 +435,14 @@ static bool apply_override(hl_config_t *c, const char *o, bool presets_only, cha
     return true;
 }
 
-/* Checks the combination of values. */
-static bool validate(const hl_config_t *c, char *why)
+/* The file's text (NULL for none), then the overrides, in the two passes. */
+static bool load_text(hl_config_t *c, const char *path, const char *text,
+                      const char *const *overrides, int n_overrides, char *why)
 {
-    const char *e = hl_slam_params_error(&c->slam);
-    if (!e)
-        e = hl_sounder_params_error(&c->sounder);
-    if (!e)
-        e = hl_drive_params_error(&c->drive);
-    if (!e)
-        e = hl_rlink_params_error(&c->rlink);
-    if (e)
-        return WHY("config: %s", e), false;
-    char channel[HL_BUS_CHANNEL_MAX];
-    if (!hl_bus_channel(c->prefix, HL_CHANNEL_DESTINATION, channel))
-        return WHY("config: lcm.prefix '%s' must be at most %d of A-Z a-z 0-9 _ - . /", c->prefix,
-                   HL_BUS_PREFIX_MAX), false;
-    return true;
-}
-
-bool hl_config_load(hl_config_t *c, const char *path, bool optional,
-                    const char *const *overrides, int n_overrides, char *why)
-{
-    hl_config_defaults(c);
-    if (path && optional) {
-        FILE *f = fopen(path, "r");
-        if (!f && errno == ENOENT)
-            path = NULL;    /* no default file: the compiled-in defaults apply */
-        else if (f)
-            fclose(f);
-    }
     /* Pass 1: the presets, from the file then the overrides; pass 2: the rest. */
     for (int pass = 0; pass < 2; pass++) {
         bool presets_only = pass == 0;
-        if (path && !parse_file(c, path, presets_only, why))
+        if (text && !parse_text(c, path, text, presets_only, why))
             return false;
         for (int i = 0; i < n_overrides; i++)
             if (!apply_override(c, overrides[i], presets_only, why))
@@ -480,7 +450,25 @@ bool hl_config_load(hl_config_t *c, const char *path, bool optional,
         if (presets_only && !hl_config_apply_presets(c, why))
             return false;
     }
-    return validate(c, why);
+    return hl_config_check(c, why);
+}
+
+bool hl_config_load(hl_config_t *c, const char *path, bool optional,
+                    const char *const *overrides, int n_overrides, char *why)
+{
+    hl_config_defaults(c);
+    char *text = NULL;
+    if (path) {
+        /* read once, checked (config_file.h), and parsed twice from memory */
+        hl_config_file_status_t st = hl_config_file_read(path, &text, why);
+        if (st == HL_CONFIG_FILE_MISSING && optional)
+            path = NULL;    /* no default file: the compiled-in defaults apply */
+        else if (st != HL_CONFIG_FILE_OK)
+            return false;
+    }
+    bool ok = load_text(c, path, text, overrides, n_overrides, why);
+    free(text);
+    return ok;
 }
 
 _Static_assert(HL_DAEMON_CONFIG_WHY_LEN == HL_CONFIG_WHY_LEN, "the research tools' why buffer");

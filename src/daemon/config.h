@@ -82,11 +82,13 @@ void hl_config_defaults(hl_config_t *c);
  * Builds the effective configuration: defaults, the presets named by slam.mode,
  * slam.profile and robot.profile (in the file or the overrides, the overrides winning),
  * the file's other keys, then @p overrides ("section.key=value", in order).
- * @param path      the INI file; NULL for none.
+ * @param path      the INI file (a regular file of at most 1 MiB holding no NUL byte, or
+ *                  /dev/null: config_file.h); NULL for none.
  * @param optional  a missing file is not an error (the default path).
- * @return true, or false with one line in @p why ("FILE:LINE: key 'x.y': reason" for
- *         the file, "--set x.y=v: reason" for an override, "config: reason" for a
- *         combination of values).
+ * @return true, or false with one line in @p why ("FILE: reason" for the file itself,
+ *         "FILE:LINE: key 'x.y': reason" for its lines, "--set x.y=v: reason" for an
+ *         override, "config: x.y (v) must ... z.w (u)" for a combination of values,
+ *         naming each key with its value: config_check.h).
  */
 bool hl_config_load(hl_config_t *c, const char *path, bool optional,
                     const char *const *overrides, int n_overrides, char *why);

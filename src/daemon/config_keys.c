@@ -135,7 +135,7 @@ const hl_config_key_t hl_config_keys[] = {
       "pairs vote only if their normals agree within this (paper: 30)" },
     { "localize.blur_sigma_mm", HL_KEY_I32, S(loc.blur_sigma_mm), 0, 1000, "xy vote blur" },
     { "localize.blur_sigma_deg", HL_KEY_DEG, S(loc.blur_sigma_theta), 0, 45, "heading vote blur" },
-    { "localize.peak_separation_mm", HL_KEY_I32, S(loc.peak_separation_mm), 1, 1000000,
+    { "localize.peak_separation_mm", HL_KEY_I32, S(loc.peak_separation_mm), 1, 32767,
       "the second peak is the best one at least this far from the first" },
     { "localize.prior_sigma_mm", HL_KEY_I32, S(loc.prior_sigma_mm), 1, 1000000,
       "odometry prior's spread in position" },
@@ -312,6 +312,14 @@ static const char *const operator_keys[] = {
     "drive.arrive_mm", "drive.max_leg_mm", "drive.speed_mm_s", "drive.turn_deg_s",
     "drive.stop_mm", "drive.slow_mm",
 };
+
+const hl_config_key_t *hl_config_key_find(const char *name)
+{
+    for (size_t i = 0; i < hl_config_nkeys; i++)
+        if (strcmp(hl_config_keys[i].name, name) == 0)
+            return &hl_config_keys[i];
+    return NULL;
+}
 
 bool hl_config_key_for_operator(const hl_config_key_t *k)
 {

@@ -1,4 +1,4 @@
-/* config_keys.h - the table of configuration keys (private to config.c). */
+/* config_keys.h - the table of configuration keys (private to the config*.c modules). */
 #ifndef HOUGHLOC_DAEMON_CONFIG_KEYS_H
 #define HOUGHLOC_DAEMON_CONFIG_KEYS_H
 
@@ -44,8 +44,19 @@ bool hl_config_key_for_operator(const hl_config_key_t *k);
 /** A preset key (slam.mode, slam.profile, robot.profile): read before every other key. */
 bool hl_config_key_is_preset(const hl_config_key_t *k);
 
+/** The key named @p name ("section.key"), or NULL. */
+const hl_config_key_t *hl_config_key_find(const char *name);
+
 /* hl_config_t is declared in config.h, which includes this file's users. */
 struct hl_config;
+
+/* Room for any key's value as the file writes it (the longest: the fence's text). */
+#define HL_CONFIG_VALUE_LEN 1100
+
+/** Writes @p k's value in @p c as the file writes it (config_print.c), so that a message
+ *  quotes a value in the unit the operator typed (degrees, metres), not the field's. */
+void hl_config_format_value(const struct hl_config *c, const hl_config_key_t *k, char *buf,
+                            size_t cap);
 
 /** Applies @p c's presets, in order: slam.mode's parameters afresh, slam.profile's keys
  *  over them, robot.profile's calibration. @return false with "config: ..." in @p why

@@ -9,7 +9,7 @@
 #include "config_keys.h"
 #include "log.h"
 
-#define VALUE_LEN 1100  /* the longest value: the fence's text */
+#define VALUE_LEN HL_CONFIG_VALUE_LEN
 
 /* The fewest decimals (up to 17 significant digits) that read back as @p v, in plain
  * notation: 0.05, 30, 1.1 rather than 0.050000000000000003 or 3e+01. */
@@ -25,8 +25,9 @@ static void format_double(char *buf, size_t cap, double v)
     snprintf(buf, cap, "%.17g", v);
 }
 
-/* The value of @p k in @p c as the file writes it. */
-static void format_value(const hl_config_t *c, const hl_config_key_t *k, char *buf, size_t cap)
+/* The value of @p k in @p c as the file writes it (config_keys.h). */
+void hl_config_format_value(const hl_config_t *c, const hl_config_key_t *k, char *buf,
+                            size_t cap)
 {
     const char *field = (const char *)c + k->offset;
     buf[0] = '\0';
@@ -81,7 +82,7 @@ static void print_keys(const hl_config_t *c, FILE *out,
             fprintf(out, "%s[%.*s]\n", section[0] ? "\n" : "", (int)slen, k->name);
             snprintf(section, sizeof section, "%.*s", (int)slen, k->name);
         }
-        format_value(c, k, value, sizeof value);
+        hl_config_format_value(c, k, value, sizeof value);
         fprintf(out, "; %s\n%s = %s\n", k->help, dot + 1, value);
     }
 }
@@ -110,8 +111,8 @@ static bool show_operator(const hl_config_t *c, const hl_config_key_t *k, const 
         return true;
     const hl_config_t *const *base = arg;   /* [0]: the defaults, [1]: with c's presets */
     char mine[VALUE_LEN], theirs[VALUE_LEN];
-    format_value(c, k, mine, sizeof mine);
-    format_value(base[hl_config_key_is_preset(k) ? 0 : 1], k, theirs, sizeof theirs);
+    hl_config_format_value(c, k, mine, sizeof mine);
+    hl_config_format_value(base[hl_config_key_is_preset(k) ? 0 : 1], k, theirs, sizeof theirs);
     return strcmp(mine, theirs) != 0;
 }
 

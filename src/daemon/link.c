@@ -12,20 +12,52 @@
 
 #define WHY(...) snprintf(why, HL_LINK_WHY_LEN, __VA_ARGS__)
 
+/* getaddrinfo's hints for the robot's address. AI_NUMERICHOST: the daemon has one thread,
+ * and a host name would be looked up at every reconnection, which blocks on a name server
+ * that does not answer (10.1 s were seen, past the service's 10 s watchdog); a numeric
+ * address is only parsed, never looked up. */
+static const struct addrinfo numeric_hints = {
+    .ai_family = AF_UNSPEC, .ai_socktype = SOCK_STREAM,
+    .ai_flags = AI_NUMERICHOST | AI_NUMERICSERV,
+};
+
+/* Writes the robot's address into out->host: an IPv4 or IPv6 address (bare or in
+ * brackets, [::1]), or localhost, taken as 127.0.0.1 without a lookup (the loopback
+ * houghloc-sim listens on; it serves IPv4 only). */
+static bool parse_host(const char *rest, const char *host, size_t len, hl_link_spec_t *out,
+                       char *why)
+{
+    if (len >= 2 && host[0] == '[' && host[len - 1] == ']') {
+        host++;
+        len -= 2;
+    }
+    if (len == 0 || len >= sizeof out->host)
+        return WHY("robot link 'tcp:%.200s': want tcp:HOST:PORT", rest), false;
+    memcpy(out->host, host, len);
+    out->host[len] = '\0';
+    if (strcmp(out->host, "localhost") == 0)
+        snprintf(out->host, sizeof out->host, "127.0.0.1");
+    struct addrinfo *ai = NULL;
+    if (getaddrinfo(out->host, NULL, &numeric_hints, &ai) != 0)
+        return WHY("robot link 'tcp:%.60s': HOST must be a numeric IPv4/IPv6 address (name "
+                   "resolution would block the daemon)", rest), false;
+    freeaddrinfo(ai);
+    return true;
+}
+
 static bool parse_tcp(const char *rest, hl_link_spec_t *out, char *why)
 {
     const char *colon = strrchr(rest, ':');
-    size_t host_len = colon ? (size_t)(colon - rest) : 0;
-    if (!colon || host_len == 0 || host_len >= sizeof out->host)
-        return WHY("robot link 'tcp:%s': want tcp:HOST:PORT", rest), false;
+    if (!colon || colon == rest)
+        return WHY("robot link 'tcp:%.200s': want tcp:HOST:PORT", rest), false;
     char *end = NULL;
     errno = 0;
     long port = strtol(colon + 1, &end, 10);
     if (errno || end == colon + 1 || *end || port < 1 || port > 65535)
         return WHY("robot link 'tcp:%s': port must be a number 1..65535", rest), false;
+    if (!parse_host(rest, rest, (size_t)(colon - rest), out, why))
+        return false;
     out->kind = HL_LINK_TCP;
-    memcpy(out->host, rest, host_len);
-    out->host[host_len] = '\0';
     snprintf(out->port, sizeof out->port, "%ld", port);
     return true;
 }
@@ -83,9 +115,11 @@ bool hl_link_spec_parse(const char *text, hl_link_spec_t *out, char *why)
 
 static bool open_tcp(hl_link_t *l, const hl_link_spec_t *spec, char *why)
 {
-    struct addrinfo hints = { .ai_family = AF_UNSPEC, .ai_socktype = SOCK_STREAM };
+    /* numeric: parsed, never looked up (the spec was checked so by parse_host); the
+     * socket is non-blocking, so connect returns at once (EINPROGRESS) and the loop waits
+     * for it to turn writable (hl_link_connected) */
     struct addrinfo *ai = NULL;
-    int rc = getaddrinfo(spec->host, spec->port, &hints, &ai);
+    int rc = getaddrinfo(spec->host, spec->port, &numeric_hints, &ai);
     if (rc != 0)
         return WHY("%.200s: %s", l->name, gai_strerror(rc)), false;
     l->fd = socket(ai->ai_family, ai->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);

@@ -37,7 +37,8 @@ static hl_status_t check_file(int fd, const char *path, char *why)
     if (S_ISDIR(st.st_mode))
         return refuse(why, HL_ERR_RANGE, path, "is a directory, not a key file");
     if (!S_ISREG(st.st_mode))
-        return refuse(why, HL_ERR_RANGE, path, "is not a regular file");
+        return refuse(why, HL_ERR_RANGE, path,
+                      "not a regular file (a FIFO, a device or a socket)");
     if (st.st_mode & (in_credentials(path) ? 027 : 077)) {
         if (why)
             snprintf(why, HL_KEYFILE_WHY_LEN,
@@ -49,9 +50,9 @@ static hl_status_t check_file(int fd, const char *path, char *why)
     if (st.st_size > HL_KEYFILE_MAX_BYTES) {
         if (why)
             snprintf(why, HL_KEYFILE_WHY_LEN,
-                     "key file %s: is %lld bytes; a key file holds 64 hexadecimal digits "
-                     "(at most %d bytes)",
-                     path, (long long)st.st_size, HL_KEYFILE_MAX_BYTES);
+                     "key file %s: larger than %d bytes (%lld bytes); a key file holds 64 "
+                     "hexadecimal digits and a newline",
+                     path, HL_KEYFILE_MAX_BYTES, (long long)st.st_size);
         return HL_ERR_RANGE;
     }
     return HL_OK;
@@ -98,8 +99,12 @@ hl_status_t hl_keyfile_load(const char *path, hl_auth_key_t *key, char *why)
         st = refuse(why, HL_ERR_OS, path, strerror(errno));
     int err = errno;
     close(fd);
-    if (st == HL_OK && len > HL_KEYFILE_MAX_BYTES)
-        st = refuse(why, HL_ERR_RANGE, path, "grew beyond 1024 bytes while being read");
+    if (st == HL_OK && len > HL_KEYFILE_MAX_BYTES) {
+        st = HL_ERR_RANGE;
+        if (why)
+            snprintf(why, HL_KEYFILE_WHY_LEN, "key file %s: larger than %d bytes (it grew "
+                     "while being read)", path, HL_KEYFILE_MAX_BYTES);
+    }
     if (st == HL_OK) {
         char reason[HL_BUS_WHY_LEN];
         hl_auth_key_t k;

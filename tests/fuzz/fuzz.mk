@@ -20,7 +20,7 @@
 FUZZ_ROBOT_NAMES  := arcos rlink
 FUZZ_BUS_NAMES    := bus_scan bus_odometry bus_pose bus_map bus_status bus_destination \
                      bus_command bus_reply logcheck
-FUZZ_DAEMON_NAMES := config mapstore
+FUZZ_DAEMON_NAMES := config mapstore keyfile
 FUZZ_CARMEN_NAMES := carmen carmen_reader
 FUZZ_SIM_NAMES    := world
 FUZZ_NAMES := $(FUZZ_ROBOT_NAMES) $(FUZZ_BUS_NAMES) $(FUZZ_DAEMON_NAMES) \

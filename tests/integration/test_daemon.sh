@@ -84,7 +84,7 @@ rejects "a value that would print as a comment (found by fuzzing)" 1 "bad.conf:3
 rejects "--set of a value starting with ';'" 1 "would read back as a comment" $D --set 'daemon.map_file=;x'
 rejects "--set of an unknown key" 1 "unknown key 'slam.nope'" $D --set slam.nope=1
 rejects "--set without =" 1 "expected SECTION.KEY=VALUE" $D --set slam.map_capacity
-rejects "a combination the core refuses" 1 "config: the search window needs more raster cells than max_cells" $D --set localize.max_cells=1000
+rejects "a combination the core refuses, its keys named" 1 "config: slam.window_mm (1000) needs 119952 raster cells of localize.cell_mm (24)" $D --set localize.max_cells=1000
 rejects "a bad prefix" 1 "lcm.prefix" $D --prefix 'a b'
 rejects "a missing --config file" 1 "cannot open" $BIN/houghlocd --config "$tmp/none.conf"
 rejects "an unknown option" 2 "unknown option" $D --frobnicate
