@@ -2,7 +2,8 @@
 # make test-console: houghloc-console in a real browser. houghlocd follows logs/tour
 # replayed live (lcm-logplayer) on a private LCM group; houghloc-console serves it;
 # headless Chromium, driven by chromedriver's W3C WebDriver API from browser_test.py,
-# loads the page, waits for the map, clicks a point near the robot, and checks that a
+# signs in as an operator does (the address with ?token=, the token from --token-out's
+# file; the console answers with its session cookie), loads the page, waits for the map, clicks a point near the robot, and checks that a
 # DESTINATION with those coordinates (within one 24 mm map cell) was published
 # (lcm-logger records it) and that the daemon's reply (NO_ROBOT: no robot is attached)
 # appears on the page; then presses Escape and clicks the Stop button, and checks that each
@@ -60,8 +61,10 @@ pids="$pids $!"
 w=0
 while ! grep -q 'ready:' "$tmp/houghlocd.err" 2>/dev/null && [ $w -lt 100 ]; do sleep 0.1; w=$((w + 1)); done
 "$BIN/houghloc-console" --lcm-url "$URL" --listen "127.0.0.1:$HPORT" --ground-truth \
-    2>"$tmp/console.err" &
+    --token-out "$tmp/token" 2>"$tmp/console.err" &
 pids="$pids $!"
+w=0
+while ! grep -q 'serving' "$tmp/console.err" 2>/dev/null && [ $w -lt 50 ]; do sleep 0.1; w=$((w + 1)); done
 # The tour at 50 times its speed (17 s); the file tells the browser test when it is over.
 (lcm-logplayer -s 50 -e '^(SONAR|ODOMETRY|GROUND_TRUTH)$' -l "$URL" logs/tour.lcmlog \
     >/dev/null 2>&1 & echo $! >"$tmp/player.pid"; wait $!; touch "$tmp/replayed") &
@@ -70,7 +73,7 @@ pids="$pids $!"
 pids="$pids $!"
 
 python3 tests/console/browser_test.py --driver "http://127.0.0.1:$DPORT" \
-    --page "http://127.0.0.1:$HPORT/" --profile "$tmp/profile" --replayed "$tmp/replayed" \
+    --page "http://127.0.0.1:$HPORT/?token=$(cat "$tmp/token")" --profile "$tmp/profile" --replayed "$tmp/replayed" \
     --dest-log "$tmp/dest.lcmlog" --logger-pid "$logger" --out "$OUT" --lcm-url "$URL"
 rc=$?
 if [ $rc -ne 0 ]; then

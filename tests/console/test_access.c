@@ -1,5 +1,8 @@
-/* Tests for tools/console/access.c: token generation, checking and loading, the Host
- * check against DNS rebinding, and the verdict for requests under both bind modes. */
+/* Tests for tools/console/access.c: token generation, checking, loading and saving, the
+ * Host check against DNS rebinding, the session cookie the token is exchanged for, and
+ * the verdict for requests under both bind modes: every route needs the token or the
+ * cookie (the event stream too, on loopback too), a POST proven by the cookie only from
+ * the console's own page. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -18,9 +21,9 @@
 
 static access_policy_t policy(bool loopback)
 {
-    access_policy_t p = { .loopback = loopback, .port = 8047, .token = TOKEN,
-                          .token_len = sizeof TOKEN - 1 };
-    snprintf(p.bound_host, sizeof p.bound_host, "%s", loopback ? "127.0.0.1" : "10.0.0.5");
+    access_policy_t p;
+    assert_true(access_policy_init(&p, loopback, 8047, loopback ? "127.0.0.1" : "10.0.0.5",
+                                   TOKEN));
     return p;
 }
 
@@ -81,46 +84,115 @@ static void test_host(void **state)
     assert_true(access_host_ok(&open, "robot.local:8047")); /* the token guards it */
 }
 
+/* The verdict's status and its one-line reason. */
+static void expect(const access_policy_t *p, access_request_t r, access_verdict_t want)
+{
+    access_verdict_t v = access_decide(p, &r);
+    assert_int_equal(v, want);
+    const char *why = access_reason(v);
+    assert_non_null(why);
+    assert_null(strchr(why, '\n'));
+}
+
 static void test_decide(void **state)
 {
     (void)state;
     access_policy_t lo = policy(true), open = policy(false);
-    const char *h = "127.0.0.1:8047";
-    /* loopback: viewing needs no token; a POST needs it in the header, never the URL */
-    assert_int_equal(access_decide(&lo, &(access_request_t){ .host = h }), ACCESS_ALLOW);
-    assert_int_equal(access_decide(&lo, &(access_request_t){ .host = "evil:8047" }),
-                     ACCESS_BAD_HOST);
-    assert_int_equal(access_decide(&lo, &(access_request_t){ .changes_state = true, .host = h }),
-                     ACCESS_NEED_TOKEN);
-    assert_int_equal(access_decide(&lo, &(access_request_t){ .changes_state = true, .host = h,
-                                                             .query_token = TOKEN }),
-                     ACCESS_NEED_TOKEN);
-    assert_int_equal(access_decide(&lo, &(access_request_t){ .changes_state = true, .host = h,
-                                                             .header_token = "wrong" }),
-                     ACCESS_NEED_TOKEN);
-    assert_int_equal(access_decide(&lo, &(access_request_t){ .changes_state = true, .host = h,
-                                                             .header_token = TOKEN }),
-                     ACCESS_ALLOW);
+    const char *h = "127.0.0.1:8047", *origin = "http://127.0.0.1:8047";
+    const char *cookie = lo.session;
+    /* loopback: nothing without a credential, the page and the event stream included */
+    expect(&lo, (access_request_t){ .host = h, .page = true }, ACCESS_NEED_TOKEN);
+    expect(&lo, (access_request_t){ .host = h }, ACCESS_NEED_TOKEN); /* GET /events */
+    expect(&lo, (access_request_t){ .host = "evil:8047" }, ACCESS_BAD_HOST);
+    expect(&lo, (access_request_t){ .changes_state = true, .host = h }, ACCESS_NEED_TOKEN);
+    /* the token in a header: Authorization: Bearer, or X-Houghloc-Token */
+    expect(&lo, (access_request_t){ .host = h, .authorization = "Bearer " TOKEN }, ACCESS_ALLOW);
+    expect(&lo, (access_request_t){ .host = h, .authorization = "bearer  " TOKEN }, ACCESS_ALLOW);
+    expect(&lo, (access_request_t){ .host = h, .authorization = "Bearer wrong" },
+           ACCESS_BAD_TOKEN);
+    expect(&lo, (access_request_t){ .host = h, .authorization = "Basic " TOKEN },
+           ACCESS_NEED_TOKEN);
+    expect(&lo, (access_request_t){ .changes_state = true, .host = h, .header_token = TOKEN },
+           ACCESS_ALLOW);
+    expect(&lo, (access_request_t){ .changes_state = true, .host = h, .header_token = "wrong" },
+           ACCESS_BAD_TOKEN);
+    /* the URL's token only signs the page in; elsewhere it is no credential */
+    expect(&lo, (access_request_t){ .host = h, .page = true, .query_token = TOKEN },
+           ACCESS_EXCHANGE);
+    expect(&lo, (access_request_t){ .host = h, .page = true, .query_token = TOKEN "0" },
+           ACCESS_BAD_TOKEN);
+    expect(&lo, (access_request_t){ .host = h, .query_token = TOKEN }, ACCESS_NEED_TOKEN);
+    expect(&lo, (access_request_t){ .changes_state = true, .host = h, .query_token = TOKEN },
+           ACCESS_NEED_TOKEN);
+    /* the cookie: a GET; a POST only with this console's Origin */
+    expect(&lo, (access_request_t){ .host = h, .cookie = cookie }, ACCESS_ALLOW);
+    expect(&lo, (access_request_t){ .host = h, .page = true, .cookie = cookie }, ACCESS_ALLOW);
+    expect(&lo, (access_request_t){ .host = h, .cookie = TOKEN }, ACCESS_BAD_COOKIE);
+    expect(&lo, (access_request_t){ .host = h, .cookie = "" }, ACCESS_BAD_COOKIE);
+    expect(&lo, (access_request_t){ .changes_state = true, .host = h, .cookie = cookie,
+                                    .origin = origin },
+           ACCESS_ALLOW);
+    expect(&lo, (access_request_t){ .changes_state = true, .host = h, .cookie = cookie },
+           ACCESS_BAD_ORIGIN);
+    /* a page of another port of this host is same-site, not same-origin */
+    expect(&lo, (access_request_t){ .changes_state = true, .host = h, .cookie = cookie,
+                                    .origin = "http://127.0.0.1:9000" },
+           ACCESS_BAD_ORIGIN);
+    expect(&lo, (access_request_t){ .changes_state = true, .host = h, .cookie = cookie,
+                                    .origin = "null" },
+           ACCESS_BAD_ORIGIN);
+    expect(&lo, (access_request_t){ .changes_state = true, .host = h, .header_token = TOKEN,
+                                    .origin = "http://evil.example" },
+           ACCESS_BAD_ORIGIN);
     /* the Host check comes first, even with the token */
-    assert_int_equal(access_decide(&lo, &(access_request_t){ .changes_state = true,
-                                                             .host = "evil:8047",
-                                                             .header_token = TOKEN }),
-                     ACCESS_BAD_HOST);
-    /* open bind: everything needs the token; a GET may carry it in the URL */
-    const char *oh = "10.0.0.5:8047";
-    assert_int_equal(access_decide(&open, &(access_request_t){ .host = oh }), ACCESS_NEED_TOKEN);
-    assert_int_equal(access_decide(&open, &(access_request_t){ .host = oh, .query_token = "x" }),
-                     ACCESS_NEED_TOKEN);
-    assert_int_equal(access_decide(&open, &(access_request_t){ .host = oh, .query_token = TOKEN }),
-                     ACCESS_ALLOW);
-    assert_int_equal(access_decide(&open, &(access_request_t){ .host = oh, .header_token = TOKEN }),
-                     ACCESS_ALLOW);
-    assert_int_equal(access_decide(&open, &(access_request_t){ .changes_state = true, .host = oh,
-                                                               .query_token = TOKEN }),
-                     ACCESS_NEED_TOKEN);
-    assert_int_equal(access_decide(&open, &(access_request_t){ .changes_state = true, .host = oh,
-                                                               .header_token = TOKEN }),
-                     ACCESS_ALLOW);
+    expect(&lo, (access_request_t){ .changes_state = true, .host = "evil:8047",
+                                    .header_token = TOKEN },
+           ACCESS_BAD_HOST);
+    /* open bind: the same rules, any Host */
+    const char *oh = "robot.local:8047";
+    expect(&open, (access_request_t){ .host = oh }, ACCESS_NEED_TOKEN);
+    expect(&open, (access_request_t){ .host = oh, .page = true, .query_token = "x" },
+           ACCESS_BAD_TOKEN);
+    expect(&open, (access_request_t){ .host = oh, .page = true, .query_token = TOKEN },
+           ACCESS_EXCHANGE);
+    expect(&open, (access_request_t){ .host = oh, .header_token = TOKEN }, ACCESS_ALLOW);
+    expect(&open, (access_request_t){ .changes_state = true, .host = oh, .cookie = open.session,
+                                      .origin = "http://robot.local:8047" },
+           ACCESS_ALLOW);
+    expect(&open, (access_request_t){ .changes_state = true, .cookie = open.session,
+                                      .origin = "http://robot.local:8047" },
+           ACCESS_BAD_ORIGIN); /* no Host to compare with */
+    assert_int_equal(access_status(ACCESS_NEED_TOKEN), 401);
+    assert_int_equal(access_status(ACCESS_BAD_COOKIE), 401);
+    assert_int_equal(access_status(ACCESS_BAD_ORIGIN), 403);
+    assert_int_equal(access_status(ACCESS_BAD_HOST), 403);
+    assert_int_equal(access_status(ACCESS_EXCHANGE), 303);
+}
+
+/* The exchange: the cookie's value is not the token, is the same for the same token (a
+ * restart with --token-file keeps the pages signed in) and differs for another; its name
+ * carries the port; the browser keeps it from scripts and from other sites. */
+static void test_cookie(void **state)
+{
+    (void)state;
+    access_policy_t a = policy(true), b = policy(false), c;
+    assert_true(access_policy_init(&c, true, 9000, "127.0.0.1", "another-token-0123456789"));
+    assert_int_equal(strlen(a.session), ACCESS_SESSION_LEN);
+    assert_int_equal(strspn(a.session, "0123456789abcdef"), ACCESS_SESSION_LEN);
+    assert_null(strstr(a.session, TOKEN));
+    assert_string_equal(a.session, b.session);
+    assert_string_not_equal(a.session, c.session);
+    assert_string_equal(a.cookie_name, "houghloc_8047");
+    assert_string_equal(c.cookie_name, "houghloc_9000");
+    char set[ACCESS_SET_COOKIE_LEN];
+    access_set_cookie(&a, set);
+    char want[ACCESS_SET_COOKIE_LEN];
+    snprintf(want, sizeof want, "houghloc_8047=%s; Path=/; HttpOnly; SameSite=Strict", a.session);
+    assert_string_equal(set, want);
+    assert_null(strstr(set, TOKEN));
+    /* the other console's cookie is no credential here */
+    expect(&a, (access_request_t){ .host = "127.0.0.1:8047", .cookie = c.session },
+           ACCESS_BAD_COOKIE);
 }
 
 static void write_file(const char *path, const char *text, mode_t mode)
@@ -169,6 +241,36 @@ static void test_load(void **state)
     assert_string_equal(out, "s3cret-token_for.the~console"); /* untouched by failures */
 }
 
+/* --token-out: a new file of mode 0600 renamed over the old one, which a reader that
+ * opened it before keeps seeing (without the new token); a file --token-file reads. */
+static void test_save(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/hl_console_saveXXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char path[128], out[ACCESS_TOKEN_MAX + 1] = "", why[ACCESS_WHY_LEN] = "";
+    snprintf(path, sizeof path, "%s/token", dir);
+    write_file(path, "old\n", 0644);
+    FILE *before = fopen(path, "r");
+    assert_non_null(before);
+    assert_int_equal(access_token_save(path, TOKEN, why), HL_OK);
+    struct stat st;
+    assert_int_equal(stat(path, &st), 0);
+    assert_int_equal(st.st_mode & 0777, 0600);
+    assert_int_equal(access_token_load(path, out, why), HL_OK);
+    assert_string_equal(out, TOKEN);
+    char old[16] = "";
+    assert_non_null(fgets(old, sizeof old, before));
+    assert_string_equal(old, "old\n");
+    fclose(before);
+    unlink(path);
+    snprintf(path, sizeof path, "%s/no/such/dir/token", dir);
+    assert_int_equal(access_token_save(path, TOKEN, why), HL_ERR_OS);
+    assert_non_null(strstr(why, "No such file"));
+    assert_null(strchr(why, '\n'));
+    rmdir(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -176,6 +278,8 @@ int main(void)
         cmocka_unit_test(test_valid_and_matches),
         cmocka_unit_test(test_host),
         cmocka_unit_test(test_decide),
+        cmocka_unit_test(test_cookie),
+        cmocka_unit_test(test_save),
         cmocka_unit_test(test_load),
     };
     return cmocka_run_group_tests_name("console_access", tests, NULL, NULL);

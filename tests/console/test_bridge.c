@@ -42,6 +42,44 @@ static void test_map_two_vectors(void **state)
 }
 
 /* A full 15,000-vector map: every vector there, in order, and compact (< 30 bytes each). */
+/* The largest map the wire allows (2^20 vectors): thinned to every 16th vector, the
+ * JSON at most 30 bytes a vector kept (about 2 MB), and it says so. */
+static void test_map_thinned(void **state)
+{
+    (void)state;
+    const uint32_t n = HL_MAP_MAX_CAPACITY;
+    hl_vector_t *v = calloc(n, sizeof *v);
+    assert_non_null(v);
+    for (uint32_t i = 0; i < n; i++) /* the longest numbers there are */
+        v[i] = (hl_vector_t){ .x_mm = -HL_COORD_MAX_MM, .y_mm = -(int32_t)i, .normal = 65535,
+                              .range_mm = HL_RANGE_MAX_MM };
+    hl_bus_map_t m = { .utime = 1, .version = 2, .capacity = (int32_t)n, .count = n,
+                       .vectors = v };
+    jbuf_t b;
+    jbuf_init(&b, 0);
+    bridge_map(&b, &m);
+    assert_false(b.failed);
+    assert_true(b.len <= 30u * BRIDGE_MAP_MAX_VECTORS + 100);
+    assert_non_null(strstr(b.data, "\"count\":1048576,\"stride\":16,\"v\":[-4194304,0,65535,"));
+    assert_non_null(strstr(b.data, ",-4194304,-1048560,65535,32767]}")); /* the last kept */
+    /* one vector past the bound: a stride of 2, so 32,769 vectors */
+    m.count = BRIDGE_MAP_MAX_VECTORS + 1;
+    jbuf_reset(&b);
+    bridge_map(&b, &m);
+    assert_non_null(strstr(b.data, "\"stride\":2,"));
+    size_t commas = 0;
+    for (const char *c = strstr(b.data, "\"v\":["); *c; c++)
+        commas += *c == ',';
+    assert_int_equal(commas, 4 * (BRIDGE_MAP_MAX_VECTORS / 2 + 1) - 1);
+    /* at the bound: every vector, no stride */
+    m.count = BRIDGE_MAP_MAX_VECTORS;
+    jbuf_reset(&b);
+    bridge_map(&b, &m);
+    assert_null(strstr(b.data, "stride"));
+    jbuf_free(&b);
+    free(v);
+}
+
 static void test_map_full(void **state)
 {
     (void)state;
@@ -285,6 +323,7 @@ int main(void)
         cmocka_unit_test(test_map_empty),
         cmocka_unit_test(test_map_two_vectors),
         cmocka_unit_test(test_map_full),
+        cmocka_unit_test(test_map_thinned),
         cmocka_unit_test(test_pose),
         cmocka_unit_test(test_pose_status_and_state_names),
         cmocka_unit_test(test_status),

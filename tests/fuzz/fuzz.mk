@@ -25,6 +25,9 @@ FUZZ_CARMEN_NAMES := carmen carmen_reader
 FUZZ_SIM_NAMES    := world
 FUZZ_NAMES := $(FUZZ_ROBOT_NAMES) $(FUZZ_BUS_NAMES) $(FUZZ_DAEMON_NAMES) \
               $(FUZZ_CARMEN_NAMES) $(FUZZ_SIM_NAMES)
+# The console's POST body parser (tools/console/destreq.c): pure, the core's angles only.
+FUZZ_CONSOLE_NAMES := console_body
+FUZZ_NAMES += $(FUZZ_CONSOLE_NAMES)
 
 # A new tests/fuzz/fuzz_X.c must be put in a group above, or it would silently not run.
 FUZZ_UNLISTED := $(filter-out $(FUZZ_NAMES),$(patsubst tests/fuzz/fuzz_%,%,$(basename \
@@ -95,6 +98,14 @@ $(call fuzz_replay,$(FUZZ_SIM_NAMES)): $(BUILD)/tests/fuzz/replay_%: $(FUZZ_REPL
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CXX) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(FUZZ_SIM_ASAN_LIB) $(SYS_LIBS)
+# console_body: tools/console's parser, named by path (console.mk is read after this file).
+FUZZ_CONSOLE_ASAN_OBJ := $(BUILD)/asan/tools/console/destreq.o
+$(BUILD)/asan/tests/fuzz/fuzz_console_body.o: FUZZ_INC += -Itools/console
+$(call fuzz_replay,$(FUZZ_CONSOLE_NAMES)): $(BUILD)/tests/fuzz/replay_%: $(FUZZ_REPLAY_PREREQS) \
+        $(FUZZ_CONSOLE_ASAN_OBJ) $(CORE_ASAN_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD-SAN  $@"
+	$(Q)$(CC) $(SAN) -o $@ $(FUZZ_REPLAY_OBJS) $(FUZZ_CONSOLE_ASAN_OBJ) $(CORE_ASAN_LIB) $(SYS_LIBS)
 
 # ---- libFuzzer builds: clang ---------------------------------------------------------
 FUZZ_OUT := $(BUILD)/fuzz
@@ -168,6 +179,13 @@ $(call fuzz_bin,$(FUZZ_SIM_NAMES)): $(FUZZ_OUT)/fuzz_%: $(FUZZ_OUT)/obj/tests/fu
 	@mkdir -p $(@D)
 	@echo "  LD-FUZZ $@"
 	$(Q)$(FUZZ_CXX) $(FUZZ_LDFLAGS) -o $@ $^ $(SYS_LIBS)
+FUZZ_CONSOLE_OBJ := $(call fuzz_obj,tools/console/destreq.c)
+$(FUZZ_OUT)/obj/tests/fuzz/fuzz_console_body.o: FUZZ_INC += -Itools/console
+$(call fuzz_bin,$(FUZZ_CONSOLE_NAMES)): $(FUZZ_OUT)/fuzz_%: $(FUZZ_OBJ_PREREQS) $(FUZZ_CONSOLE_OBJ) \
+        $(FUZZ_CORE_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD-FUZZ $@"
+	$(Q)$(FUZZ_CC) $(FUZZ_LDFLAGS) -o $@ $(FUZZ_OBJS) $(FUZZ_CONSOLE_OBJ) $(FUZZ_CORE_LIB) $(SYS_LIBS)
 
 # ---- make fuzz -----------------------------------------------------------------------
 FUZZ_SECONDS ?= 30

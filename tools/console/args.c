@@ -31,10 +31,11 @@ static const char usage_text[] =
     "                      hexadecimal digits, mode 600), as a daemon configured with a\n"
     "                      key requires; the browser never sees the key\n"
     "  --listen ADDR:PORT  where to serve the page (default 127.0.0.1:" STR(CONSOLE_DEFAULT_PORT) ",\n"
-    "                      this host only); any other address makes every request need\n"
-    "                      the token: open http://ADDR:PORT/?token=TOKEN once\n"
+    "                      this host only)\n"
     "  --token-file FILE   the token (16 to 128 letters, digits, '-', '_', '.', '~'; mode\n"
     "                      600); default: a random one, printed at start\n"
+    "  --token-out FILE    write the random token to FILE (made anew, mode 600) instead\n"
+    "                      of printing it\n"
     "  --ground-truth      also show GROUND_TRUTH (the simulated robot's true pose), in\n"
     "                      the map frame: its first pose heard is drawn at the daemon's\n"
     "                      start pose (start the console before the robot moves)\n"
@@ -43,14 +44,16 @@ static const char usage_text[] =
     "  --help              this text\n"
     "  --version           the version\n"
     "\n"
+    "Every request needs the token: open http://ADDR:PORT/?token=TOKEN once (the page\n"
+    "then holds a session cookie), or send \"Authorization: Bearer TOKEN\" (scripts).\n"
     "Log lines go to standard error, each starting with \"" PROG ": \"; the first\n"
-    "names the page's address. SIGINT or SIGTERM stop it.\n"
+    "names the page's address with the token. SIGINT or SIGTERM stop it.\n"
     "\n"
     "Examples:\n"
     "  " PROG "\n"
     "      then open http://127.0.0.1:" STR(CONSOLE_DEFAULT_PORT) "/ on this machine\n"
     "  " PROG " --key /etc/houghloc/key --listen 0.0.0.0:8047 --token-file ~/.console-token\n"
-    "      serve the robot's network, every request with the token, destinations signed\n"
+    "      serve the robot's network, destinations signed\n"
     "\n"
     "Exit status:\n"
     "  0  stopped by SIGINT or SIGTERM; also --help, --version\n"
@@ -118,6 +121,8 @@ static int set_value(console_options_t *o, const char *name, const char *v)
         char why[HL_TRUTH_FRAME_WHY_LEN];
         if (!hl_truth_frame_parse_pose(v, &o->start, why))
             return req_usage_error(PROG, "--start %s", why);
+    } else if (strcmp(name, "--token-out") == 0) {
+        o->token_out = v;
     } else {
         o->token_file = v;
     }
@@ -140,8 +145,8 @@ static int on_option(void *user, const char *arg)
     console_options_t *o = user;
     if (o->pending)
         return req_usage_error(PROG, "%s needs a value", o->pending);
-    static const char *const valued[] = { "--listen", "--token-file", "--start" };
-    for (int i = 0; i < 3; i++) {
+    static const char *const valued[] = { "--listen", "--token-file", "--token-out", "--start" };
+    for (int i = 0; i < 4; i++) {
         size_t n = strlen(valued[i]);
         if (strncmp(arg, valued[i], n) == 0 && (arg[n] == '\0' || arg[n] == '='))
             return take_value(o, arg, valued[i]);
@@ -178,5 +183,8 @@ int console_parse_args(int argc, char **argv, console_options_t *o)
         return rc;
     if (o->pending)
         return req_usage_error(PROG, "%s needs a value", o->pending);
+    if (o->token_file && o->token_out)
+        return req_usage_error(PROG, "--token-out writes a random token: it does not go "
+                                     "with --token-file");
     return WAITING;
 }

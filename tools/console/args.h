@@ -24,6 +24,8 @@ typedef struct console_options {
     uint16_t port;
     char host[64];                  /* the address as a Host header names it */
     const char *token_file;         /* NULL: a token generated at start */
+    const char *token_out;          /* where to write the generated token (0600), instead
+                                       of printing it; NULL: printed on stderr */
     bool ground_truth;
     hl_pose_t start;                /* the daemon's start pose (--start): where the
                                        truth's first pose is drawn */

@@ -70,9 +70,14 @@ void bridge_map(jbuf_t *b, const hl_bus_map_t *m)
     int_field(b, "version", m->version);
     int_field(b, "capacity", m->capacity);
     int_field(b, "count", m->count);
+    uint32_t stride = m->count / BRIDGE_MAP_MAX_VECTORS + (m->count % BRIDGE_MAP_MAX_VECTORS != 0);
+    if (stride > 1)
+        int_field(b, "stride", stride);
+    else
+        stride = 1;
     key(b, "v", false);
     jbuf_putc(b, '[');
-    for (uint32_t i = 0; i < m->count && !b->failed; i++) {
+    for (uint64_t i = 0; i < m->count && !b->failed; i += stride) {
         const hl_vector_t *v = &m->vectors[i];
         if (i)
             jbuf_putc(b, ',');

@@ -21,10 +21,17 @@ const char *bridge_state_name(int8_t state);
 /** The POSE status's name ("ACCEPTED", "REJECTED_WILD", ...); "UNKNOWN" beyond. */
 const char *bridge_pose_status_name(int8_t status);
 
+/* The most vectors of a map the page gets: at most 30 bytes of JSON each, 2 MB in all,
+ * whatever the map's size (the wire allows 2^20 vectors, 31 MB of JSON). A page draws
+ * 65,536 vectors in a few milliseconds; the console's memory bound (hub.h) counts on it. */
+#define BRIDGE_MAP_MAX_VECTORS 65536u
+
 /**
  * MAP: {"utime","version","capacity","count","v":[x_mm,y_mm,normal_bam,range_mm,...]},
  * the vectors flat, four integers each, so a 15,000-vector map is one compact array the
- * page walks without building an object per vector.
+ * page walks without building an object per vector. A map of more than
+ * BRIDGE_MAP_MAX_VECTORS vectors is thinned to every stride-th vector (the fewest that
+ * fit) and says so: "stride" follows "count" (absent when every vector is there).
  */
 void bridge_map(jbuf_t *b, const hl_bus_map_t *m);
 /** POSE or GROUND_TRUTH: position, heading, status name, confidence and the votes. */

@@ -15,8 +15,8 @@ MHD_LIBS   := $(shell pkg-config --libs libmicrohttpd 2>/dev/null)
 
 # The pure modules (libsodium apart), unit-tested under the sanitizers; the rest touches
 # sockets and LCM.
-CONSOLE_PURE := jbuf bridge destreq stamp access hub
-CONSOLE_OBJS := $(patsubst %,$(BUILD)/obj/tools/console/%.o,$(CONSOLE_PURE) args http sender main) \
+CONSOLE_PURE := jbuf bridge destreq stamp access hub gate
+CONSOLE_OBJS := $(patsubst %,$(BUILD)/obj/tools/console/%.o,$(CONSOLE_PURE) args listen http sender main) \
                 $(BUILD)/obj/gen/console_page.o $(BUILD)/obj/tools/eval/truth_frame.o \
                 $(BUILD)/obj/tools/goto/request.o
 CONSOLE_ASAN_OBJS := $(patsubst %,$(BUILD)/asan/tools/console/%.o,$(CONSOLE_PURE)) \

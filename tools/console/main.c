@@ -6,7 +6,8 @@
  * every open page (hub.c); the pages' clicks come back as POST /destination (http.c)
  * and leave as DESTINATION messages, their Stop button and Escape key as POST /stop
  * and leave as a STOP COMMAND (sender.c). Nothing runs between events: the only timers
- * are libmicrohttpd's connection timeouts and a keepalive every 15 s.
+ * are libmicrohttpd's connection timeouts, the gate's request deadlines (gate.h) and a
+ * keepalive every 15 s. Who may use it: access.h; what it holds: hub.h and gate.h.
  */
 #include <errno.h>
 #include <signal.h>
@@ -239,16 +240,22 @@ static int run(console_t *c, const sigset_t *unblocked)
 /* Everything that can be refused, in order; @return WAITING or the exit code. */
 static int start(console_t *c)
 {
-    c->policy = (access_policy_t){ .loopback = c->opt.loopback, .port = c->opt.port };
     hl_truth_frame_init(&c->truth_frame, c->opt.start);
-    snprintf(c->policy.bound_host, sizeof c->policy.bound_host, "%s", c->opt.host);
     char why[HL_KEYFILE_WHY_LEN > ACCESS_WHY_LEN ? HL_KEYFILE_WHY_LEN : ACCESS_WHY_LEN];
-    if (c->opt.token_file ? access_token_load(c->opt.token_file, c->policy.token, why) != HL_OK
-                          : !access_token_generate(c->policy.token)) {
+    char token[ACCESS_TOKEN_MAX + 1];
+    if (c->opt.token_file ? access_token_load(c->opt.token_file, token, why) != HL_OK
+                          : !access_token_generate(token)) {
         LOG("%s", c->opt.token_file ? why : "libsodium does not initialize");
         return EXIT_ERROR;
     }
-    c->policy.token_len = strlen(c->policy.token);
+    if (!access_policy_init(&c->policy, c->opt.loopback, c->opt.port, c->opt.host, token)) {
+        LOG("libsodium does not initialize");
+        return EXIT_ERROR;
+    }
+    if (c->opt.token_out && access_token_save(c->opt.token_out, token, why) != HL_OK) {
+        LOG("%s", why);
+        return EXIT_ERROR;
+    }
     const char *url = c->opt.req.url;
     if (!url) {
         const char *env = getenv("LCM_DEFAULT_URL");
@@ -277,14 +284,20 @@ static int start(console_t *c)
         return EXIT_ERROR;
     }
     hello(c);
-    if (!http_start(&c->http, (const struct sockaddr *)&c->opt.addr, &c->hub, &c->policy,
-                    on_destination, on_stop_robot, c, why)) {
+    if (!http_start(&c->http, (const struct sockaddr *)&c->opt.addr, c->opt.addrlen, &c->hub,
+                    &c->policy, on_destination, on_stop_robot, c, why)) {
         LOG("%s", why);
         return EXIT_ERROR;
     }
-    LOG("serving http://%s:%u/%s%s on LCM %s%s%s, destinations %s", c->opt.host,
-        (unsigned)c->opt.port, c->opt.loopback ? "" : "?token=",
-        c->opt.loopback ? "" : c->policy.token, url, c->opt.req.prefix[0] ? " prefix " : "",
+    /* The token goes only where the operator who started the console reads: this
+     * terminal, or the file --token-out made (access.h). */
+    char shown[ACCESS_WHY_LEN];
+    if (c->opt.token_out)
+        snprintf(shown, sizeof shown, "<the token in %s>", c->opt.token_out);
+    else
+        snprintf(shown, sizeof shown, "%s", c->policy.token);
+    LOG("serving http://%s:%u/?token=%s on LCM %s%s%s, destinations %s", c->opt.host,
+        (unsigned)c->opt.port, shown, url, c->opt.req.prefix[0] ? " prefix " : "",
         c->opt.req.prefix, c->sender.has_key ? "signed" : "unsigned");
     return WAITING;
 }
@@ -319,6 +332,11 @@ int main(int argc, char **argv)
             LOG("%s: %lu messages did not decode", c.channel[ch], c.undecodable[ch]);
     if (c.hub.cut_off)
         LOG("%llu pages were cut off for reading too slowly", (unsigned long long)c.hub.cut_off);
+    if (c.http.gate.displaced || c.http.gate.expired || c.http.gate.refused)
+        LOG("connections: %llu closed without a request in %d s, %llu displaced by a "
+            "newcomer, %llu refused with every place serving",
+            (unsigned long long)c.http.gate.expired, GATE_HEADER_MS / 1000,
+            (unsigned long long)c.http.gate.displaced, (unsigned long long)c.http.gate.refused);
     sender_free(&c.sender);
     hub_free(&c.hub);
     if (c.lcm)

@@ -106,7 +106,8 @@ if [ -x "$BIN/houghloc-console" ]; then
     w=0
     while ! grep -q "serving" "$OUT/houghloc-console.err" 2>/dev/null && [ $w -lt 30 ]; do sleep 0.1; w=$((w + 1)); done
     if grep -q "serving" "$OUT/houghloc-console.err"; then
-        echo "houghloc demo: console at http://127.0.0.1:$CPORT/"
+        # the address with the console's token: it signs the page in (a cookie)
+        echo "houghloc demo: console at $(sed -n 's/.* serving \(http:[^ ]*\) .*/\1/p' "$OUT/houghloc-console.err")"
     else
         echo "houghloc demo: no console: $(tail -n 1 "$OUT/houghloc-console.err")" >&2
     fi

@@ -11,3 +11,14 @@ TRIALS_PROGS := $(addprefix $(BUILD)/bin/,houghlocd houghloc-sim houghloc-goto h
 trials: deps
 	$(Q)$(MAKE) --no-print-directory $(TRIALS_PROGS) $(FUZZ_REPLAYS)
 	$(Q)MAKE="$(MAKE)" BUILD=$(BUILD) FUZZ_SECONDS=$(or $(FUZZ_SECONDS),30) sh tools/lab/trials/trials.sh
+
+# hl-console-load: the Console trial's load on houghloc-console (tools/lab/trials/console.sh):
+# large MAPs, event streams that stop reading, slowloris connections (console_load.c).
+CONSOLE_LOAD_OBJS := $(BUILD)/obj/tools/lab/trials/console_load.o \
+                     $(BUILD)/obj/tools/lab/trials/trial_args.o
+LAB_BINS += $(BUILD)/bin/hl-console-load
+$(BUILD)/bin/hl-console-load: $(CONSOLE_LOAD_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD      $@"
+	$(Q)$(CC) -o $@ $(CONSOLE_LOAD_OBJS) $(BUS_LIB) $(BUS_LDLIBS)
+TRIALS_PROGS += $(BUILD)/bin/houghloc-console $(BUILD)/bin/hl-console-load
