@@ -45,6 +45,8 @@ hl_cycle_t *hl_cycle_create(const hl_cycle_params_t *p, const hl_cycle_io_t *io)
     hl_slam_reset(c->slam, p->start);
     c->state = HL_BUS_STATE_STARTING;
     c->destination_seq = -1;
+    hl_stream_init(&c->sonar_order, true);
+    hl_stream_init(&c->odometry_order, false);
     c->published_version = hl_map_version(hl_slam_map(c->slam));
     return c;
 }
@@ -155,6 +157,18 @@ static void place_first_scan(hl_cycle_t *c, hl_pose_t scan_odometry)
         hl_slam_reset(c->slam, first);
 }
 
+/* The time of the newest input, for REPLY and STATUS: the later of the two streams as
+ * they stand, so that a stream re-synchronized back in time takes it back too. */
+static void note_newest(hl_cycle_t *c)
+{
+    int64_t t = INT64_MIN;
+    if (c->sonar_order.started)
+        t = c->sonar_order.last.utime;
+    if (c->odometry_order.started && c->odometry_order.last.utime > t)
+        t = c->odometry_order.last.utime;
+    c->newest_utime = t == INT64_MIN ? 0 : t;
+}
+
 static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us)
 {
     char why[HL_BUS_WHY_LEN], what[HL_BUS_TEXT_MAX];
@@ -163,13 +177,22 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     if (!hl_cycle_decoded(c, hl_bus_decode_scan(data, len, in, why), HL_CHANNEL_SONAR,
                           "sonar decode", why))
         return;
-    if (c->have_scan && (in->seq <= c->last_scan_seq || in->utime <= c->last_scan_utime)) {
-        snprintf(what, sizeof what, "SONAR: scan seq %d at %lld is not after seq %d at %lld",
-                 in->seq, (long long)in->utime, c->last_scan_seq, (long long)c->last_scan_utime);
+    hl_stream_verdict_t order = hl_stream_offer(&c->sonar_order,
+                                                (hl_stream_mark_t){ in->seq, in->utime });
+    if (order == HL_STREAM_HOLD) {
+        snprintf(what, sizeof what, "SONAR: scan seq %d at %lld does not follow seq %d at "
+                 "%lld: dropped (%d in order with each other re-synchronize)", in->seq,
+                 (long long)in->utime, c->last_scan_seq, (long long)c->last_scan_utime,
+                 HL_STREAM_CONFIRM);
         hl_cycle_fault(c, &c->n.bad_messages, "sonar order", what);
         return;
     }
-    if (c->have_scan && in->seq - c->last_scan_seq > 1) {
+    if (order == HL_STREAM_RESYNC) {
+        snprintf(what, sizeof what, "SONAR: re-synchronized at scan seq %d at %lld (was seq "
+                 "%d at %lld): a restarted source or a clock step", in->seq,
+                 (long long)in->utime, c->last_scan_seq, (long long)c->last_scan_utime);
+        hl_cycle_fault(c, NULL, "sonar resync", what);
+    } else if (c->have_scan && in->seq - c->last_scan_seq > 1) {
         /* a scan never seen: a full input queue or a lost network packet */
         snprintf(what, sizeof what, "SONAR: %d scan(s) missed before seq %d (all are counted "
                  "in the last log line)", in->seq - c->last_scan_seq - 1, in->seq);
@@ -181,8 +204,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     c->have_scan = true;
     c->last_scan_seq = in->seq;
     c->last_scan_utime = in->utime;
-    if (in->utime > c->newest_utime)
-        c->newest_utime = in->utime;
+    note_newest(c);
     c->last_sonar_wall_us = now_us;
 
     uint32_t version = hl_map_version(hl_slam_map(c->slam));
@@ -251,19 +273,27 @@ static void on_odometry(hl_cycle_t *c, const void *data, size_t len)
     if (!hl_cycle_decoded(c, hl_bus_decode_odometry(data, len, &o, why), HL_CHANNEL_ODOMETRY,
                           "odometry decode", why))
         return;
-    if (c->have_odometry && o.utime <= c->last_odometry_utime) {
-        snprintf(what, sizeof what, "ODOMETRY: time %lld is not after %lld",
-                 (long long)o.utime, (long long)c->last_odometry_utime);
+    hl_stream_verdict_t order = hl_stream_offer(&c->odometry_order,
+                                                (hl_stream_mark_t){ 0, o.utime });
+    if (order == HL_STREAM_HOLD) {
+        snprintf(what, sizeof what, "ODOMETRY: time %lld does not follow %lld: dropped (%d in "
+                 "order with each other re-synchronize)", (long long)o.utime,
+                 (long long)c->last_odometry_utime, HL_STREAM_CONFIRM);
         hl_cycle_fault(c, &c->n.bad_messages, "odometry order", what);
         return;
+    }
+    if (order == HL_STREAM_RESYNC) {
+        snprintf(what, sizeof what, "ODOMETRY: re-synchronized at time %lld (was %lld): a "
+                 "restarted source or a clock step", (long long)o.utime,
+                 (long long)c->last_odometry_utime);
+        hl_cycle_fault(c, NULL, "odometry resync", what);
     }
     if (!c->have_odometry)
         c->first_odometry = o.pose;
     hl_cycle_map_input(c, len);
     c->have_odometry = true;
     c->last_odometry_utime = o.utime;
-    if (o.utime > c->newest_utime)
-        c->newest_utime = o.utime;
+    note_newest(c);
     if (!c->have_scan || o.utime >= c->last_scan_utime)
         c->odometry = o.pose;
 }

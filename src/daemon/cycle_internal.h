@@ -4,6 +4,7 @@
 #define HOUGHLOC_DAEMON_CYCLE_INTERNAL_H
 
 #include "cycle.h"
+#include "stream.h"
 
 #define HL_CYCLE_MAX_FAULT_KINDS 32
 
@@ -15,7 +16,8 @@ struct hl_cycle {
     int8_t state;
     int64_t last_sonar_wall_us;     /* wall clock of the last scan, for IDLE */
 
-    /* input order */
+    /* input order: each stream's, and what the cycle took last */
+    hl_stream_t sonar_order, odometry_order;
     bool have_scan, have_odometry;
     int32_t last_scan_seq;
     int64_t last_scan_utime, last_odometry_utime, newest_utime;

@@ -47,9 +47,16 @@ static bool map_pending(const hl_cycle_t *c)
     return hl_map_version(hl_slam_map(c->slam)) != c->published_version;
 }
 
+/* A change whose time is before the last MAP's (the input's clock is behind the time a
+ * restored map file carried, or a stream re-synchronized back in time, stream.h) starts
+ * the period afresh: waiting for the clock to catch up would hold the map back for as
+ * long as the clock is behind. */
 static bool period_allows(const hl_cycle_t *c)
 {
-    return c->map_changed_utime - c->map_published_utime >= (int64_t)c->p.map_period_ms * 1000;
+    if (c->map_changed_utime < c->map_published_utime)
+        return true;
+    return (uint64_t)c->map_changed_utime - (uint64_t)c->map_published_utime >=
+           (uint64_t)c->p.map_period_ms * 1000;
 }
 
 /* The input since the last MAP pays for this one, at map_input_ratio. */

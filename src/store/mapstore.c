@@ -154,6 +154,12 @@ static const char *header_error(const hl_mapfile_t *m)
         return "odometry reference out of range";
     if ((m->state.cull_rng.inc & 1u) == 0)  /* hl_rng_seed always makes it odd */
         return "culling generator increment is even";
+    /* message times and request numbers are never negative (the codecs refuse them), so
+     * a negative one is corruption, and it could not go out on MAP */
+    if (m->last_scan_utime < 0)
+        return "last scan time negative";
+    if (m->last_request_seq < 0)
+        return "last request number negative";
     return NULL;
 }
 

@@ -207,6 +207,40 @@ static void test_bounded_stream_is_deterministic(void **state)
     free(b);
 }
 
+/* A map file whose last scan is a day ahead of the input that follows a restart (a
+ * replay started again, a clock reset): MAP still goes out at the period's pace, not
+ * once and then never until the input's clock passes the file's. */
+static void test_restart_behind_file_time(void **state)
+{
+    (void)state;
+    capture_t *a = calloc(1, sizeof *a), *b = calloc(1, sizeof *b);
+    hl_cycle_params_t p = test_params();
+    p.map_period_ms = 1000;
+    p.map_input_ratio = 0;
+    hl_cycle_t *first = capture_cycle(a, &p);
+    feed_tour(first, 5);
+    hl_mapfile_t m;
+    hl_cycle_snapshot(first, &m);
+    m.last_scan_utime += 86400LL * 1000000;
+    hl_cycle_t *second = capture_cycle(b, &p);
+    assert_int_equal(hl_cycle_restore(second, &m), HL_OK);
+    hl_cycle_flush_map(second);     /* the loaded map out at once, at the file's time */
+    assert_int_equal(capture_count(b, HL_CH_MAP), 1);
+    feed_tour(second, 20);      /* the tour again, from its start: a day behind the file */
+    size_t maps = capture_count(b, HL_CH_MAP);
+    assert_true(maps >= 10);
+    /* the last MAP is the map as it stands, and carries the input's time */
+    static hl_vector_t storage[HL_MAP_MAX_CAPACITY];
+    hl_bus_map_t last = decode_map(capture_nth(b, HL_CH_MAP, maps - 1), storage);
+    assert_true(last.utime < m.last_scan_utime - 3600LL * 1000000);
+    hl_cycle_destroy(first);
+    hl_cycle_destroy(second);
+    capture_clear(a);
+    capture_clear(b);
+    free(a);
+    free(b);
+}
+
 static void test_ratio_out_of_range_refused(void **state)
 {
     (void)state;
@@ -232,6 +266,7 @@ int main(void)
         cmocka_unit_test(test_refused_input_buys_nothing),
         cmocka_unit_test(test_flush_sends_the_final_map),
         cmocka_unit_test(test_bounded_stream_is_deterministic),
+        cmocka_unit_test(test_restart_behind_file_time),
         cmocka_unit_test(test_ratio_out_of_range_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -140,7 +140,7 @@ static inline hl_mapfile_t sample(hl_vector_t *v, uint32_t count, uint32_t capac
                    .map_version = 0x89abcdefu,
                    .cull_rng = { 0x0123456789abcdefULL, 0xfedcba9876543211ULL } },
         .capacity = capacity, .count = count, .vectors = v,
-        .last_request_seq = INT64_MIN + 5, .last_scan_utime = 1700000000123456LL,
+        .last_request_seq = INT64_MAX - 5, .last_scan_utime = 1700000000123456LL,
         .scans = 0x8000000000000001ULL,
     };
     return m;

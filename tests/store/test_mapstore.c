@@ -28,7 +28,7 @@ static void test_layout_and_round_trip(void **state)
     assert_int_equal(le(buf + 49, 4), 0xfedcba98u);
     assert_true(le(buf + 53, 8) == 0x0123456789abcdefULL);
     assert_true(le(buf + 61, 8) == 0xfedcba9876543211ULL);
-    assert_true((int64_t)le(buf + 69, 8) == INT64_MIN + 5);
+    assert_true((int64_t)le(buf + 69, 8) == INT64_MAX - 5);
     assert_true((int64_t)le(buf + 77, 8) == 1700000000123456LL);
     assert_true(le(buf + 85, 8) == 0x8000000000000001ULL);
     for (int i = 0; i < 3; i++) {

@@ -90,6 +90,8 @@ static void test_ranges_checked(void **state)
         { 16, 4, 1, HL_ERR_RANGE },                             /* count 2 > capacity 1 */
         { 16, 4, HL_MAP_MAX_CAPACITY + 1, HL_ERR_RANGE },       /* capacity */
         { 61, 8, 0xfedcba9876543210ULL, HL_ERR_RANGE },         /* an even increment */
+        { 69, 8, 0x8000000000000000ULL, HL_ERR_RANGE },         /* last request seq < 0 */
+        { 77, 8, 0xffffffffffffffffULL, HL_ERR_RANGE },         /* last scan time -1 */
         { HDR, 4, (uint32_t)(HL_COORD_MAX_MM + 1), HL_ERR_RANGE },  /* vector 0 x */
         { HDR + 12 + 4, 4, (uint32_t)INT32_MIN, HL_ERR_RANGE },     /* vector 1 y */
         { HDR + 12 + 10, 2, HL_RANGE_MAX_MM + 1, HL_ERR_RANGE },    /* vector 1 range */
