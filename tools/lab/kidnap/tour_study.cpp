@@ -326,7 +326,7 @@ bool write_map(const hl_slam_params_t &p, const hlexp::Soundings &tour, const Tr
     m.count = hl_map_count(map.get());
     std::vector<hl_vector_t> v(hl_map_vectors(map.get()), hl_map_vectors(map.get()) + m.count);
     m.vectors = v.data();
-    m.last_request_seq = -1;
+    m.last_request_seq = 0;    // no request yet (request numbers start at 1)
     m.last_scan_utime = tour.back()->msg.utime;
     m.scans = tour.size();
     char why[HL_MAPSTORE_WHY_LEN];
