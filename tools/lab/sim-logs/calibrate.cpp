@@ -10,7 +10,7 @@
 #include <iostream>
 #include <string>
 
-#include "../../sim/calib_fit.hpp"
+#include "calib_fit.hpp"
 #include "houghloc/calib.h"
 
 using namespace hlsim;

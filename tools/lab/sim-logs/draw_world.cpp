@@ -11,9 +11,9 @@
 
 #include "houghloc/calib.h"
 #include "houghloc/fixed.h"
-#include "../../sim/robot.hpp"
-#include "../../sim/tour.hpp"
-#include "../../sim/world.hpp"
+#include "robot.hpp"
+#include "tour.hpp"
+#include "world.hpp"
 
 using namespace hlsim;
 

@@ -18,12 +18,12 @@
 
 #include "houghloc/fixed.h"
 
-#include "../../sim/laser.hpp"
-#include "../../sim/layout.hpp"
-#include "../../sim/logwriter.hpp"
-#include "../../sim/robot.hpp"
-#include "../../sim/tour.hpp"
-#include "../../sim/world.hpp"
+#include "laser.hpp"
+#include "layout.hpp"
+#include "logwriter.hpp"
+#include "robot.hpp"
+#include "tour.hpp"
+#include "world.hpp"
 
 using namespace hlsim;
 

@@ -14,6 +14,9 @@ logs: $(BUILD)/bin/hl-sim-logs
 	@mkdir -p logs
 	$(Q)$(BUILD)/bin/hl-sim-logs --seed 1 --continuous --out-dir logs
 
+# The simulator's headers by its include path, as tools/sim/sim.mk compiles them.
+$(call obj,$(wildcard tools/lab/sim-logs/*.cpp)): CPPFLAGS += -Itools/sim
+
 $(BUILD)/bin/hl-sim-logs: $(call obj,tools/lab/sim-logs/make_logs.cpp) $(SIM_LIB) $(ROBOT_LIB) $(BUS_LIB) \
                           $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
