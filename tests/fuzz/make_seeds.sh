@@ -13,7 +13,9 @@ G=$B/tests/fuzz/gen_seeds
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT INT TERM
 
-# the targets of tests/fuzz/fuzz.mk
+# the targets of tests/fuzz/fuzz.mk whose seeds are made here; those of keyfile,
+# console_body and cycle (operation sequences, see fuzz_cycle.c) are written by hand
+# and kept
 for t in arcos rlink bus_scan bus_odometry bus_pose bus_map bus_status bus_destination \
          bus_command bus_reply logcheck config mapstore carmen carmen_reader world; do
     rm -rf "${C:?}/$t"

@@ -7,7 +7,7 @@
 # script, in the background.
 .PHONY: trials
 TRIALS_PROGS := $(addprefix $(BUILD)/bin/,houghlocd houghloc-sim houghloc-goto houghloc-ctl \
-                  hl-eval houghloc-import-carmen hl-flood hl-forge)
+                  hl-eval houghloc-import-carmen hl-flood hl-forge hl-poison)
 trials: deps
 	$(Q)$(MAKE) --no-print-directory $(TRIALS_PROGS) $(FUZZ_REPLAYS)
 	$(Q)MAKE="$(MAKE)" BUILD=$(BUILD) FUZZ_SECONDS=$(or $(FUZZ_SECONDS),30) sh tools/lab/trials/trials.sh

@@ -1,8 +1,8 @@
 #!/bin/sh
-# trials.sh - `make trials`: every reliability trial in one run, under 15
-# minutes on a 2-core machine, progress on stderr, and the last stdout line
+# trials.sh - `make trials`: every reliability trial in one run, progress on stderr, and
+# the last stdout line
 #
-#   trials kill9=<loadable>/<runs> save_period=<n> max_lost_scans=<k> link=<survived>/<runs> flood_identical=<yes|no> flood_p99_ratio=<r> forged_rejected=<k>/<n> valid_accepted=<k>/<n> fuzz_crashes=<c> restart_found=<f>/<restarts> restart_error_mm=<median>
+#   trials kill9=<loadable>/<runs> save_period=<n> max_lost_scans=<k> link=<survived>/<runs> flood_identical=<yes|no> flood_p99_ratio=<r> forged_rejected=<k>/<n> valid_accepted=<k>/<n> fuzz_crashes=<c> restart_found=<f>/<restarts> restart_error_mm=<median> poisoned_scans_lost=<n> replay_after_crash=<accepted>/<tried> console_peak_rss_mib=<m> console_operator_under_slowloris=<ok|fail> forged_reply_accepted=<n> counter_edge=<ok|fail> save_flood_pose_p99_ms=<x>
 #
 # The trials (each a script of its own, whose last stdout line is taken):
 #   fuzz        `make fuzz FUZZ_SECONDS=N` (tests/fuzz/fuzz.mk), then every regression
@@ -12,10 +12,16 @@
 #   link        tools/lab/trials/link.sh     link faults from the simulated robot
 #   commands    tools/lab/trials/commands.sh forged, replayed, stale, unsigned requests
 #   flood       tools/lab/trials/flood.sh    malformed LCM messages during a replay
+#   poison      tools/lab/trials/poison.sh   sensor streams that try to stop localization
+#   console     tools/lab/trials/console.sh  stalled event streams and slowloris
+#               connections against houghloc-console
+#   counters    tools/lab/trials/counters.sh map versions past 2^31 and 2^32
+#   save_flood  tools/lab/trials/save_flood.sh  SAVE flooded during a replay
 #   sanitizers  tools/lab/trials/sanitizers.sh  ASan+UBSan integration tests, valgrind
 # Fuzzing keeps one core busy for FUZZ_SECONDS x targets, so it runs in the background
-# while the trials that mostly wait (sanitizers' tests, power, link, commands) run; flood
-# measures latency, so it runs alone once fuzzing is over. A trial whose script is
+# while the trials that mostly wait or count (sanitizers' tests, power, link, commands,
+# poison, console, counters) run; flood and save_flood measure latency, so they run alone
+# once fuzzing is over. A trial whose script is
 # missing is said on stderr and given "-" / "no". Exit 1 if any trial failed (named on
 # stderr).
 #
@@ -78,6 +84,13 @@ run_trial link
 link=$(field link)
 run_trial commands
 forged=$(field forged_rejected) valid=$(field valid_accepted)
+replay_after_crash=$(field replay_after_crash) forged_reply=$(field forged_reply_accepted)
+run_trial poison
+poisoned=$(field poisoned_scans_lost)
+run_trial console
+console_rss=$(field console_peak_rss_mib) console_loris=$(field console_operator_under_slowloris)
+run_trial counters
+counter_edge=$(field counter_edge)
 
 # ---- fuzzing's figures, then the regression replays --------------------------------------
 fuzz_crashes=0
@@ -114,8 +127,10 @@ fi
 # ---- the latency trial, on a quiet machine -----------------------------------------------
 run_trial flood
 flood_identical=$(field flood_identical) flood_ratio=$(field flood_p99_ratio)
+run_trial save_flood
+save_flood=$(field save_flood_pose_p99_ms)
 
 say "all done in $(elapsed)"
 [ -z "$failed" ] || say "FAILED:$failed"
-echo "trials kill9=${kill9:--} save_period=${save_period:--} max_lost_scans=${max_lost:--} link=${link:--} flood_identical=${flood_identical:-no} flood_p99_ratio=${flood_ratio:--} forged_rejected=${forged:--} valid_accepted=${valid:--} fuzz_crashes=$fuzz_crashes restart_found=${restart_found:--} restart_error_mm=${restart_error:--}"
+echo "trials kill9=${kill9:--} save_period=${save_period:--} max_lost_scans=${max_lost:--} link=${link:--} flood_identical=${flood_identical:-no} flood_p99_ratio=${flood_ratio:--} forged_rejected=${forged:--} valid_accepted=${valid:--} fuzz_crashes=$fuzz_crashes restart_found=${restart_found:--} restart_error_mm=${restart_error:--} poisoned_scans_lost=${poisoned:--} replay_after_crash=${replay_after_crash:--} console_peak_rss_mib=${console_rss:--} console_operator_under_slowloris=${console_loris:-fail} forged_reply_accepted=${forged_reply:--} counter_edge=${counter_edge:-fail} save_flood_pose_p99_ms=${save_flood:--}"
 [ -z "$failed" ]
