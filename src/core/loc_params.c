@@ -48,7 +48,7 @@ const char *hl_loc_params_error(const hl_loc_params_t *p)
         return "prior_sigma_mm must be positive";
     if (p->prior_sigma_theta == 0)
         return "prior_sigma_theta must be positive";
-    if (p->max_cells < 1 || p->max_cells > (1u << 26))
+    if (p->max_cells < 1 || p->max_cells > HL_LOC_MAX_CELLS)
         return "max_cells must be in 1..2^26";
     if (p->group_mm != 0 && (p->group_mm < 8 || p->group_mm > 1000))
         return "group_mm must be 0 or in 8..1000";

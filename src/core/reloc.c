@@ -92,7 +92,7 @@ const char *hl_reloc_params_error(const hl_reloc_params_t *p)
         return "reloc coarse_stride must be in 0..64";
     if (p->peaks_per_heading < 1 || p->peaks_per_heading > HL_RELOC_MAX_PEAKS)
         return "reloc peaks_per_heading must be in 1..32";
-    if (p->coarse_max_cells < 1 || p->coarse_max_cells > (1u << 26))
+    if (p->coarse_max_cells < 1 || p->coarse_max_cells > HL_LOC_MAX_CELLS)
         return "reloc coarse_max_cells must be in 1..2^26";
     if (p->hypotheses < 1 || p->hypotheses > HL_RELOC_MAX_HYPOTHESES)
         return "reloc hypotheses must be in 1..64";

@@ -78,6 +78,13 @@ static bool check_localize(const hl_config_t *c, char *why)
         return WHY("config: %s needs %u raster cells of %s, more than %s",
                    kv(c, "slam.window_mm", a), cells, kv(c, "localize.cell_mm", b),
                    kv(c, "localize.max_cells", d)), false;
+    /* the global search's last stage sizes its own raster for its window, every heading */
+    uint32_t fine = hl_loc_cells_for_window(l, p->reloc.fine_window_mm, true);
+    if (fine > HL_LOC_MAX_CELLS)
+        return WHY("config: %s needs %u raster cells of %s over 2 x %s + 1 headings, more "
+                   "than the %u a search may have", kv(c, "reloc.fine_window_mm", a), fine,
+                   kv(c, "localize.cell_mm", b), kv(c, "localize.theta_half_steps", d),
+                   HL_LOC_MAX_CELLS), false;
     return true;
 }
 

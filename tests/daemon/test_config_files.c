@@ -237,6 +237,13 @@ static const rule_case_t rules[] = {
       { "localize.max_cells=7056", "slam.search_theta=false" },
       "config: slam.window_mm (1000) needs 7056 raster cells of localize.cell_mm (24), more "
       "than localize.max_cells (1000)" },
+    { { "reloc.fine_window_mm=5000", "localize.cell_mm=6", "localize.theta_half_steps=80",
+        "slam.window_mm=0" },
+      { "reloc.fine_window_mm=1900", "localize.cell_mm=6", "localize.theta_half_steps=80",
+        "slam.window_mm=0" },
+      "config: reloc.fine_window_mm (5000) needs 447401129 raster cells of localize.cell_mm "
+      "(6) over 2 x localize.theta_half_steps (80) + 1 headings, more than the 67108864 a "
+      "search may have" },
     { { "echo.half_beam_deg=45", "echo.step_deg=0.34" },
       { "echo.half_beam_deg=45", "echo.step_deg=0.36" },
       "config: echo.half_beam_deg (45) and echo.step_deg (0.34) give 265 candidate bearings "

@@ -28,6 +28,9 @@
 extern "C" {
 #endif
 
+/* The largest raster a localizer allocates for (max_cells): 2^26 cells, 640 MiB. */
+#define HL_LOC_MAX_CELLS (1u << 26)
+
 typedef struct hl_loc_params {
     hl_mm_t cell_mm;            /* xy raster cell, 1..1000; default 24 (paper: 47, 24) */
     hl_bam_t theta_step;        /* heading raster step; default 1.1 deg (200 BAM) */
@@ -47,8 +50,8 @@ typedef struct hl_loc_params {
                                    a Gaussian of the distance from the prediction, when a
                                    query asks for it; default 300 */
     hl_bam_t prior_sigma_theta; /* default 15 deg */
-    uint32_t max_cells;         /* raster cells (nx * ny * nt) to allocate for; default
-                                   2^20 (10 MiB). A global search over a 10 m x 10 m map at
+    uint32_t max_cells;         /* raster cells (nx * ny * nt) to allocate for,
+                                   1..HL_LOC_MAX_CELLS; default 2^20 (10 MiB). A global search over a 10 m x 10 m map at
                                    24 mm needs 174k per heading; a +-1 m window with 17
                                    headings, 120k. Each raster side must also stay below
                                    2^21 mm. */

@@ -89,7 +89,9 @@ typedef struct hl_reloc_params {
                                    119k; a 50 x 50 m building wants coarse_cell_mm 200
                                    and 690k */
     uint16_t hypotheses;        /* refined in stage 3, 1..64; default 8 */
-    hl_mm_t fine_window_mm;     /* half-width of stage 3's window; default 300 */
+    hl_mm_t fine_window_mm;     /* half-width of stage 3's window; default 300; its
+                                   raster (hl_loc_cells_for_window with the fine
+                                   parameters, every heading) must fit HL_LOC_MAX_CELLS */
     hl_mm_t distinct_mm;        /* a runner-up is this far from the answer...; default
                                    1000 */
     hl_bam_t distinct_theta;    /* ... or this far in heading; default 20 deg */
