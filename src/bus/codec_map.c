@@ -1,7 +1,7 @@
 /*
  * codec_map.c - MAP (houghloc.map_t).
  *
- * On the wire, after the 8-byte hash: 8 utime | 4 version | 4 capacity | 4 nvectors |
+ * On the wire, after the 8-byte hash: 8 utime | 8 version | 4 capacity | 4 nvectors |
  * 4n x | 4n y | 2n normal | 2n range. The decoder writes the vectors into the caller's
  * storage (hl_bus_map_t.vectors, max_vectors of them) and checks nvectors against it
  * before it reads any, so a hostile count cannot overrun it. The fingerprint comes from
@@ -11,7 +11,7 @@
 
 #include "houghloc_map_t.h"
 
-#define MAP_FIXED_BYTES (8 + 8 + 4 + 4 + 4)
+#define MAP_FIXED_BYTES (8 + 8 + 8 + 4 + 4)
 #define MAP_BYTES_PER_VECTOR (4 + 4 + 2 + 2)
 
 size_t hl_bus_map_bytes(uint32_t count)
@@ -20,14 +20,15 @@ size_t hl_bus_map_bytes(uint32_t count)
 }
 
 /* The header fields, for both directions. */
-static hl_status_t check_header(int64_t utime, int32_t version, int64_t capacity,
+static hl_status_t check_header(int64_t utime, int64_t version, int64_t capacity,
                                 int64_t count, char *why)
 {
     if (utime < 0)
         return hl_wire_fail(why, HL_ERR_RANGE, "map", "utime %lld is negative",
                             (long long)utime);
     if (version < 0)
-        return hl_wire_fail(why, HL_ERR_RANGE, "map", "version %ld is negative", (long)version);
+        return hl_wire_fail(why, HL_ERR_RANGE, "map", "version %lld is negative",
+                            (long long)version);
     if (capacity < 1 || capacity > (int64_t)HL_MAP_MAX_CAPACITY)
         return hl_wire_fail(why, HL_ERR_RANGE, "map", "capacity %lld outside 1..%lu",
                             (long long)capacity, (unsigned long)HL_MAP_MAX_CAPACITY);
@@ -62,7 +63,7 @@ int hl_bus_encode_map(const hl_bus_map_t *in, void *buf, size_t cap)
     hl_wire_out_t w = hl_wire_out(buf, cap);
     hl_wire_put_i64(&w, __houghloc_map_t_get_hash());
     hl_wire_put_i64(&w, in->utime);
-    hl_wire_put_i32(&w, in->version);
+    hl_wire_put_i64(&w, in->version);
     hl_wire_put_i32(&w, in->capacity);
     hl_wire_put_i32(&w, (int32_t)n);
     const hl_vector_t *v = in->vectors;
@@ -85,7 +86,7 @@ hl_status_t hl_bus_decode_map(const void *data, size_t len, hl_bus_map_t *out, c
     if (st != HL_OK)
         return st;
     int64_t utime = hl_wire_get_i64(&r);
-    int32_t version = hl_wire_get_i32(&r);
+    int64_t version = hl_wire_get_i64(&r);
     int32_t capacity = hl_wire_get_i32(&r);
     int32_t n = hl_wire_get_i32(&r);
     if ((st = check_header(utime, version, capacity, n, why)) != HL_OK)

@@ -379,7 +379,7 @@ static void redraw(hl_closure_t *c, hl_map_t *map)
         if (stamps[i] - c->first >= c->count)     /* wraps below first */
             c->kept[n++] = v[i];
     /* Cannot fail: n fits the map, and its own vectors are in range. */
-    hl_map_restore(map, c->kept, n, hl_map_version(map) + 1, c->rng_before[0]);
+    hl_map_restore(map, c->kept, n, hl_count_next(hl_map_version(map)), c->rng_before[0]);
     for (uint32_t i = 0; i < c->count; i++) {
         hl_map_set_stamp(map, c->first + i);
         hl_map_add_scan(map, scan_of(c, i), c->placed[i], NULL);
@@ -455,7 +455,7 @@ uint32_t hl_closure_fit_spread(hl_closure_t *c, const hl_map_t *map, hl_map_t *s
     for (uint32_t i = 0; i < count && n < c->map_capacity; i++)
         if (stamps[i] - c->first >= c->count)
             c->kept[n++] = v[i];
-    hl_map_restore(shadow, c->kept, n, hl_map_version(map) + 1, c->rng_before[0]);
+    hl_map_restore(shadow, c->kept, n, hl_count_next(hl_map_version(map)), c->rng_before[0]);
     c->next_drawn = c->first;
     c->redrawing = true;
     return dropped;

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cellhash.h"
+#include "houghloc/count.h"
 #include "houghloc/rng.h"
 #include "mapsq.h"
 
@@ -16,7 +17,7 @@
 struct hl_map {
     uint32_t capacity;
     uint32_t count;
-    uint32_t version;
+    uint64_t version;       /* 0..HL_COUNT_MAX, where it stays (count.h) */
     hl_rng_t rng;
     hl_vector_t *vectors;   /* [capacity] */
     uint32_t *stamps;       /* [capacity] the stamp each vector was added under */
@@ -153,13 +154,13 @@ static void index_rebuild(hl_map_t *map)
 void hl_map_clear(hl_map_t *map)
 {
     map->count = 0;
-    map->version++;
+    map->version = hl_count_next(map->version);
     index_rebuild(map);
 }
 
 void hl_map_swap(hl_map_t *a, hl_map_t *b)
 {
-    uint32_t newer = (a->version > b->version ? a->version : b->version) + 1;
+    uint64_t newer = hl_count_next(a->version > b->version ? a->version : b->version);
     hl_map_t t = *a;
     *a = *b;
     *b = t;
@@ -297,7 +298,7 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
         return HL_ERR_ARG;
     if (!hl_vector_in_range(v))
         return HL_ERR_RANGE;
-    map->version++;
+    map->version = hl_count_next(map->version);
     if (map->per_place) {
         /* A full place: drop one of its vectors and the new one, uniformly at random,
          * as the paper's culling does over the whole map. */
@@ -398,7 +399,7 @@ uint32_t hl_map_capacity(const hl_map_t *map)
     return map->capacity;
 }
 
-uint32_t hl_map_version(const hl_map_t *map)
+uint64_t hl_map_version(const hl_map_t *map)
 {
     return map->version;
 }
@@ -414,12 +415,14 @@ hl_rng_t hl_map_rng(const hl_map_t *map)
 }
 
 hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n,
-                           uint32_t version, hl_rng_t rng)
+                           uint64_t version, hl_rng_t rng)
 {
     if (!map || (!vectors && n > 0))
         return HL_ERR_ARG;
     if (n > map->capacity)
         return HL_ERR_CAPACITY;
+    if (version > (uint64_t)HL_COUNT_MAX)
+        return HL_ERR_RANGE;
     /* Check everything before the first write, so that a refused restore leaves the map
      * as it was. */
     for (uint32_t i = 0; i < n; i++)

@@ -81,10 +81,10 @@ hl_status_t hl_cycle_restore(hl_cycle_t *c, const hl_mapfile_t *m)
     return HL_OK;
 }
 
-void hl_cycle_fault(hl_cycle_t *c, int32_t *counter, const char *kind, const char *what)
+void hl_cycle_fault(hl_cycle_t *c, int64_t *counter, const char *kind, const char *what)
 {
     if (counter)
-        (*counter)++;
+        hl_count_add(counter, 1);
     snprintf(c->last_error, sizeof c->last_error, "%s", what);
     for (int i = 0; i < c->n_fault_kinds; i++)
         if (c->fault_kinds[i] == kind)
@@ -196,7 +196,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
         /* a scan never seen: a full input queue or a lost network packet */
         snprintf(what, sizeof what, "SONAR: %d scan(s) missed before seq %d (all are counted "
                  "in the last log line)", in->seq - c->last_scan_seq - 1, in->seq);
-        c->n.missed_scans += in->seq - c->last_scan_seq - 1;
+        hl_count_add(&c->n.missed_scans, (int64_t)in->seq - c->last_scan_seq - 1);
         hl_cycle_fault(c, NULL, "sonar gap", what);
     }
     place_first_scan(c, in->odometry);
@@ -207,7 +207,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     note_newest(c);
     c->last_sonar_wall_us = now_us;
 
-    uint32_t version = hl_map_version(hl_slam_map(c->slam));
+    uint64_t version = hl_map_version(hl_slam_map(c->slam));
     hl_slam_step_t step;
     hl_status_t st = hl_slam_update(c->slam, &in->scan, in->odometry, &step);
     if (st != HL_OK) {
@@ -221,13 +221,13 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     c->scan_odometry = in->odometry;
     if (!c->have_odometry || in->utime >= c->last_odometry_utime)
         c->odometry = in->odometry;
-    c->n.scans++;
-    c->scans_total++;
-    c->n.accepted += status == HL_SLAM_ACCEPTED;
-    c->n.rejected_wild += status == HL_SLAM_REJECTED_WILD;
-    c->n.odometry_only += status == HL_SLAM_ODOMETRY_ONLY;
-    c->n.relocalized += status == HL_SLAM_RELOCALIZED;
-    c->n.lost += status == HL_SLAM_LOST;
+    hl_count_add(&c->n.scans, 1);
+    c->scans_total = hl_count_next(c->scans_total);
+    hl_count_add(&c->n.accepted, status == HL_SLAM_ACCEPTED);
+    hl_count_add(&c->n.rejected_wild, status == HL_SLAM_REJECTED_WILD);
+    hl_count_add(&c->n.odometry_only, status == HL_SLAM_ODOMETRY_ONLY);
+    hl_count_add(&c->n.relocalized, status == HL_SLAM_RELOCALIZED);
+    hl_count_add(&c->n.lost, status == HL_SLAM_LOST);
     publish_pose(c, in, &step);
     int64_t compute_us = c->io.now_us(c->io.ctx) - t0;
     hl_cycle_record_compute(c, compute_us);
@@ -333,7 +333,7 @@ void hl_cycle_saved(hl_cycle_t *c, bool ok, const char *why)
 {
     c->since_save = 0;     /* after a failure too: retry after save_every more */
     if (ok)
-        c->n.saves++;
+        hl_count_add(&c->n.saves, 1);
     else
         hl_cycle_fault(c, NULL, "save", why);
     if (c->save_request_seq)

@@ -72,11 +72,11 @@ typedef struct hl_cycle_params {
     int32_t compute_window;     /* scans in the compute-time statistics, 1..10000 */
 } hl_cycle_params_t;
 
-/** Counters, as STATUS reports them. */
+/** Counters, as STATUS reports them: 64-bit, stopping at HL_COUNT_MAX (count.h). */
 typedef struct hl_cycle_counts {
-    int32_t scans, accepted, rejected_wild, odometry_only, relocalized, lost;
-    int32_t bad_messages, rejected_requests, saves;
-    int32_t missed_scans;       /* SONAR seqs skipped: never seen (not in STATUS; logged) */
+    int64_t scans, accepted, rejected_wild, odometry_only, relocalized, lost;
+    int64_t bad_messages, rejected_requests, saves;
+    int64_t missed_scans;       /* SONAR seqs skipped: never seen (not in STATUS; logged) */
 } hl_cycle_counts_t;
 
 typedef struct hl_cycle hl_cycle_t;
@@ -137,7 +137,7 @@ const hl_fence_t *hl_cycle_fence(const hl_cycle_t *c);
 /** The destination STATUS reports (-1: none). */
 void hl_cycle_set_destination(hl_cycle_t *c, int64_t seq);
 /** Robot packets dropped so far, as STATUS reports them. */
-void hl_cycle_set_bad_packets(hl_cycle_t *c, int32_t n);
+void hl_cycle_set_bad_packets(hl_cycle_t *c, int64_t n);
 /** The last rejection or fault, one line ("" when none). */
 const char *hl_cycle_last_error(const hl_cycle_t *c);
 /** Records a fault from outside the cycle (STATUS's last_error). */

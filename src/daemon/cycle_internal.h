@@ -26,11 +26,11 @@ struct hl_cycle {
     hl_pose_t first_odometry;       /* the first ODOMETRY: where the start pose stands */
     int64_t last_request_seq;       /* highest DESTINATION/COMMAND seq accepted */
     int64_t destination_seq;        /* current destination, -1 if none */
-    int32_t bad_packets;            /* robot packets dropped, from the robot link */
+    int64_t bad_packets;            /* robot packets dropped, from the robot link */
     uint64_t scans_total;           /* over the map's life, saved with it */
 
     /* MAP publishing (cycle_map.c) */
-    uint32_t published_version;
+    uint64_t published_version;
     bool map_published;
     int64_t map_published_utime, map_changed_utime;
     int64_t input_since_map;        /* SONAR and ODOMETRY bytes taken since the last MAP */
@@ -55,9 +55,10 @@ struct hl_cycle {
     uint8_t buf[HL_BUS_STATUS_MAX_BYTES + HL_BUS_REPLY_MAX_BYTES + HL_BUS_POSE_BYTES];
 };
 
-/** Counts a fault in @p counter (may be NULL), keeps @p what as the last error and logs it
- *  if no fault of the same @p kind (a constant string) was logged before. */
-void hl_cycle_fault(hl_cycle_t *c, int32_t *counter, const char *kind, const char *what);
+/** Counts a fault in @p counter (may be NULL; stops at HL_COUNT_MAX), keeps @p what as
+ *  the last error and logs it if no fault of the same @p kind (a constant string) was
+ *  logged before. */
+void hl_cycle_fault(hl_cycle_t *c, int64_t *counter, const char *kind, const char *what);
 
 /** @return true when @p st is HL_OK; else counts a bad message on @p channel with the
  *  decoder's reason @p why, as a fault of @p kind. */

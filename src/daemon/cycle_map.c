@@ -26,7 +26,7 @@ static void publish_map(hl_cycle_t *c)
 {
     hl_map_t *map = hl_slam_map(c->slam);
     hl_bus_map_t m = {
-        .utime = c->map_changed_utime, .version = (int32_t)hl_map_version(map),
+        .utime = c->map_changed_utime, .version = (int64_t)hl_map_version(map),
         .capacity = (int32_t)hl_map_capacity(map), .count = hl_map_count(map),
         .vectors = (hl_vector_t *)hl_map_vectors(map),
     };

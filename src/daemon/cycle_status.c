@@ -54,7 +54,7 @@ void hl_cycle_publish_status(hl_cycle_t *c)
         .odometry_only = c->n.odometry_only, .relocalized = c->n.relocalized,
         .lost = c->n.lost, .bad_messages = c->n.bad_messages,
         .rejected_requests = c->n.rejected_requests,
-        .map_vectors = (int32_t)hl_map_count(map), .map_version = (int32_t)hl_map_version(map),
+        .map_vectors = (int32_t)hl_map_count(map), .map_version = (int64_t)hl_map_version(map),
         .saves = c->n.saves, .pose = hl_cycle_estimate(c),
         .bad_packets = c->bad_packets, .compute_samples = c->compute_n,
     };
@@ -111,7 +111,7 @@ void hl_cycle_set_destination(hl_cycle_t *c, int64_t seq)
     c->destination_seq = seq;
 }
 
-void hl_cycle_set_bad_packets(hl_cycle_t *c, int32_t n)
+void hl_cycle_set_bad_packets(hl_cycle_t *c, int64_t n)
 {
     c->bad_packets = n;
 }

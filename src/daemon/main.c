@@ -1,6 +1,7 @@
 /* main.c - houghlocd: arguments, configuration, the map file, then the loop. */
 #include <errno.h>
 #include <getopt.h>
+#include <inttypes.h>
 #include <libgen.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -263,9 +264,10 @@ static int check_map(const hl_config_t *cfg)
         fprintf(stderr, "houghlocd: %s\n", why);
         rc = 1;
     } else {
-        printf("%s: format %u, %u of %u vectors, map version %u, %llu scans, last scan "
+        printf("%s: format %u, %u of %u vectors, map version %llu, %llu scans, last scan "
                "utime %lld, last request seq %lld, pose (%.3f, %.3f) m %.2f deg\n",
-               path, HL_MAPSTORE_VERSION, m.count, m.capacity, m.state.map_version,
+               path, m.format, m.count, m.capacity,
+               (unsigned long long)m.state.map_version,
                (unsigned long long)m.scans, (long long)m.last_scan_utime,
                (long long)m.last_request_seq, m.state.pose.x_mm / 1000.0,
                m.state.pose.y_mm / 1000.0, hl_bam_to_sdeg(m.state.pose.theta));
@@ -373,8 +375,10 @@ static int run_locked(const hl_config_t *cfg, const options_t *o, const char *pa
         const hl_cycle_counts_t *n = hl_cycle_counts(cycle);
         struct rusage ru;
         getrusage(RUSAGE_SELF, &ru);
-        hl_log(HL_LOG_INFO, "stopped: %d scans (%d accepted, %d rejected, %d odometry only, "
-               "%d relocalized, %d lost), %d missed, %d bad messages, %d requests refused, %d saves; peak memory %ld KiB",
+        hl_log(HL_LOG_INFO, "stopped: %" PRId64 " scans (%" PRId64 " accepted, %" PRId64
+               " rejected, %" PRId64 " odometry only, %" PRId64 " relocalized, %" PRId64
+               " lost), %" PRId64 " missed, %" PRId64 " bad messages, %" PRId64
+               " requests refused, %" PRId64 " saves; peak memory %ld KiB",
                n->scans, n->accepted, n->rejected_wild, n->odometry_only, n->relocalized,
                n->lost, n->missed_scans,
                n->bad_messages, n->rejected_requests, n->saves, ru.ru_maxrss);

@@ -56,7 +56,7 @@ void hl_maplock_saved(const hl_mapfile_t *m)
  * The test compares the headers a save would write, the old state's and the new one's.
  * The header holds every field of the file but the vectors, and the vectors need no copy
  * or comparison: the map version, in the header, increments on every change to them
- * (hl_map_version), so an equal header means an equal file. It costs two 93-byte
+ * (hl_map_version), so an equal header means an equal file. It costs two 97-byte
  * encodings and a memcmp, however large the map.
  *
  * Every header field counts, the ones a scan or a request changes without changing the

@@ -82,7 +82,7 @@ static void check_connection(hl_robot_t *r, int64_t now_ms)
 {
     uint64_t bad = hl_rlink_bad_packets(&r->rlink);
     if (bad != r->bad_reported) {
-        hl_cycle_set_bad_packets(r->cycle, (int32_t)(bad > INT32_MAX ? INT32_MAX : bad));
+        hl_cycle_set_bad_packets(r->cycle, bad > HL_COUNT_MAX ? HL_COUNT_MAX : (int64_t)bad);
         r->bad_reported = bad;
     }
     if (r->link && !hl_link_connecting(r->link) && hl_rlink_state(&r->rlink) == HL_RLINK_DOWN) {

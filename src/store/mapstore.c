@@ -25,7 +25,9 @@
 static const uint8_t MAGIC[8] = { 'H', 'L', 'M', 'A', 'P', '\r', '\n', 0x1a };
 
 enum {
-    HDR_LEN = 93,       /* header bytes, version 1 (offsets in docs/manual/mapfile.md) */
+    HDR_LEN = 97,       /* header bytes, version 2 (offsets in docs/manual/mapfile.md) */
+    HDR_LEN_V1 = 93,    /* ... version 1: the map version in 4 bytes, not 8 */
+    HDR_PREFIX = 16,    /* magic, format version, header bytes: where the versions agree */
     VEC_LEN = 12,       /* x i32, y i32, normal u16, range u16 */
     CRC_LEN = 4,
     IO_LEN = 4092,      /* the stream buffer: 341 whole vectors */
@@ -33,7 +35,23 @@ enum {
     PID_TRIES = 20,     /* a lock's holder is read for up to 20 x 5 ms */
 };
 
-_Static_assert(HDR_LEN == HL_MAPSTORE_HEADER_BYTES, "mapstore.h's header size");
+_Static_assert(HDR_LEN == HL_MAPSTORE_HEADER_BYTES && HDR_LEN_V1 == HL_MAPSTORE_V1_HEADER_BYTES,
+               "mapstore.h's header sizes");
+
+/* The header's fields after the first four, at their version 2 offsets. Version 1 held the
+ * map version in 4 bytes: every field after it sits 4 bytes earlier there (v1_shift). */
+enum {
+    OFF_MAP_VERSION = 24,
+    OFF_STARTED = 32,
+    OFF_POSE = 33,
+    OFF_ODOM = 43,
+    OFF_PEAK_AVG = 53,
+    OFF_RNG_STATE = 57,
+    OFF_RNG_INC = 65,
+    OFF_REQUEST_SEQ = 73,
+    OFF_SCAN_UTIME = 81,
+    OFF_SCANS = 89,
+};
 
 /* ---- messages ------------------------------------------------------------------------ */
 
@@ -98,7 +116,7 @@ static hl_pose_t get_pose(const uint8_t *b)
                         (hl_bam_t)get(b + 8, 2) };
 }
 
-/* The header; the offsets are the table in docs/manual/mapfile.md. */
+/* The header, always of version 2; the offsets are the table in docs/manual/mapfile.md. */
 static void put_header(uint8_t *h, const hl_mapfile_t *m)
 {
     memcpy(h, MAGIC, sizeof MAGIC);
@@ -106,16 +124,16 @@ static void put_header(uint8_t *h, const hl_mapfile_t *m)
     put(h + 12, HDR_LEN, 4);
     put(h + 16, m->capacity, 4);
     put(h + 20, m->count, 4);
-    put(h + 24, m->state.map_version, 4);
-    h[28] = m->state.started ? 1 : 0;
-    put_pose(h + 29, m->state.pose);
-    put_pose(h + 39, m->state.odom);
-    put(h + 49, m->state.peak_avg, 4);
-    put(h + 53, m->state.cull_rng.state, 8);
-    put(h + 61, m->state.cull_rng.inc, 8);
-    put(h + 69, (uint64_t)m->last_request_seq, 8);
-    put(h + 77, (uint64_t)m->last_scan_utime, 8);
-    put(h + 85, m->scans, 8);
+    put(h + OFF_MAP_VERSION, m->state.map_version, 8);
+    h[OFF_STARTED] = m->state.started ? 1 : 0;
+    put_pose(h + OFF_POSE, m->state.pose);
+    put_pose(h + OFF_ODOM, m->state.odom);
+    put(h + OFF_PEAK_AVG, m->state.peak_avg, 4);
+    put(h + OFF_RNG_STATE, m->state.cull_rng.state, 8);
+    put(h + OFF_RNG_INC, m->state.cull_rng.inc, 8);
+    put(h + OFF_REQUEST_SEQ, (uint64_t)m->last_request_seq, 8);
+    put(h + OFF_SCAN_UTIME, (uint64_t)m->last_scan_utime, 8);
+    put(h + OFF_SCANS, m->scans, 8);
 }
 
 void hl_mapstore_header(const hl_mapfile_t *m, uint8_t out[HL_MAPSTORE_HEADER_BYTES])
@@ -123,21 +141,37 @@ void hl_mapstore_header(const hl_mapfile_t *m, uint8_t out[HL_MAPSTORE_HEADER_BY
     put_header(out, m);
 }
 
-/* Reads every field but the magic, version and header length (checked by the caller). */
-static void get_header(const uint8_t *h, hl_mapfile_t *m)
+/* How much earlier than in version 2 a field after the map version sits in a header of
+ * format @p format. */
+static int v1_shift(uint32_t format)
 {
+    return format == 1 ? 4 : 0;
+}
+
+/* The started byte of a header of format @p format. */
+static uint8_t get_started(const uint8_t *h, uint32_t format)
+{
+    return h[OFF_STARTED - v1_shift(format)];
+}
+
+/* Reads every field but the magic, version and header length (checked by the caller) of a
+ * header of format @p format (1 or 2); version 1's map version is widened. */
+static void get_header(const uint8_t *h, uint32_t format, hl_mapfile_t *m)
+{
+    int d = v1_shift(format);
+    m->format = format;
     m->capacity = (uint32_t)get(h + 16, 4);
     m->count = (uint32_t)get(h + 20, 4);
-    m->state.map_version = (uint32_t)get(h + 24, 4);
-    m->state.started = h[28] != 0;
-    m->state.pose = get_pose(h + 29);
-    m->state.odom = get_pose(h + 39);
-    m->state.peak_avg = (uint32_t)get(h + 49, 4);
-    m->state.cull_rng.state = get(h + 53, 8);
-    m->state.cull_rng.inc = get(h + 61, 8);
-    m->last_request_seq = (int64_t)get(h + 69, 8);
-    m->last_scan_utime = (int64_t)get(h + 77, 8);
-    m->scans = get(h + 85, 8);
+    m->state.map_version = get(h + OFF_MAP_VERSION, 8 - d);
+    m->state.started = get_started(h, format) != 0;
+    m->state.pose = get_pose(h + OFF_POSE - d);
+    m->state.odom = get_pose(h + OFF_ODOM - d);
+    m->state.peak_avg = (uint32_t)get(h + OFF_PEAK_AVG - d, 4);
+    m->state.cull_rng.state = get(h + OFF_RNG_STATE - d, 8);
+    m->state.cull_rng.inc = get(h + OFF_RNG_INC - d, 8);
+    m->last_request_seq = (int64_t)get(h + OFF_REQUEST_SEQ - d, 8);
+    m->last_scan_utime = (int64_t)get(h + OFF_SCAN_UTIME - d, 8);
+    m->scans = get(h + OFF_SCANS - d, 8);
 }
 
 /* The ranges a loadable file keeps, shared by save (never write what load refuses) and
@@ -148,6 +182,9 @@ static const char *header_error(const hl_mapfile_t *m)
         return "capacity out of 1..HL_MAP_MAX_CAPACITY";
     if (m->count > m->capacity)
         return "more vectors than the capacity";
+    /* versions stop there (count.h); above it, MAP could not carry them */
+    if (m->state.map_version > (uint64_t)HL_COUNT_MAX)
+        return "map version above 2^63 - 1";
     if (!hl_pose_in_range(m->state.pose))
         return "pose out of range";
     if (!hl_pose_in_range(m->state.odom))
@@ -321,26 +358,34 @@ static hl_status_t load_fd(int fd, const char *path, hl_mapfile_t *out, char *wh
         return fail(HL_ERR_PARSE, why, path, "not a regular file");
     long long size = (long long)sb.st_size;
     uint8_t hdr[HDR_LEN], buf[IO_LEN];
-    ssize_t got = read_full(fd, hdr, HDR_LEN);
+    /* The first bytes say the format, and so the header's length: read no further yet. */
+    ssize_t got = read_full(fd, hdr, HDR_PREFIX);
     if (got < 0)
         return fail(HL_ERR_OS, why, path, "read failed: %s", strerror(errno));
     size_t have = (size_t)got;
     if (memcmp(hdr, MAGIC, have < sizeof MAGIC ? have : sizeof MAGIC) != 0)
         return fail(HL_ERR_PARSE, why, path, "not a houghloc map file (no HLMAP magic)");
-    uint32_t version = have >= 12 ? (uint32_t)get(hdr + 8, 4) : HL_MAPSTORE_VERSION;
-    if (version != HL_MAPSTORE_VERSION)
+    uint32_t format = have >= 12 ? (uint32_t)get(hdr + 8, 4) : HL_MAPSTORE_VERSION;
+    if (format != 1 && format != HL_MAPSTORE_VERSION)
         return fail(HL_ERR_PARSE, why, path,
-                    "map file format version %" PRIu32 "; this program reads version %u",
-                    version, HL_MAPSTORE_VERSION);
-    if (have < HDR_LEN)
+                    "map file format version %" PRIu32 "; this program reads versions 1 "
+                    "and %u", format, HL_MAPSTORE_VERSION);
+    int hdr_len = format == 1 ? HDR_LEN_V1 : HDR_LEN;
+    if (have == HDR_PREFIX) {
+        got = read_full(fd, hdr + HDR_PREFIX, (size_t)hdr_len - HDR_PREFIX);
+        if (got < 0)
+            return fail(HL_ERR_OS, why, path, "read failed: %s", strerror(errno));
+        have += (size_t)got;
+    }
+    if (have < (size_t)hdr_len)
         return fail(HL_ERR_PARSE, why, path,
-                    "truncated: %zu bytes, shorter than the %d-byte header", have, HDR_LEN);
-    if (get(hdr + 12, 4) != HDR_LEN)
-        return fail(HL_ERR_PARSE, why, path, "header length %" PRIu32 ", version %u has %d",
-                    (uint32_t)get(hdr + 12, 4), HL_MAPSTORE_VERSION, HDR_LEN);
+                    "truncated: %zu bytes, shorter than the %d-byte header", have, hdr_len);
+    if (get(hdr + 12, 4) != (uint64_t)hdr_len)
+        return fail(HL_ERR_PARSE, why, path, "header length %" PRIu32 ", version %" PRIu32
+                    " has %d", (uint32_t)get(hdr + 12, 4), format, hdr_len);
     hl_mapfile_t m = { .vectors = out->vectors, .max_vectors = out->max_vectors };
-    get_header(hdr, &m);
-    long long expect = HDR_LEN + (long long)m.count * VEC_LEN + CRC_LEN;
+    get_header(hdr, format, &m);
+    long long expect = hdr_len + (long long)m.count * VEC_LEN + CRC_LEN;
     if (size != expect)
         return fail(HL_ERR_PARSE, why, path,
                     "%s: %lld bytes where a map of %" PRIu32 " vectors has %lld",
@@ -348,7 +393,7 @@ static hl_status_t load_fd(int fd, const char *path, hl_mapfile_t *out, char *wh
     /* The body streams through the checksum into the caller's storage when it fits;
      * the vectors' ranges are checked after the checksum. */
     bool store = m.count <= m.max_vectors;
-    uLong crc = crc32(crc32(0L, Z_NULL, 0), hdr, HDR_LEN);
+    uLong crc = crc32(crc32(0L, Z_NULL, 0), hdr, (uInt)hdr_len);
     for (uint32_t k, n = 0; n < m.count; n += k) {
         k = m.count - n < IO_LEN / VEC_LEN ? m.count - n : IO_LEN / VEC_LEN;
         got = read_full(fd, buf, (size_t)k * VEC_LEN);
@@ -374,7 +419,8 @@ static hl_status_t load_fd(int fd, const char *path, hl_mapfile_t *out, char *wh
                     (uint32_t)get(buf, 4), (uint32_t)crc);
 
     /* Intact: now every field's range. */
-    const char *bad = hdr[28] > 1 ? "the started byte is not 0 or 1" : header_error(&m);
+    const char *bad = get_started(hdr, format) > 1 ? "the started byte is not 0 or 1"
+                                                    : header_error(&m);
     if (bad)
         return fail(HL_ERR_RANGE, why, path, "%s", bad);
     if (!store) {

@@ -205,7 +205,7 @@ static void test_pose_older_layout(void **state)
 static void random_map(hl_rng_t *rng, hl_bus_map_t *m, hl_vector_t *v, uint32_t n)
 {
     m->utime = tk_range(rng, 0, INT64_MAX);
-    m->version = (int32_t)tk_range(rng, 0, INT32_MAX);
+    m->version = tk_range(rng, 0, INT64_MAX);
     m->capacity = (int32_t)tk_range(rng, n ? n : 1, HL_MAP_MAX_CAPACITY);
     m->count = n;
     m->vectors = v;
@@ -236,8 +236,8 @@ static void test_map_matches_generated_code(void **state)
     hl_vector_t *v = calloc(MAP_STORAGE, sizeof *v), *w = calloc(MAP_STORAGE, sizeof *w);
     hl_rng_t rng;
     hl_rng_seed(&rng, 41);
-    assert_int_equal(hl_bus_map_bytes(0), 28);
-    assert_int_equal(hl_bus_map_bytes(1500), 28 + 12 * 1500);
+    assert_int_equal(hl_bus_map_bytes(0), 32);
+    assert_int_equal(hl_bus_map_bytes(1500), 32 + 12 * 1500);
     for (int it = 0; it < 60; it++) {
         uint32_t n = it < 3 ? (uint32_t)it : (uint32_t)tk_range(&rng, 0, MAP_STORAGE);
         hl_bus_map_t m, back = { .vectors = w, .max_vectors = MAP_STORAGE };
@@ -251,7 +251,7 @@ static void test_map_matches_generated_code(void **state)
         assert_int_equal(houghloc_map_t_encode(b, 0, (int)cap, &g), len);
         assert_memory_equal(a, b, (size_t)len);
 
-        g.version = (int32_t)tk_range(&rng, 0, INT32_MAX);
+        g.version = tk_range(&rng, 0, INT64_MAX);
         for (int i = 0; i < g.nvectors; i++)
             g.range_mm[i] = (int16_t)tk_range(&rng, 0, HL_RANGE_MAX_MM);
         assert_int_equal(houghloc_map_t_encode(b, 0, (int)cap, &g), len);
@@ -272,7 +272,7 @@ static void test_map_hostile_bytes(void **state)
 {
     (void)state;
     enum { N = 9 };
-    uint8_t a[28 + 12 * N], b[28 + 12 * N];
+    uint8_t a[32 + 12 * N], b[32 + 12 * N];
     hl_vector_t v[N], w[N];
     hl_rng_t rng;
     hl_rng_seed(&rng, 42);
@@ -284,24 +284,25 @@ static void test_map_hostile_bytes(void **state)
     tk_check_truncations(&c, a, sizeof a);
     tk_check_bad_hash(&c, a, sizeof a);
     tk_check_small_buffers(&c, &m, sizeof a);
-    /* offsets: 8 utime 16 version 20 capacity 24 nvectors 28 x[] 64 y[] 100 normal[]
-     * 118 range[] */
+    /* offsets: 8 utime 16 version 24 capacity 28 nvectors 32 x[] 68 y[] 104 normal[]
+     * 122 range[] */
     struct { size_t off; uint64_t v; size_t n; hl_status_t st; const char *field; } bad[] = {
         { 8, (uint64_t)-1, 8, HL_ERR_RANGE, "utime" },
-        { 16, (uint32_t)-1, 4, HL_ERR_RANGE, "version" },
-        { 20, 0, 4, HL_ERR_RANGE, "capacity" },
-        { 20, (uint32_t)-1, 4, HL_ERR_RANGE, "capacity" },
-        { 20, HL_MAP_MAX_CAPACITY + 1, 4, HL_ERR_RANGE, "capacity" },
-        { 20, 8, 4, HL_ERR_RANGE, "nvectors" },                 /* count above capacity */
-        { 24, (uint32_t)-1, 4, HL_ERR_RANGE, "nvectors" },
-        { 24, 0x7fffffffu, 4, HL_ERR_RANGE, "nvectors" },
-        { 24, N + 1, 4, HL_ERR_RANGE, "nvectors" },              /* above max_vectors */
-        { 24, N - 1, 4, HL_ERR_PARSE, "nvectors" },              /* length mismatch */
-        { 24, 0, 4, HL_ERR_PARSE, "nvectors" },
-        { 28 + 4 * 2, HL_COORD_MAX_MM + 1, 4, HL_ERR_RANGE, "vector 2" },
-        { 64 + 4 * 8, 0x80000000u, 4, HL_ERR_RANGE, "vector 8" },
-        { 118 + 2 * 4, 0x8000, 2, HL_ERR_RANGE, "range_mm[4]" },
-        { 118 + 2 * 0, 0xffff, 2, HL_ERR_RANGE, "range_mm[0]" },
+        { 16, (uint64_t)-1, 8, HL_ERR_RANGE, "version" },
+        { 16, UINT64_C(1) << 63, 8, HL_ERR_RANGE, "version" },
+        { 24, 0, 4, HL_ERR_RANGE, "capacity" },
+        { 24, (uint32_t)-1, 4, HL_ERR_RANGE, "capacity" },
+        { 24, HL_MAP_MAX_CAPACITY + 1, 4, HL_ERR_RANGE, "capacity" },
+        { 24, 8, 4, HL_ERR_RANGE, "nvectors" },                 /* count above capacity */
+        { 28, (uint32_t)-1, 4, HL_ERR_RANGE, "nvectors" },
+        { 28, 0x7fffffffu, 4, HL_ERR_RANGE, "nvectors" },
+        { 28, N + 1, 4, HL_ERR_RANGE, "nvectors" },              /* above max_vectors */
+        { 28, N - 1, 4, HL_ERR_PARSE, "nvectors" },              /* length mismatch */
+        { 28, 0, 4, HL_ERR_PARSE, "nvectors" },
+        { 32 + 4 * 2, HL_COORD_MAX_MM + 1, 4, HL_ERR_RANGE, "vector 2" },
+        { 68 + 4 * 8, 0x80000000u, 4, HL_ERR_RANGE, "vector 8" },
+        { 122 + 2 * 4, 0x8000, 2, HL_ERR_RANGE, "range_mm[4]" },
+        { 122 + 2 * 0, 0xffff, 2, HL_ERR_RANGE, "range_mm[0]" },
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         memcpy(b, a, sizeof a);
@@ -332,6 +333,11 @@ static void test_map_hostile_bytes(void **state)
     v[5].x_mm = -HL_COORD_MAX_MM;
     q.version = -1;
     assert_int_equal(hl_bus_encode_map(&q, b, sizeof b), -1);
+    /* a version past 32 bits, up to 2^63 - 1, goes out and comes back whole */
+    q.version = INT64_MAX;
+    assert_int_equal(hl_bus_encode_map(&q, b, sizeof b), (int)sizeof b);
+    assert_int_equal(hl_bus_decode_map(b, sizeof b, &out, NULL), HL_OK);
+    assert_int_equal(out.version, INT64_MAX);
     q.version = 0;
     assert_int_equal(hl_bus_encode_map(&q, a, sizeof a), (int)sizeof a);
     assert_in_range(tk_fuzz(&c, a, sizeof a, 5000, 43), 1, 4999);
@@ -340,10 +346,10 @@ static void test_map_hostile_bytes(void **state)
 static void test_empty_map(void **state)
 {
     (void)state;
-    uint8_t a[28];
+    uint8_t a[32];
     hl_bus_map_t m = { .utime = 1, .version = 0, .capacity = 1, .count = 0, .vectors = NULL };
     hl_bus_map_t out = { .vectors = NULL, .max_vectors = 0 };
-    assert_int_equal(hl_bus_encode_map(&m, a, sizeof a), 28);
+    assert_int_equal(hl_bus_encode_map(&m, a, sizeof a), 32);
     assert_int_equal(hl_bus_decode_map(a, sizeof a, &out, NULL), HL_OK);
     assert_int_equal(out.count, 0);
     assert_int_equal(out.capacity, 1);

@@ -31,10 +31,17 @@ static int enc_reply(const void *in, void *buf, size_t cap)
     return hl_bus_encode_reply(in, buf, cap);
 }
 
-#define STATUS_TEXT_OFF 95      /* the string's length field in an encoded status */
+#define STATUS_TEXT_OFF 139     /* the string's length field in an encoded status */
 #define REPLY_TEXT_OFF 25
 
-static int32_t counter(hl_rng_t *rng)
+/* A 64-bit counter: any value it may hold, most of them past 32 bits. */
+static int64_t counter(hl_rng_t *rng)
+{
+    return tk_range(rng, 0, INT64_MAX);
+}
+
+/* A 32-bit field that is not a counter (compute times). */
+static int32_t nonneg32(hl_rng_t *rng)
 {
     return (int32_t)tk_range(rng, 0, INT32_MAX);
 }
@@ -54,8 +61,8 @@ static hl_bus_status_t random_status(hl_rng_t *rng)
         .pose = { (int32_t)tk_range(rng, -HL_COORD_MAX_MM, HL_COORD_MAX_MM),
                   (int32_t)tk_range(rng, -HL_COORD_MAX_MM, HL_COORD_MAX_MM),
                   (hl_bam_t)hl_rng_next(rng) },
-        .compute_median_us = counter(rng), .compute_p99_us = counter(rng),
-        .compute_samples = counter(rng),
+        .compute_median_us = nonneg32(rng), .compute_p99_us = nonneg32(rng),
+        .compute_samples = nonneg32(rng),
     };
     tk_text(rng, s.last_error, HL_BUS_TEXT_MAX - 1);
     return s;
@@ -165,24 +172,28 @@ static void test_status_hostile_bytes(void **state)
     tk_check_bad_hash(&c, a, len);
     tk_check_small_buffers(&c, &s, len);
     check_text_field(&c, a, len, STATUS_TEXT_OFF, "last_error");
-    /* offsets: 8 utime 16 state 17 destination_seq 25 counters (12) 73 x 77 y 81 heading
-     * 83 compute_median_us 87 p99 91 samples 95 last_error */
+    /* offsets: 8 utime 16 state 17 destination_seq 25 counters (9 x 8: scans ..
+     * rejected_requests) 97 map_vectors 101 map_version 109 saves 117 x 121 y 125 heading
+     * 127 compute_median_us 131 p99 135 samples 139 last_error */
     struct { size_t off; uint64_t v; size_t n; const char *field; } bad[] = {
         { 8, (uint64_t)-1, 8, "utime" },
         { 16, 8, 1, "state" },
         { 16, 0xff, 1, "state" },
         { 17, 0, 8, "destination_seq" },
         { 17, (uint64_t)-2, 8, "destination_seq" },
-        { 25, (uint32_t)-1, 4, "scans" },
-        { 25 + 4 * 4, (uint32_t)-1, 4, "relocalized" },
-        { 25 + 4 * 5, (uint32_t)-1, 4, "lost" },
-        { 25 + 4 * 8, 0x80000000u, 4, "rejected_requests" },
-        { 25 + 4 * 9, HL_MAP_MAX_CAPACITY + 1, 4, "map_vectors" },
-        { 25 + 4 * 11, (uint32_t)-1, 4, "saves" },
-        { 73, HL_COORD_MAX_MM + 1, 4, "position" },
-        { 77, (uint32_t)-HL_COORD_MAX_MM - 1, 4, "position" },
-        { 83, (uint32_t)-1, 4, "compute" },
-        { 91, (uint32_t)-1, 4, "compute" },
+        { 25, (uint64_t)-1, 8, "scans" },
+        { 25 + 8 * 4, (uint64_t)-1, 8, "relocalized" },
+        { 25 + 8 * 5, (uint64_t)-1, 8, "lost" },
+        { 25 + 8 * 7, UINT64_C(1) << 63, 8, "bad_messages" },
+        { 25 + 8 * 8, UINT64_C(1) << 63, 8, "rejected_requests" },
+        { 97, HL_MAP_MAX_CAPACITY + 1, 4, "map_vectors" },
+        { 97, (uint32_t)-1, 4, "map_vectors" },
+        { 101, (uint64_t)-1, 8, "map_version" },
+        { 109, (uint64_t)-1, 8, "saves" },
+        { 117, HL_COORD_MAX_MM + 1, 4, "position" },
+        { 121, (uint32_t)-HL_COORD_MAX_MM - 1, 4, "position" },
+        { 127, (uint32_t)-1, 4, "compute" },
+        { 135, (uint32_t)-1, 4, "compute" },
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         memcpy(b, a, len);
@@ -203,6 +214,16 @@ static void test_status_hostile_bytes(void **state)
     q = s;
     q.bad_messages = -1;
     assert_int_equal(hl_bus_encode_status(&q, b, sizeof b), -1);
+    /* the counters' whole range goes out, past 32 bits up to 2^63 - 1 */
+    q = s;
+    q.bad_messages = (INT64_C(1) << 31) + 1;
+    q.map_version = INT64_MAX;
+    q.scans = (INT64_C(1) << 32) + 7;
+    assert_int_equal(hl_bus_encode_status(&q, b, sizeof b), (int)len);
+    assert_int_equal(hl_bus_decode_status(b, len, &out, NULL), HL_OK);
+    assert_int_equal(out.bad_messages, (INT64_C(1) << 31) + 1);
+    assert_int_equal(out.map_version, INT64_MAX);
+    assert_int_equal(out.scans, (INT64_C(1) << 32) + 7);
     assert_in_range(tk_fuzz(&c, a, len, 5000, 53), 1, 4999);
 }
 

@@ -32,11 +32,14 @@ static void test_map_two_vectors(void **state)
     (void)state;
     hl_vector_t v[2] = { { .x_mm = -4194304, .y_mm = 4194304, .normal = 65535, .range_mm = 32767 },
                          { .x_mm = 12, .y_mm = -7, .normal = 16384, .range_mm = 0 } };
-    hl_bus_map_t m = { .utime = 1, .version = 9, .capacity = 2, .count = 2, .vectors = v };
+    /* a version past 32 bits (64-bit on the bus): whole */
+    hl_bus_map_t m = { .utime = 1, .version = (INT64_C(1) << 40) + 9, .capacity = 2, .count = 2,
+                       .vectors = v };
     jbuf_t b;
     jbuf_init(&b, 0);
     bridge_map(&b, &m);
-    assert_string_equal(b.data, "{\"utime\":1,\"version\":9,\"capacity\":2,\"count\":2,"
+    assert_string_equal(b.data, "{\"utime\":1,\"version\":1099511627785,\"capacity\":2,"
+                                "\"count\":2,"
                                 "\"v\":[-4194304,4194304,65535,32767,12,-7,16384,0]}");
     jbuf_free(&b);
 }
@@ -181,6 +184,13 @@ static void test_status(void **state)
     jbuf_reset(&b);
     bridge_status(&b, &s);
     assert_non_null(strstr(b.data, "\"destination_seq\":\"9223372036854775807\""));
+    /* counters past 32 bits (64-bit on the bus) go out whole, as numbers */
+    s.map_version = (INT64_C(1) << 32) + 5;
+    s.bad_messages = (INT64_C(1) << 31) + 1;
+    jbuf_reset(&b);
+    bridge_status(&b, &s);
+    assert_non_null(strstr(b.data, "\"map_version\":4294967301,"));
+    assert_non_null(strstr(b.data, "\"bad_messages\":2147483649,"));
     jbuf_free(&b);
 }
 

@@ -347,7 +347,8 @@ static void test_a_redraw_spread_over_scans_gives_the_same_map(void **state)
     hl_closure_fit_spread(later, map, shadow);
     assert_true(hl_closure_redrawing(later));
     /* Until the swap the map and the slam's frame are the old ones. */
-    uint32_t version = hl_map_version(map), calls = 0;
+    uint64_t version = hl_map_version(map);
+    uint32_t calls = 0;
     assert_pose_equal(hl_closure_newest(later), tracked);
     while (!hl_closure_redraw_step(later, map, shadow, 200)) {  /* 128 readings a stop */
         assert_int_equal(hl_map_version(map), version);
@@ -425,7 +426,7 @@ static void test_a_fit_that_moves_the_map_little_is_not_drawn(void **state)
     hl_closure_t *c = f->c;
     hl_map_t *map = f->map, *shadow = f->shadow;
     hl_pose_t before = f->before;
-    uint32_t version = hl_map_version(map);
+    uint64_t version = hl_map_version(map);
     hl_closure_redraw_beyond(c, 1000);  /* the fit moves the drifted stop ~150 mm, 2 deg */
     hl_closure_fit_spread(c, map, shadow);
     assert_false(hl_closure_redrawing(c));

@@ -80,7 +80,7 @@ static void test_capacity_and_culling(void **state)
         assert_int_equal(hl_map_add(m, &v), HL_OK);
     }
     assert_int_equal(hl_map_count(m), 100);
-    uint32_t v0 = hl_map_version(m);
+    uint64_t v0 = hl_map_version(m);
     /* 1000 more: the map stays at capacity. Each arrival drops one of 101 at random,
      * so a vector survives k later arrivals with probability (100/101)^k: the first
      * hundred are all but surely gone (survival 5e-5 each) and about 63 of the
@@ -188,6 +188,32 @@ static void test_vector_in_range_bounds(void **state)
     assert_false(hl_vector_in_range(&v));
     v = vec(0, INT32_MIN);
     assert_false(hl_vector_in_range(&v));
+}
+
+/* The version counts on past 32 bits, and stops at HL_COUNT_MAX (count.h) rather than
+ * wrap; a version above it is refused by a restore, which leaves the map as it was. */
+static void test_version_is_64_bit(void **state)
+{
+    (void)state;
+    hl_map_t *m = hl_map_create(40, 11), *b = hl_map_create(40, 12);
+    hl_vector_t v = vec(1, 2);
+    assert_int_equal(hl_map_restore(m, NULL, 0, UINT32_MAX - 1, hl_map_rng(m)), HL_OK);
+    for (int i = 0; i < 3; i++)
+        assert_int_equal(hl_map_add(m, &v), HL_OK);
+    assert_true(hl_map_version(m) == (uint64_t)UINT32_MAX + 2);
+    assert_int_equal(hl_map_restore(m, NULL, 0, (uint64_t)HL_COUNT_MAX - 1, hl_map_rng(m)),
+                     HL_OK);
+    assert_int_equal(hl_map_add(m, &v), HL_OK);
+    assert_int_equal(hl_map_add(m, &v), HL_OK);
+    hl_map_clear(m);
+    assert_true(hl_map_version(m) == (uint64_t)HL_COUNT_MAX);
+    hl_map_swap(m, b);
+    assert_true(hl_map_version(m) == (uint64_t)HL_COUNT_MAX);
+    assert_int_equal(hl_map_restore(m, NULL, 0, (uint64_t)HL_COUNT_MAX + 1, hl_map_rng(m)),
+                     HL_ERR_RANGE);
+    assert_true(hl_map_version(m) == (uint64_t)HL_COUNT_MAX);
+    hl_map_destroy(m);
+    hl_map_destroy(b);
 }
 
 /* A map restored from another's vectors, version and culling state culls exactly as
@@ -371,7 +397,7 @@ static void test_restore_refuses_and_changes_nothing(void **state)
     }
     hl_vector_t before[8];
     memcpy(before, hl_map_vectors(m), sizeof before);
-    uint32_t version = hl_map_version(m);
+    uint64_t version = hl_map_version(m);
     hl_rng_t rng = hl_map_rng(m), other = { 1, 3 };
     hl_vector_t in[9];
     for (int i = 0; i < 9; i++)
@@ -568,6 +594,7 @@ int main(void)
         cmocka_unit_test(test_scan_add_and_check),
         cmocka_unit_test(test_pose_algebra_round_trip),
         cmocka_unit_test(test_vector_in_range_bounds),
+        cmocka_unit_test(test_version_is_64_bit),
         cmocka_unit_test(test_restore_continues_culling),
         cmocka_unit_test(test_restore_refuses_and_changes_nothing),
         cmocka_unit_test(test_density_bound),

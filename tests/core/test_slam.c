@@ -162,7 +162,7 @@ static void test_wild_jump_is_rejected(void **state)
         assert_int_equal(after.peak_avg, expected_average(before.peak_avg, &out));
     }
     assert_true(after.peak_avg > 1000);
-    uint32_t version = hl_map_version(hl_slam_map(s));
+    uint64_t version = hl_map_version(hl_slam_map(s));
     hl_pose_t lie = w->truth[5];
     lie.x_mm -= 2500;
     sr_sound(&w->room, w->truth[5], 128, 8000, 15, scan);
@@ -202,7 +202,7 @@ static void test_localize_changes_nothing(void **state)
             sr_sound(&w->room, w->truth[i], 128, 8000, 15, scan);
             assert_int_equal(hl_slam_update(s, scan, w->truth[i], &out), HL_OK);
         }
-        uint32_t version = hl_map_version(hl_slam_map(s));
+        uint64_t version = hl_map_version(hl_slam_map(s));
         sr_sound(&w->room, w->truth[5], 128, 8000, 15, scan);
         hl_pose_t guess = w->truth[5];
         guess.x_mm += 120;

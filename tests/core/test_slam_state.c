@@ -226,7 +226,8 @@ static void test_set_pose(void **state)
         assert_int_equal(hl_slam_update(s, scan, w->odom[i], &out), HL_OK);
     }
     hl_map_t *m = hl_slam_map(s);
-    uint32_t count = hl_map_count(m), version = hl_map_version(m);
+    uint32_t count = hl_map_count(m);
+    uint64_t version = hl_map_version(m);
 
     /* out of range: nothing changes */
     hl_pose_t before = hl_slam_pose(s);

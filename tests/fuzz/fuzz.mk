@@ -218,11 +218,11 @@ fuzz: fuzz-deps
 #   make fuzz-seeds    rewrites tests/fuzz/corpus/ from the encoders, logs/, a short
 #                      houghlocd replay, the configuration and world files
 #                      (tests/fuzz/make_seeds.sh)
-$(BUILD)/tests/fuzz/gen_seeds: $(BUILD)/obj/tests/fuzz/gen_seeds.o $(ROBOT_LIB) $(BUS_LIB) \
-        $(LCM_LIB) $(CORE_LIB)
+$(BUILD)/tests/fuzz/gen_seeds: $(BUILD)/obj/tests/fuzz/gen_seeds.o $(ROBOT_LIB) $(STORE_LIB) \
+        $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CC) -o $@ $< $(ROBOT_LIB) $(BUS_LIB) $(BUS_LDLIBS) $(SODIUM_LIBS)
+	$(Q)$(CC) -o $@ $< $(ROBOT_LIB) $(STORE_LIB) $(STORE_LDLIBS) $(SODIUM_LIBS)
 
 .PHONY: fuzz-seeds
 fuzz-seeds: $(BUILD)/tests/fuzz/gen_seeds $(BUILD)/bin/houghlocd

@@ -17,13 +17,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(m.utime >= 0);
     FUZZ_CHECK(m.state >= HL_BUS_STATE_STARTING && m.state <= HL_BUS_STATE_LOST);
     FUZZ_CHECK(m.destination_seq == -1 || m.destination_seq > 0);
-    const int32_t counters[] = { m.scans, m.accepted, m.rejected_wild, m.odometry_only,
-                                 m.bad_packets, m.bad_messages, m.rejected_requests,
-                                 m.map_vectors, m.map_version, m.saves,
-                                 m.compute_median_us, m.compute_p99_us, m.compute_samples };
+    const int64_t counters[] = { m.scans, m.accepted, m.rejected_wild, m.odometry_only,
+                                 m.relocalized, m.lost, m.bad_packets, m.bad_messages,
+                                 m.rejected_requests, m.map_version, m.saves };
     for (size_t i = 0; i < sizeof counters / sizeof counters[0]; i++)
         FUZZ_CHECK(counters[i] >= 0);
-    FUZZ_CHECK(m.map_vectors <= (int32_t)HL_MAP_MAX_CAPACITY);
+    FUZZ_CHECK(m.compute_median_us >= 0 && m.compute_p99_us >= 0 && m.compute_samples >= 0);
+    FUZZ_CHECK(m.map_vectors >= 0 && m.map_vectors <= (int32_t)HL_MAP_MAX_CAPACITY);
     FUZZ_CHECK(fuzz_bus_xy_ok(m.pose.x_mm, m.pose.y_mm));
     FUZZ_CHECK(fuzz_bus_text_ok(m.last_error));
     uint8_t out[HL_BUS_STATUS_MAX_BYTES];

@@ -7,7 +7,9 @@
  * caller's storage is a heap block of exactly max_vectors vectors (AddressSanitizer sees
  * a write past it). Checked: a refusal has a status mapstore.h lists and a one-line
  * reason; a file that loads holds what mapstore.h promises, and saving it again writes
- * the same bytes (the header is read field by field, so every bit must come back).
+ * the same bytes (the header is read field by field, so every bit must come back); a
+ * file of format version 1 is saved in version 2, which loads back to the same header
+ * and vectors.
  */
 #include <errno.h>
 #include <limits.h>
@@ -19,8 +21,25 @@
 #include "fuzz.h"
 #include "houghloc/mapstore.h"
 
+/* The file at @p path, loaded again: the same header (as version 2 writes it) and
+ * vectors as @p m. */
+static void check_reload(const char *path, const hl_mapfile_t *m)
+{
+    char why[HL_MAPSTORE_WHY_LEN];
+    hl_mapfile_t r = { .vectors = malloc(m->count ? m->count * sizeof(hl_vector_t) : 1),
+                       .max_vectors = m->count };
+    FUZZ_CHECK(r.vectors != NULL);
+    FUZZ_CHECK(hl_mapstore_load(path, &r, why) == HL_OK && r.format == HL_MAPSTORE_VERSION);
+    uint8_t a[HL_MAPSTORE_HEADER_BYTES], b[HL_MAPSTORE_HEADER_BYTES];
+    hl_mapstore_header(m, a);
+    hl_mapstore_header(&r, b);
+    FUZZ_CHECK(memcmp(a, b, sizeof a) == 0);
+    FUZZ_CHECK(memcmp(r.vectors, m->vectors, m->count * sizeof(hl_vector_t)) == 0);
+    free(r.vectors);
+}
+
 /* Saves @p m into a fresh folder under /dev/shm (or $TMPDIR) and compares the file with
- * @p data; the folder is removed again. */
+ * @p data (a version 1 file: loads it back, check_reload); the folder is removed again. */
 static void check_save(const hl_mapfile_t *m, const uint8_t *data, size_t size)
 {
     const char *base = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : getenv("TMPDIR");
@@ -29,14 +48,18 @@ static void check_save(const hl_mapfile_t *m, const uint8_t *data, size_t size)
     FUZZ_CHECK(mkdtemp(dir) != NULL);
     snprintf(path, sizeof path, "%s/map.hlmap", dir);
     FUZZ_CHECK(hl_mapstore_save(path, m, why) == HL_OK);
-    FILE *f = fopen(path, "rb");
-    FUZZ_CHECK(f != NULL);
-    uint8_t *back = malloc(size + 1);
-    FUZZ_CHECK(back != NULL);
-    size_t got = fread(back, 1, size + 1, f);
-    fclose(f);
-    FUZZ_CHECK(got == size && memcmp(back, data, size) == 0);
-    free(back);
+    if (m->format == 1) {
+        check_reload(path, m);
+    } else {
+        FILE *f = fopen(path, "rb");
+        FUZZ_CHECK(f != NULL);
+        uint8_t *back = malloc(size + 1);
+        FUZZ_CHECK(back != NULL);
+        size_t got = fread(back, 1, size + 1, f);
+        fclose(f);
+        FUZZ_CHECK(got == size && memcmp(back, data, size) == 0);
+        free(back);
+    }
     unlink(path);
     rmdir(dir);
 }
@@ -46,7 +69,8 @@ static void load(const uint8_t *data, size_t size)
     char path[FUZZ_PATH_MAX], why[HL_MAPSTORE_WHY_LEN] = "";
     int fd = fuzz_memfile(data, size, path);
     FUZZ_CHECK(fd >= 0);
-    /* A map of n vectors takes 97 + 12 n bytes: size / 12 always suffice. */
+    /* A map of n vectors takes 101 + 12 n bytes (97 + 12 n in version 1): size / 12
+     * always suffice. */
     uint32_t max = (uint32_t)(size / 12u);
     hl_mapfile_t m = { .vectors = malloc(max > 0 ? max * sizeof(hl_vector_t) : 1),
                        .max_vectors = max };
@@ -62,7 +86,11 @@ static void load(const uint8_t *data, size_t size)
         FUZZ_CHECK(m.vectors == storage && m.max_vectors == max);
         FUZZ_CHECK(m.capacity >= 1 && m.capacity <= HL_MAP_MAX_CAPACITY);
         FUZZ_CHECK(m.count <= m.capacity && m.count <= max);
-        FUZZ_CHECK(size == 97u + 12u * (size_t)m.count);
+        FUZZ_CHECK(m.format == 1 || m.format == HL_MAPSTORE_VERSION);
+        FUZZ_CHECK(size == (m.format == 1 ? HL_MAPSTORE_V1_HEADER_BYTES
+                                          : HL_MAPSTORE_HEADER_BYTES) +
+                               12u * (size_t)m.count + 4u);
+        FUZZ_CHECK(m.state.map_version <= (uint64_t)HL_COUNT_MAX);
         FUZZ_CHECK(hl_pose_in_range(m.state.pose) && hl_pose_in_range(m.state.odom));
         for (uint32_t i = 0; i < m.count; i++)
             FUZZ_CHECK(hl_vector_in_range(&m.vectors[i]));

@@ -3,8 +3,10 @@
  * encoders and from its own logs (tests/fuzz/make_seeds.sh runs it; the seeds are
  * committed, so this runs only when they are remade).
  *
- *   gen_seeds encode CORPUS          ARCOS packets and streams (arcos, rlink) and LCM
- *                                    messages of every type (bus_*), made by the encoders
+ *   gen_seeds encode CORPUS          ARCOS packets and streams (arcos, rlink), LCM
+ *                                    messages of every type (bus_*) and map files
+ *                                    (mapstore, both format versions), made by the
+ *                                    encoders
  *   gen_seeds log CORPUS LOG         from an LCM log: the first messages of each channel
  *                                    (bus_*) and heads of the log itself (logcheck)
  *   gen_seeds head LOG N OUT         the first N events of LOG into OUT (an input for a
@@ -13,11 +15,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <zlib.h>
 
 #include "houghloc/arcos.h"
 #include "houghloc/auth.h"
 #include "houghloc/bus.h"
 #include "houghloc/logcheck.h"
+#include "houghloc/mapstore.h"
 
 #define EVENT_HDR 28
 
@@ -209,12 +213,25 @@ static void encode_bus(void)
                            .compute_samples = 40 };
     snprintf(st.last_error, sizeof st.last_error, "robot link: no packet for 2000 ms");
     put_msg("bus_status", "moving", buf, hl_bus_encode_status(&st, buf, sizeof buf));
+    /* counters past 32 bits, and at the largest they hold */
+    st.scans = INT64_C(5000000000);
+    st.accepted = st.scans - 2;
+    st.bad_messages = (INT64_C(1) << 31) + 3;
+    st.map_version = (INT64_C(1) << 32) + 40;
+    st.rejected_requests = HL_COUNT_MAX;
+    st.last_error[0] = '\0';
+    put_msg("bus_status", "past-32-bits", buf, hl_bus_encode_status(&st, buf, sizeof buf));
 
     hl_vector_t v[3] = { { 100, 200, 0, 1500 }, { -4000, 4000, 32768, 32767 },
                          { HL_COORD_MAX_MM, -HL_COORD_MAX_MM, 65535, 0 } };
     hl_bus_map_t m = { .utime = 1, .version = 2, .capacity = 1500, .count = 3, .vectors = v };
     put_msg("bus_map", "three", buf, hl_bus_encode_map(&m, buf, sizeof buf));
+    m.version = (INT64_C(1) << 32) + 2;
+    put_msg("bus_map", "three-past-32-bits", buf, hl_bus_encode_map(&m, buf, sizeof buf));
     m.count = 0;
+    m.version = HL_COUNT_MAX;
+    put_msg("bus_map", "empty-last-version", buf, hl_bus_encode_map(&m, buf, sizeof buf));
+    m.version = 2;
     put_msg("bus_map", "empty", buf, hl_bus_encode_map(&m, buf, sizeof buf));
 
     hl_bus_pose_t p = { .utime = 3, .scan_seq = 4, .pose = { 10, 20, 30 },
@@ -233,6 +250,57 @@ static void encode_bus(void)
     s.scan.readings[1] = (hl_reading_t){ 0, 16384, -1, false, 0 };
     s.scan.readings[2] = (hl_reading_t){ HL_RANGE_MAX_MM, 49152, 127, true, 0 };
     put_msg("bus_scan", "three", buf, hl_bus_encode_scan(&s, buf, sizeof buf));
+}
+
+/* ---- map files ------------------------------------------------------------------------ */
+
+/* Saves @p m as CORPUS/mapstore/NAME; with @p v1, rewritten in format version 1 (the map
+ * version's low 4 bytes at offset 24, the header 4 bytes shorter, the CRC made again). */
+static void put_mapfile(const char *name, const hl_mapfile_t *m, bool v1)
+{
+    char path[1024], why[HL_MAPSTORE_WHY_LEN];
+    snprintf(path, sizeof path, "%s/mapstore/%s", corpus, name);
+    if (hl_mapstore_save(path, m, why) != HL_OK) {
+        fprintf(stderr, "gen_seeds: %s\n", why);
+        exit(1);
+    }
+    if (!v1)
+        return;
+    static uint8_t b[HL_MAPSTORE_HEADER_BYTES + 12 * 64 + 4];
+    FILE *f = fopen(path, "rb");
+    size_t n = f ? fread(b, 1, sizeof b, f) : 0;
+    if (f)
+        fclose(f);
+    if (n < HL_MAPSTORE_HEADER_BYTES + 4 || n == sizeof b)
+        exit(1);
+    b[8] = 1;
+    b[12] = HL_MAPSTORE_V1_HEADER_BYTES;
+    memmove(b + 28, b + 32, n - 32);
+    n -= 4;
+    uint32_t crc = (uint32_t)crc32(0L, b, (uInt)(n - 4));
+    for (int i = 0; i < 4; i++)
+        b[n - 4 + (size_t)i] = (uint8_t)(crc >> (8 * i));
+    put("mapstore", name, b, n);
+}
+
+static void encode_mapfiles(void)
+{
+    hl_vector_t v[3] = { { 100, 200, 0, 1500 }, { -4000, 4000, 32768, 32767 },
+                         { HL_COORD_MAX_MM, -HL_COORD_MAX_MM, 65535, 0 } };
+    hl_mapfile_t m = {
+        .state = { .started = true, .pose = { 1200, -300, 16384 }, .odom = { 5, 6, 7 },
+                   .peak_avg = 2560, .map_version = (UINT64_C(1) << 32) + 3,
+                   .cull_rng = { 0x853c49e6748fea9bULL, 0xda3e39cb94b95bdbULL } },
+        .capacity = 1500, .count = 3, .vectors = v, .last_request_seq = 7,
+        .last_scan_utime = 1700000000000000LL, .scans = 90,
+    };
+    put_mapfile("three-past-32-bits.hlmap", &m, false);
+    m.state.map_version = (uint64_t)HL_COUNT_MAX;
+    m.count = 0;
+    put_mapfile("empty-last-version.hlmap", &m, false);
+    m.state.map_version = UINT32_MAX - 1;   /* the largest a version 1 file held, nearly */
+    m.count = 3;
+    put_mapfile("three-format-1.hlmap", &m, true);
 }
 
 /* ---- logs ----------------------------------------------------------------------------- */
@@ -338,6 +406,7 @@ int main(int argc, char **argv)
         corpus = argv[2];
         encode_arcos();
         encode_bus();
+        encode_mapfiles();
     } else if (argc == 4 && strcmp(argv[1], "log") == 0) {
         corpus = argv[2];
         from_log(argv[3]);

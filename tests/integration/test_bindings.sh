@@ -4,7 +4,10 @@
 # encode a pose byte for byte as the C types the daemon is built from do
 # (build/bin/hl-pose-bytes); the Java jar, when it was built, is found by lcm-spy's own
 # type lookup (lcm.spy.LCMTypeDatabase, through $CLASSPATH as Debian's lcm-spy script
-# leaves it) and encodes the same bytes.
+# leaves it) and encodes the same bytes. The counters of STATUS and MAP's version are
+# 64-bit in every binding: values past 2^32 (up to 2^63 - 1) encode and decode whole in
+# Python and Java, as the C encoder wrote them (the fuzz seeds of tests/fuzz/corpus, made by
+# hl_bus_encode_status and hl_bus_encode_map).
 set -u
 BUILD=${BUILD:-build}
 LCM_JAR=${LCM_JAR:-/usr/share/java/lcm.jar}
@@ -38,6 +41,8 @@ import houghloc
 c_bytes = bytes.fromhex(sys.argv[2])
 v = sys.argv[3:18]
 names = sys.argv[18:]
+C_STATUS = open("tests/fuzz/corpus/bus_status/past-32-bits", "rb").read()
+C_MAP = open("tests/fuzz/corpus/bus_map/three-past-32-bits", "rb").read()
 bad = 0
 def expect(desc, ok):
     global bad
@@ -74,6 +79,21 @@ try:
     expect("python refuses a pose as odometry (fingerprint)", False)
 except ValueError:
     expect("python refuses a pose as odometry (fingerprint)", True)
+
+# 64-bit counters: the C encoder's bytes decode whole, and encode back to the same bytes
+s = houghloc.status_t.decode(C_STATUS)
+expect("python status_t decodes the C counters past 32 bits",
+       (s.scans, s.bad_messages, s.map_version, s.rejected_requests, s.map_vectors) ==
+       (5000000000, 2**31 + 3, 2**32 + 40, 2**63 - 1, 812))
+expect("python status_t encodes them back to the C bytes", s.encode() == C_STATUS)
+m = houghloc.map_t.decode(C_MAP)
+expect("python map_t decodes a C version past 32 bits", m.version == 2**32 + 2 and m.nvectors == 3)
+expect("python map_t encodes it back to the C bytes", m.encode() == C_MAP)
+s.saves = 2**63 - 1
+s.lost = 2**40
+expect("python status_t round-trips counters up to 2^63 - 1",
+       houghloc.status_t.decode(s.encode()).saves == 2**63 - 1 and
+       houghloc.status_t.decode(s.encode()).lost == 2**40)
 expect("the lcm runtime was never imported", sys.modules.get("lcm") is None)
 sys.exit(bad)
 EOF
@@ -135,6 +155,13 @@ EOF
         grep -q "^probe houghloc.pose_t " "$tmp/java"
     check "java pose_t encodes the bytes the C types do" \
         test "$(grep "^probe " "$tmp/java" | cut -d' ' -f3)" = "$c_hex"
+    # MAP's version is a Java long: the C encoder's 2^63 - 1 comes out of it byte for byte
+    m_hex=$(od -An -tx1 -v tests/fuzz/corpus/bus_map/empty-last-version | tr -d ' \n')
+    CLASSPATH=$jar java -Djava.awt.headless=true -cp "$LCM_JAR:$tmp" Probe \
+        "$(printf '%s' "$m_hex" | cut -c1-16)" utime=1 version=9223372036854775807 \
+        capacity=1500 nvectors=0 >"$tmp/java3" 2>>"$tmp/java.err"
+    check "java map_t encodes a version of 2^63 - 1 as the C types do" \
+        test "$(grep "^probe " "$tmp/java3")" = "probe houghloc.map_t $m_hex"
     java -Djava.awt.headless=true -cp "$LCM_JAR:$tmp" Probe "$fp" >"$tmp/java2" 2>&1
     check "without the jar lcm-spy would not know the type" \
         test "$(grep "^probe " "$tmp/java2")" = "probe none"

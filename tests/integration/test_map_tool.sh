@@ -21,7 +21,8 @@ le() {      # le BYTES VALUE: little-endian, two's complement
     [ "$v" -lt 0 ] && v=$((v + (1 << (8 * n))))
     while [ $i -lt "$n" ]; do u8 $(((v >> (8 * i)) & 255)); i=$((i + 1)); done
 }
-mapfile() { # mapfile FILE [X Y NORMAL RANGE]...: a version 1 map with these vectors
+mapfile() { # mapfile FILE [X Y NORMAL RANGE]...: a format version 1 map (still read) with
+            # these vectors
     f=$1; shift
     {
         printf 'HLMAP\r\n\032'
@@ -56,6 +57,9 @@ cell() {    # cell BASE X_MM Y_MM: the PGM value of the cell holding that point
 mapfile "$tmp/tiny.hlmap" 1050 50 32768 2000 50 1550 49152 1500
 check "the tiny map file loads in the daemon's checker" \
     sh -c '"$1" --config /dev/null --map "$2" --check-map >/dev/null 2>&1' - "$BIN/houghlocd" "$tmp/tiny.hlmap"
+check "the checker reads it as format 1, its map version widened" \
+    sh -c '"$1" --config /dev/null --map "$2" --check-map 2>&1 | grep -q ": format 1, 2 of 16 vectors, map version 1,"' \
+    - "$BIN/houghlocd" "$tmp/tiny.hlmap"
 "$MAP" --resolution 0.1 "$tmp/tiny.hlmap" "$tmp/tiny" >"$tmp/out"
 check "houghloc-map exits 0 on the tiny map" test $? -eq 0
 check "it writes the PNG" sh -c 'head -c 8 "$1" | od -An -tx1 | grep -q "89 50 4e 47 0d 0a 1a 0a"' - "$tmp/tiny.png"
@@ -96,11 +100,13 @@ check "tour PGM: header + width x height bytes" test "$(wc -c <"$tmp/tour.pgm")"
 check "tour PGM holds only 0, 205 and 254" test "$(tail -c $((${wh% *} * ${wh#* })) "$tmp/tour.pgm" |
     od -An -tu1 -v | tr -s ' ' '\n' | grep . | sort -un | tr '\n' ' ')" = "0 205 254 "
 check "tour YAML resolution 0.05" test "$(yaml "$tmp/tour.yaml" resolution)" = 0.050000
-# Every vector of the file (docs/manual/mapfile.md: 12 bytes each from byte 93): its surface
+# Every vector of the file (docs/manual/mapfile.md, format 2 as the daemon saves it: 12
+# bytes each from byte 97): its surface
 # cell occupied; halfway to its sensor, the cell or a neighbour (Bresenham's cells stray
 # up to one cell from the exact line) free, unless another surface lies there.
 count=$(od -An -tu1 -j20 -N4 "$tmp/m.hlmap" | awk '{ print $1 + 256 * ($2 + 256 * ($3 + 256 * $4)) }')
-od -An -tu1 -v -j93 -N$((12 * count)) "$tmp/m.hlmap" >"$tmp/vectors"
+check "the daemon saves format 2" test "$(od -An -tu1 -j8 -N1 "$tmp/m.hlmap" | tr -d ' ')" = 2
+od -An -tu1 -v -j97 -N$((12 * count)) "$tmp/m.hlmap" >"$tmp/vectors"
 tail -c $((${wh% *} * ${wh#* })) "$tmp/tour.pgm" | od -An -tu1 -v >"$tmp/cells"
 awk -v w="${wh% *}" -v h="${wh#* }" -v res="$(yaml "$tmp/tour.yaml" resolution)" \
     -v origin="$(yaml "$tmp/tour.yaml" origin | tr -d '[],')" '

@@ -22,7 +22,8 @@
 
 #include "houghloc/mapstore.h"
 
-#define HDR 93
+#define HDR 97              /* the header, format version 2 */
+#define HDR_V1 93           /* ... version 1: the map version in 4 bytes */
 #define BIG 16384
 
 typedef struct fixture {
@@ -137,7 +138,7 @@ static inline hl_mapfile_t sample(hl_vector_t *v, uint32_t count, uint32_t capac
     hl_mapfile_t m = {
         .state = { .started = true, .pose = { -HL_COORD_MAX_MM, HL_COORD_MAX_MM, 65535 },
                    .odom = { 123456, -654321, 4321 }, .peak_avg = 0xfedcba98u,
-                   .map_version = 0x89abcdefu,
+                   .map_version = 0x123456789abULL,     /* past 32 bits */
                    .cull_rng = { 0x0123456789abcdefULL, 0xfedcba9876543211ULL } },
         .capacity = capacity, .count = count, .vectors = v,
         .last_request_seq = INT64_MAX - 5, .last_scan_utime = 1700000000123456LL,
@@ -166,6 +167,19 @@ static inline void assert_same(const hl_mapfile_t *a, const hl_mapfile_t *b)
     assert_true(a->scans == b->scans);
     if (a->count)
         assert_memory_equal(a->vectors, b->vectors, a->count * sizeof(hl_vector_t));
+}
+
+/* Rewrites the version 2 file image @p buf of @p n bytes in place as the same map in
+ * format version 1 (its map version cut to its low 32 bits; the header 4 bytes shorter).
+ * @return the image's new length. */
+static inline size_t to_v1(uint8_t *buf, size_t n)
+{
+    put_le(buf + 8, 1, 4);
+    put_le(buf + 12, HDR_V1, 4);
+    memmove(buf + 28, buf + 32, n - 32);
+    n -= 4;
+    fix_crc(buf, n);
+    return n;
 }
 
 /* A reason: one line that starts with "PATH: ". */

@@ -13,24 +13,24 @@ static void test_layout_and_round_trip(void **state)
     uint8_t buf[HDR + 3 * 12 + 4 + 1];
     assert_int_equal(read_bytes(f->path, buf, sizeof buf), HDR + 3 * 12 + 4);
     assert_memory_equal(buf, "HLMAP\r\n\x1a", 8);
-    assert_int_equal(le(buf + 8, 4), 1);
+    assert_int_equal(le(buf + 8, 4), 2);
     assert_int_equal(le(buf + 12, 4), HDR);
     assert_int_equal(le(buf + 16, 4), 1500);
     assert_int_equal(le(buf + 20, 4), 3);
-    assert_int_equal(le(buf + 24, 4), 0x89abcdefu);
-    assert_int_equal(buf[28], 1);
-    assert_int_equal((int32_t)le(buf + 29, 4), -HL_COORD_MAX_MM);
-    assert_int_equal((int32_t)le(buf + 33, 4), HL_COORD_MAX_MM);
-    assert_int_equal(le(buf + 37, 2), 65535);
-    assert_int_equal((int32_t)le(buf + 39, 4), 123456);
-    assert_int_equal((int32_t)le(buf + 43, 4), -654321);
-    assert_int_equal(le(buf + 47, 2), 4321);
-    assert_int_equal(le(buf + 49, 4), 0xfedcba98u);
-    assert_true(le(buf + 53, 8) == 0x0123456789abcdefULL);
-    assert_true(le(buf + 61, 8) == 0xfedcba9876543211ULL);
-    assert_true((int64_t)le(buf + 69, 8) == INT64_MAX - 5);
-    assert_true((int64_t)le(buf + 77, 8) == 1700000000123456LL);
-    assert_true(le(buf + 85, 8) == 0x8000000000000001ULL);
+    assert_true(le(buf + 24, 8) == 0x123456789abULL);     /* past 32 bits, whole */
+    assert_int_equal(buf[32], 1);
+    assert_int_equal((int32_t)le(buf + 33, 4), -HL_COORD_MAX_MM);
+    assert_int_equal((int32_t)le(buf + 37, 4), HL_COORD_MAX_MM);
+    assert_int_equal(le(buf + 41, 2), 65535);
+    assert_int_equal((int32_t)le(buf + 43, 4), 123456);
+    assert_int_equal((int32_t)le(buf + 47, 4), -654321);
+    assert_int_equal(le(buf + 51, 2), 4321);
+    assert_int_equal(le(buf + 53, 4), 0xfedcba98u);
+    assert_true(le(buf + 57, 8) == 0x0123456789abcdefULL);
+    assert_true(le(buf + 65, 8) == 0xfedcba9876543211ULL);
+    assert_true((int64_t)le(buf + 73, 8) == INT64_MAX - 5);
+    assert_true((int64_t)le(buf + 81, 8) == 1700000000123456LL);
+    assert_true(le(buf + 89, 8) == 0x8000000000000001ULL);
     for (int i = 0; i < 3; i++) {
         const uint8_t *v = buf + HDR + 12 * i;
         assert_int_equal((int32_t)le(v, 4), f->a[i].x_mm);
@@ -42,9 +42,62 @@ static void test_layout_and_round_trip(void **state)
     assert_int_equal(load_into(f, &got, BIG, why), HL_OK);
     assert_string_equal(why, "");
     assert_same(&m, &got);
+    assert_int_equal(got.format, 2);
     assert_ptr_equal(got.vectors, f->b);
     assert_int_equal(got.max_vectors, BIG);
     assert_int_equal(file_size(f->tmp), -1);
+}
+
+/* The largest map version there is (versions stop there, count.h) round-trips; one
+ * above it is never written. */
+static void test_version_limit(void **state)
+{
+    fixture_t *f = *state;
+    hl_mapfile_t m = sample(f->a, 2, 10), got;
+    char why[HL_MAPSTORE_WHY_LEN];
+    m.state.map_version = (uint64_t)HL_COUNT_MAX;
+    assert_int_equal(hl_mapstore_save(f->path, &m, why), HL_OK);
+    assert_int_equal(load_into(f, &got, BIG, why), HL_OK);
+    assert_true(got.state.map_version == (uint64_t)INT64_MAX);
+    m.state.map_version = (uint64_t)HL_COUNT_MAX + 1;
+    assert_int_equal(hl_mapstore_save(f->path, &m, why), HL_ERR_RANGE);
+    assert_reason(why, f->path);
+    assert_non_null(strstr(why, "map version"));
+}
+
+/* A file of format version 1 (the map version in 4 bytes, every later field 4 bytes
+ * earlier) still loads, its version widened, and the next save writes version 2. */
+static void test_version_1_loads(void **state)
+{
+    fixture_t *f = *state;
+    hl_mapfile_t m = sample(f->a, 3, 1500), got;
+    m.state.map_version = 0xfffffffeu;     /* the largest a version 1 file held, nearly */
+    char why[HL_MAPSTORE_WHY_LEN];
+    assert_int_equal(hl_mapstore_save(f->path, &m, why), HL_OK);
+    uint8_t buf[HDR + 3 * 12 + 4];
+    assert_int_equal(read_bytes(f->path, buf, sizeof buf), sizeof buf);
+    size_t n = to_v1(buf, sizeof buf);
+    assert_int_equal(n, HDR_V1 + 3 * 12 + 4);
+    assert_int_equal(le(buf + 24, 4), 0xfffffffeu);
+    assert_int_equal(buf[28], 1);           /* version 1's started byte */
+    write_bytes(f->path, buf, n);
+    assert_int_equal(load_into(f, &got, BIG, why), HL_OK);
+    assert_string_equal(why, "");
+    assert_int_equal(got.format, 1);
+    assert_same(&m, &got);
+    /* ... and it goes on past 32 bits, in version 2 */
+    got.state.map_version += 3;
+    assert_int_equal(hl_mapstore_save(f->path, &got, why), HL_OK);
+    assert_int_equal(file_size(f->path), HDR + 3 * 12 + 4);
+    hl_mapfile_t again;
+    memset(f->a, 0, 3 * sizeof *f->a);
+    memset(&again, 0, sizeof again);
+    again.vectors = f->a;
+    again.max_vectors = BIG;
+    assert_int_equal(hl_mapstore_load(f->path, &again, why), HL_OK);
+    assert_int_equal(again.format, 2);
+    assert_true(again.state.map_version == 0x100000001ULL);
+    assert_same(&got, &again);
 }
 
 /* No vectors (and no storage), a full paper-sized map, the largest map the localizer
@@ -203,6 +256,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_layout_and_round_trip, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_version_limit, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_version_1_loads, setup, teardown),
         cmocka_unit_test_setup_teardown(test_round_trip_sizes, setup, teardown),
         cmocka_unit_test_setup_teardown(test_missing_file, setup, teardown),
         cmocka_unit_test_setup_teardown(test_save_fails_cleanly, setup, teardown),

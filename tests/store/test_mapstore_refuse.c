@@ -19,9 +19,19 @@ static void test_every_truncation_refused(void **state)
     }
     write_bytes(f->path, buf, sizeof buf);
     assert_int_equal(load_into(f, &got, BIG, why), HL_OK);
+    /* and of the same map in format version 1 */
+    size_t n1 = to_v1(buf, sizeof buf);
+    for (size_t n = 0; n < n1; n++) {
+        write_bytes(f->path, buf, n);
+        assert_int_equal(load_into(f, &got, BIG, why), HL_ERR_PARSE);
+        assert_int_equal(got.count, 777);
+    }
+    write_bytes(f->path, buf, n1);
+    assert_int_equal(load_into(f, &got, BIG, why), HL_OK);
+    assert_int_equal(got.format, 1);
 }
 
-/* Each of the 968 single-bit flips of a two-vector file is refused. */
+/* Each of the 1000 single-bit flips of a two-vector file is refused. */
 static void test_every_bit_flip_refused(void **state)
 {
     fixture_t *f = *state;
@@ -60,13 +70,32 @@ static void test_wrong_magic_and_version(void **state)
     assert_string_equal(why, want);
 
     buf[0] = 'H';
-    put_le(buf + 8, 2, 4);
+    put_le(buf + 8, 3, 4);
     fix_crc(buf, sizeof buf);
     write_bytes(f->path, buf, sizeof buf);
     assert_int_equal(load_into(f, &got, BIG, why), HL_ERR_PARSE);
-    snprintf(want, sizeof want, "%s: map file format version 2; this program reads version 1",
-             f->path);
+    snprintf(want, sizeof want,
+             "%s: map file format version 3; this program reads versions 1 and 2", f->path);
     assert_string_equal(why, want);
+    assert_int_equal(got.count, 777);
+    put_le(buf + 8, 0, 4);
+    fix_crc(buf, sizeof buf);
+    write_bytes(f->path, buf, sizeof buf);
+    assert_int_equal(load_into(f, &got, BIG, why), HL_ERR_PARSE);
+
+    /* a version 2 file that says version 1 (or the reverse) is refused whole: its header
+     * length is the other's */
+    put_le(buf + 8, 1, 4);
+    fix_crc(buf, sizeof buf);
+    write_bytes(f->path, buf, sizeof buf);
+    assert_int_equal(load_into(f, &got, BIG, why), HL_ERR_PARSE);
+    assert_non_null(strstr(why, "header length 97, version 1 has 93"));
+    put_le(buf + 8, 2, 4);
+    size_t n1 = to_v1(buf, sizeof buf);
+    put_le(buf + 8, 2, 4);
+    fix_crc(buf, n1);
+    write_bytes(f->path, buf, n1);
+    assert_int_equal(load_into(f, &got, BIG, why), HL_ERR_PARSE);
     assert_int_equal(got.count, 777);
 }
 
@@ -81,21 +110,24 @@ static void test_ranges_checked(void **state)
     uint8_t good[N], buf[N + 1];
     read_bytes(f->path, good, N);
     struct { size_t off; int bytes; uint64_t value; hl_status_t st; } cases[] = {
-        { 28, 1, 2, HL_ERR_RANGE },                             /* started */
-        { 29, 4, (uint32_t)(HL_COORD_MAX_MM + 1), HL_ERR_RANGE },   /* pose x */
-        { 33, 4, (uint32_t)(-HL_COORD_MAX_MM - 1), HL_ERR_RANGE },  /* pose y */
-        { 39, 4, 0x80000000u, HL_ERR_RANGE },                   /* odometry x */
-        { 43, 4, (uint32_t)(HL_COORD_MAX_MM + 1), HL_ERR_RANGE },   /* odometry y */
+        { 32, 1, 2, HL_ERR_RANGE },                             /* started */
+        { 33, 4, (uint32_t)(HL_COORD_MAX_MM + 1), HL_ERR_RANGE },   /* pose x */
+        { 37, 4, (uint32_t)(-HL_COORD_MAX_MM - 1), HL_ERR_RANGE },  /* pose y */
+        { 43, 4, 0x80000000u, HL_ERR_RANGE },                   /* odometry x */
+        { 47, 4, (uint32_t)(HL_COORD_MAX_MM + 1), HL_ERR_RANGE },   /* odometry y */
         { 16, 4, 0, HL_ERR_RANGE },                             /* capacity 0 */
         { 16, 4, 1, HL_ERR_RANGE },                             /* count 2 > capacity 1 */
         { 16, 4, HL_MAP_MAX_CAPACITY + 1, HL_ERR_RANGE },       /* capacity */
-        { 61, 8, 0xfedcba9876543210ULL, HL_ERR_RANGE },         /* an even increment */
-        { 69, 8, 0x8000000000000000ULL, HL_ERR_RANGE },         /* last request seq < 0 */
-        { 77, 8, 0xffffffffffffffffULL, HL_ERR_RANGE },         /* last scan time -1 */
+        { 24, 8, 0x8000000000000000ULL, HL_ERR_RANGE },         /* map version > 2^63 - 1 */
+        { 24, 8, 0xffffffffffffffffULL, HL_ERR_RANGE },         /* map version */
+        { 65, 8, 0xfedcba9876543210ULL, HL_ERR_RANGE },         /* an even increment */
+        { 73, 8, 0x8000000000000000ULL, HL_ERR_RANGE },         /* last request seq < 0 */
+        { 81, 8, 0xffffffffffffffffULL, HL_ERR_RANGE },         /* last scan time -1 */
         { HDR, 4, (uint32_t)(HL_COORD_MAX_MM + 1), HL_ERR_RANGE },  /* vector 0 x */
         { HDR + 12 + 4, 4, (uint32_t)INT32_MIN, HL_ERR_RANGE },     /* vector 1 y */
         { HDR + 12 + 10, 2, HL_RANGE_MAX_MM + 1, HL_ERR_RANGE },    /* vector 1 range */
         { 12, 4, HDR + 1, HL_ERR_PARSE },                       /* header length */
+        { 12, 4, HDR_V1, HL_ERR_PARSE },                        /* version 1's length */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         memcpy(buf, good, N);

@@ -27,6 +27,7 @@
  * houghloc-eval and houghloc-map).
  */
 #include <errno.h>
+#include <inttypes.h>
 #include <limits.h>
 #include <lcm/eventlog.h>
 #include <math.h>
@@ -274,13 +275,15 @@ static int cmd_status(const char *log)
         return 1;
     if (s.utime == 0)
         return fprintf(stderr, "hl-eval: %s: no STATUS message\n", log), 1;
-    printf("status state=%d destination_seq=%lld scans=%d accepted=%d rejected_wild=%d "
-           "odometry_only=%d relocalized=%d lost=%d bad_packets=%d bad_messages=%d "
-           "rejected_requests=%d map_vectors=%d map_version=%d saves=%d "
-           "compute_median_us=%d compute_p99_us=%d compute_samples=%d\n",
+    printf("status state=%d destination_seq=%lld scans=%" PRId64 " accepted=%" PRId64
+           " rejected_wild=%" PRId64 " odometry_only=%" PRId64 " relocalized=%" PRId64
+           " lost=%" PRId64 " bad_packets=%" PRId64 " bad_messages=%" PRId64
+           " rejected_requests=%" PRId64 " map_vectors=%d map_version=%" PRId64
+           " saves=%" PRId64 " compute_median_us=%d compute_p99_us=%d compute_samples=%d\n",
            s.state, (long long)s.destination_seq, s.scans, s.accepted, s.rejected_wild,
-           s.odometry_only, s.relocalized, s.lost, s.bad_packets, s.bad_messages, s.rejected_requests, s.map_vectors,
-           s.map_version, s.saves, s.compute_median_us, s.compute_p99_us, s.compute_samples);
+           s.odometry_only, s.relocalized, s.lost, s.bad_packets, s.bad_messages,
+           s.rejected_requests, s.map_vectors, s.map_version, s.saves, s.compute_median_us,
+           s.compute_p99_us, s.compute_samples);
     return 0;
 }
 

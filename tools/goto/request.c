@@ -363,9 +363,9 @@ static void report_stalled(const waiter_t *w, const req_options_t *o, ended_t en
                                           "IDLE", "FAULT", "STOPPING", "LOST" };
     char last[96] = "no STATUS showed it under way";
     if (w->seen_status)
-        snprintf(last, sizeof last, "last STATUS: %s at (%.3f, %.3f) m after %d scans",
+        snprintf(last, sizeof last, "last STATUS: %s at (%.3f, %.3f) m after %lld scans",
                  states[w->last.state], w->last.pose.x_mm / 1000.0, w->last.pose.y_mm / 1000.0,
-                 w->last.scans);
+                 (long long)w->last.scans);
     if (ended == ENDED_DEADLINE)
         fprintf(stderr, "%s: accepted, but no ARRIVED within the --deadline of %g s (%s); "
                 "the robot may still be on its way\n", w->prog, o->deadline_s, last);

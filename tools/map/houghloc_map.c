@@ -124,7 +124,9 @@ static int load_map_message(const char *path, vectors_t *out)
     }
     if (!m.data)
         return fprintf(stderr, PROG ": %s: no MAP message (and not a map file)\n", path), 1;
-    hl_bus_map_t map = { .max_vectors = m.len >= 28 ? (uint32_t)((m.len - 28) / 12) : 0 };
+    size_t fixed = hl_bus_map_bytes(0), per_vector = hl_bus_map_bytes(1) - fixed;
+    hl_bus_map_t map = { .max_vectors = m.len >= fixed ? (uint32_t)((m.len - fixed) / per_vector)
+                                                       : 0 };
     map.vectors = calloc((size_t)map.max_vectors + 1, sizeof *map.vectors);
     char why[HL_BUS_WHY_LEN] = "";
     int rc = 0;

@@ -144,7 +144,7 @@ int hl_bus_encode_pose(const hl_bus_pose_t *in, void *buf, size_t cap);
 /** Each vector's position is within +-HL_COORD_MAX_MM, its range 0..HL_RANGE_MAX_MM. */
 typedef struct hl_bus_map {
     int64_t utime;
-    int32_t version;            /* >= 0 */
+    int64_t version;            /* >= 0 (64-bit: it never wraps, count.h) */
     int32_t capacity;           /* 1..HL_MAP_MAX_CAPACITY */
     uint32_t count;             /* 0..capacity */
     hl_vector_t *vectors;       /* encode: count vectors to send; decode: caller's
@@ -152,7 +152,7 @@ typedef struct hl_bus_map {
     uint32_t max_vectors;       /* decode only: the storage's size; more is HL_ERR_RANGE */
 } hl_bus_map_t;
 
-/** Encoded size of a map of @p count vectors: 28 + 12 * count. */
+/** Encoded size of a map of @p count vectors: 32 + 12 * count. */
 size_t hl_bus_map_bytes(uint32_t count);
 /** Decode: nvectors above out->max_vectors is HL_ERR_RANGE; vectors NULL with
  *  nvectors > 0 is HL_ERR_ARG. utime, version, capacity, count are written on success. */
@@ -165,10 +165,12 @@ typedef struct hl_bus_status {
     int64_t utime;
     int8_t state;               /* HL_BUS_STATE_* */
     int64_t destination_seq;    /* -1 when none, else > 0 */
-    int32_t scans, accepted, rejected_wild, odometry_only;     /* all counters >= 0 */
-    int32_t relocalized, lost;  /* scans = accepted + ... + odometry_only + these two */
-    int32_t bad_packets, bad_messages, rejected_requests;
-    int32_t map_vectors, map_version, saves;    /* map_vectors <= HL_MAP_MAX_CAPACITY */
+    /* the counters: >= 0, 64-bit so that they never wrap (count.h) */
+    int64_t scans, accepted, rejected_wild, odometry_only;
+    int64_t relocalized, lost;  /* scans = accepted + ... + odometry_only + these two */
+    int64_t bad_packets, bad_messages, rejected_requests;
+    int32_t map_vectors;        /* 0..HL_MAP_MAX_CAPACITY: a size, not a counter */
+    int64_t map_version, saves;
     hl_pose_t pose;             /* current estimate, within +-HL_COORD_MAX_MM */
     int32_t compute_median_us, compute_p99_us, compute_samples;    /* >= 0 */
     char last_error[HL_BUS_TEXT_MAX];   /* one line: NUL-terminated, no control char */
@@ -185,7 +187,8 @@ enum {
     HL_BUS_STATE_LOST = 7,
 };
 
-#define HL_BUS_STATUS_MAX_BYTES (8 + 8 + 1 + 8 + 4 * 12 + 4 + 4 + 2 + 4 * 3 + 4 + HL_BUS_TEXT_MAX)
+#define HL_BUS_STATUS_MAX_BYTES (8 + 8 + 1 + 8 + 8 * 11 + 4 + 4 + 4 + 2 + 4 * 3 + 4 + \
+                                 HL_BUS_TEXT_MAX)
 hl_status_t hl_bus_decode_status(const void *data, size_t len, hl_bus_status_t *out,
                                  char *why);
 int hl_bus_encode_status(const hl_bus_status_t *in, void *buf, size_t cap);

@@ -18,6 +18,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc/count.h"
 #include "houghloc/export.h"
 #include "houghloc/rng.h"
 #include "houghloc/scan.h"
@@ -128,8 +129,8 @@ HL_API void hl_vector_origin(const hl_vector_t *v, hl_mm_t *x_mm, hl_mm_t *y_mm)
 
 HL_API uint32_t hl_map_count(const hl_map_t *map);
 HL_API uint32_t hl_map_capacity(const hl_map_t *map);
-/** Increments on every change. */
-HL_API uint32_t hl_map_version(const hl_map_t *map);
+/** Increments on every change; stops at HL_COUNT_MAX (count.h), never wraps. */
+HL_API uint64_t hl_map_version(const hl_map_t *map);
 /** The vectors, valid until the next change to the map. */
 HL_API const hl_vector_t *hl_map_vectors(const hl_map_t *map);
 /** The culling generator's state, for saving. */
@@ -137,17 +138,18 @@ HL_API hl_rng_t hl_map_rng(const hl_map_t *map);
 
 /**
  * Replaces the contents with @p n saved vectors, a version and a culling state.
- * @return HL_ERR_CAPACITY when n > capacity, HL_ERR_RANGE when a vector is out of range;
- *         on error the map is unchanged.
+ * @return HL_ERR_CAPACITY when n > capacity, HL_ERR_RANGE when a vector is out of range
+ *         or the version above HL_COUNT_MAX; on error the map is unchanged.
  */
 HL_API hl_status_t hl_map_restore(hl_map_t *map, const hl_vector_t *vectors, uint32_t n,
-                                  uint32_t version, hl_rng_t rng);
+                                  uint64_t version, hl_rng_t rng);
 
 /**
  * Exchanges the contents of @p a and @p b (vectors, stamps, culling state and indexes),
  * maps made with the same capacity and settings (the caller's promise: a map drawn
  * aside, in the background, then put in place at once). @p a's version then differs
- * from both versions before, so that its readers see a change.
+ * from both versions before, so that its readers see a change (unless both were at
+ * HL_COUNT_MAX, where versions stop).
  */
 HL_API void hl_map_swap(hl_map_t *a, hl_map_t *b);
 

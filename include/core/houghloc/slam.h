@@ -312,7 +312,7 @@ typedef struct hl_slam_state {
     hl_pose_t odom;         /* the odometry that went with it */
     uint32_t peak_avg;      /* recent peak average (guarded mode), votes x 256, before
                                the prior; 0 = none yet */
-    uint32_t map_version;
+    uint64_t map_version;   /* 0..HL_COUNT_MAX (count.h) */
     hl_rng_t cull_rng;      /* the map's culling generator */
 } hl_slam_state_t;
 
@@ -322,7 +322,8 @@ HL_API void hl_slam_get_state(const hl_slam_t *s, hl_slam_state_t *out);
  * Replaces the map and the state with a saved one. The vectors are checked (count at
  * most the map's capacity, every field in range) before anything changes.
  * @return HL_OK; HL_ERR_CAPACITY when @p n exceeds the capacity; HL_ERR_RANGE for a
- *         vector or pose out of range. On error nothing changes.
+ *         vector or pose out of range, or a map version above HL_COUNT_MAX. On error
+ *         nothing changes.
  */
 HL_API hl_status_t hl_slam_restore(hl_slam_t *s, const hl_slam_state_t *state,
                                    const hl_vector_t *vectors, uint32_t n);

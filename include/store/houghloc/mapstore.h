@@ -5,12 +5,14 @@
  *
  * Format (little-endian, version HL_MAPSTORE_VERSION; docs/manual/mapfile.md):
  *   header  magic "HLMAP\r\n\x1a" (8 bytes), format version u32, header bytes u32,
- *           capacity u32, count u32, map version u32, started u8, pose (x i32, y i32,
+ *           capacity u32, count u32, map version u64, started u8, pose (x i32, y i32,
  *           theta u16), odometry reference (same), peak average u32, culling PRNG
  *           (state u64, inc u64), last request seq i64, last scan utime i64,
  *           scans integrated u64
  *   body    count vectors: x i32, y i32, normal u16, range u16
  *   trailer crc32 (zlib) of everything before it, u32
+ * Format version 1 differs only in the map version, a u32 (a 93-byte header): it is still
+ * read, its map version widened; saving always writes version 2.
  * Saving writes PATH.tmp, fsyncs it, renames it over PATH and fsyncs the directory.
  * Loading checks the magic, version, sizes, every field's range and the checksum before
  * it returns anything. A file that fails to load is never overwritten by a save: the
@@ -27,9 +29,10 @@
 
 #include "houghloc/slam.h"
 
-#define HL_MAPSTORE_VERSION 1u
+#define HL_MAPSTORE_VERSION 2u          /* the format saves write; loads read 1 too */
 #define HL_MAPSTORE_WHY_LEN 512
-#define HL_MAPSTORE_HEADER_BYTES 93     /* the header of format version 1 */
+#define HL_MAPSTORE_HEADER_BYTES 97     /* the header of format version 2 */
+#define HL_MAPSTORE_V1_HEADER_BYTES 93  /* ... and of version 1 */
 #define HL_MAPSTORE_LOCK_SUFFIX ".lock" /* the lock file: PATH.lock */
 
 typedef struct hl_mapfile {
@@ -44,6 +47,7 @@ typedef struct hl_mapfile {
     int64_t last_request_seq;   /* highest DESTINATION/COMMAND seq accepted (replay guard) */
     int64_t last_scan_utime;    /* the newest integrated scan's time */
     uint64_t scans;             /* scans integrated over the map's life */
+    uint32_t format;            /* load only: the file's format version (1 or 2) */
 } hl_mapfile_t;
 
 /**
@@ -55,10 +59,11 @@ hl_status_t hl_mapstore_save(const char *path, const hl_mapfile_t *m, char *why)
 /**
  * Loads and checks. @return HL_OK; HL_ERR_OS with errno == ENOENT when the file does not
  * exist (the caller starts a fresh map), other HL_ERR_OS for a read error; HL_ERR_PARSE
- * for a file that is not a map file, truncated, of another format version, or fails its
- * checksum; HL_ERR_CAPACITY when it holds more than max_vectors vectors (out->needed
- * says how many, nothing else of @p out changes); HL_ERR_RANGE for
- * a field out of range. @p why names the file and the reason in one line.
+ * for a file that is not a map file, truncated, of a format version other than 1 and 2,
+ * or fails its checksum; HL_ERR_CAPACITY when it holds more than max_vectors vectors
+ * (out->needed says how many, nothing else of @p out changes); HL_ERR_RANGE for a field
+ * out of range (a map version above HL_COUNT_MAX too). @p why names the file and the
+ * reason in one line.
  */
 hl_status_t hl_mapstore_load(const char *path, hl_mapfile_t *out, char *why);
 

@@ -152,7 +152,7 @@ struct Tracked {
     std::vector<hl_scan_t> placed;
     std::vector<hl_vector_t> own;   // the slam's own map at the end (track, exact), as
     hl_rng_t own_rng{};             // houghlocd saves it; empty when the poses moved after
-    uint32_t own_version = 0;
+    uint64_t own_version = 0;
 };
 
 // The tour through hl_slam_update, with its odometry or (@p exact) its true poses.

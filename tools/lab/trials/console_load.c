@@ -167,7 +167,7 @@ static int run_maps(const options_t *o)
     for (int64_t now = start; now < end && !stop_requested; now = mono_ms()) {
         long long due = (now - start) * o->rate / 1000 + 1;
         if (sent < due) {
-            m.version = (int32_t)sent;
+            m.version = sent;
             m.utime = now * 1000;
             int len = hl_bus_encode_map(&m, buf, cap);
             if (len < 0)

@@ -114,7 +114,7 @@ static int encode_pose(hl_rng_t *r, uint8_t *buf)
 static int encode_status(hl_rng_t *r, uint8_t *buf)
 {
     hl_bus_status_t s = { .utime = utime(r), .state = (int8_t)hl_rng_below(r, 7),
-                          .destination_seq = -1, .scans = (int32_t)hl_rng_below(r, 1000),
+                          .destination_seq = -1, .scans = (int64_t)hl_rng_below(r, 1000),
                           .pose = pose(r) };
     snprintf(s.last_error, sizeof s.last_error, "flood %u", (unsigned)hl_rng_next(r));
     return hl_bus_encode_status(&s, buf, FLOOD_MSG_MAX);
@@ -135,7 +135,7 @@ static int encode_map(hl_rng_t *r, uint8_t *buf)
     for (uint32_t i = 0; i < n; i++)
         v[i] = (hl_vector_t){ coord(r), coord(r), (hl_bam_t)hl_rng_next(r),
                               (uint16_t)hl_rng_below(r, 5000) };
-    hl_bus_map_t m = { .utime = utime(r), .version = (int32_t)hl_rng_below(r, 1000),
+    hl_bus_map_t m = { .utime = utime(r), .version = (int64_t)hl_rng_below(r, 1000),
                        .capacity = 1500, .count = n, .vectors = v };
     return hl_bus_encode_map(&m, buf, FLOOD_MSG_MAX);
 }

@@ -22,3 +22,13 @@ $(BUILD)/bin/hl-console-load: $(CONSOLE_LOAD_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_
 	@echo "  LD      $@"
 	$(Q)$(CC) -o $@ $(CONSOLE_LOAD_OBJS) $(BUS_LIB) $(BUS_LDLIBS)
 TRIALS_PROGS += $(BUILD)/bin/houghloc-console $(BUILD)/bin/hl-console-load
+
+# hl-counter-edge: the Counters trial's tool (tools/lab/trials/counters.sh): sets a real map
+# file's version near a 32-bit edge, and reads the MAP and STATUS versions of an output log.
+COUNTER_EDGE_OBJS := $(BUILD)/obj/tools/lab/trials/counter_edge.o
+LAB_BINS += $(BUILD)/bin/hl-counter-edge
+$(BUILD)/bin/hl-counter-edge: $(COUNTER_EDGE_OBJS) $(STORE_LIB) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
+	@mkdir -p $(@D)
+	@echo "  LD      $@"
+	$(Q)$(CC) -o $@ $(COUNTER_EDGE_OBJS) $(STORE_LIB) $(STORE_LDLIBS)
+TRIALS_PROGS += $(BUILD)/bin/hl-counter-edge
