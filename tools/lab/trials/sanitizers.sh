@@ -3,14 +3,13 @@
 # UndefinedBehaviorSanitizer, and the daemon under valgrind
 # (docs/results/reliability.md, "Sanitizers and valgrind"):
 #   1. houghlocd, houghloc-sim, houghloc-goto, houghloc-ctl and hl-eval built with
-#      ASan+UBSan into
-#      SAN_BUILD (default $BUILD-san). The top Makefile puts OPT on the compile lines only,
-#      not on the link lines, so the sanitizers go in through CC and CXX, which both use.
+#      ASan+UBSan into SAN_BUILD (default $BUILD-san). The top Makefile puts OPT on the
+#      compile lines only, not on the link lines, so the sanitizers go in through CC and
+#      CXX, which both use.
 #   2. tests/integration/test_robot.sh, test_daemon.sh, test_goto.sh and test_ctl.sh run
-#      against that build, every
-#      sanitizer report written to a file of its own (ASAN_OPTIONS/UBSAN_OPTIONS log_path,
-#      so that the tests' checks of stderr are not disturbed): the tests must pass and no
-#      report be written (LeakSanitizer included).
+#      against that build, every sanitizer report written to a file of its own
+#      (ASAN_OPTIONS/UBSAN_OPTIONS log_path, so that the tests' checks of stderr are not
+#      disturbed): the tests must pass and no report be written (LeakSanitizer included).
 #   3. valgrind memcheck over a batch replay of logs/tour.lcmlog by the ordinary build's
 #      houghlocd ($BUILD/bin): no errors, nothing definitely or indirectly lost. What
 #      liblcm and glib keep until exit ("still reachable") is reported, not failed, and
