@@ -169,14 +169,14 @@ static void test_save_every_is_not_held(void **state)
     cap->clock_us += S;
     send_save(c, 5);
     assert_int_equal(loop_save(c, true), 'h');
-    hl_cycle_t *fed = c;
     load_tour();
     size_t scans = 0;
     for (size_t i = 0; i < n_tour && scans < 4; i++) {  /* scans 3 and 4: save_every due */
         scans += tour[i].ch == HL_CH_SONAR;
         if (scans > 2)
-            hl_cycle_on_message(fed, tour[i].ch, tour[i].data, tour[i].len, tour[i].utime);
+            hl_cycle_on_message(c, tour[i].ch, tour[i].data, tour[i].len, tour[i].utime);
     }
+    assert_true(hl_cycle_save_due(c));
     assert_false(hl_cycle_save_may_wait(c));
     assert_int_equal(loop_save(c, true), 'w');
     hl_bus_reply_t r = reply(cap, replies(cap) - 1);
