@@ -310,12 +310,7 @@ void hl_cycle_on_message(hl_cycle_t *c, hl_chan_t ch, const void *data, size_t l
     }
 }
 
-/* ---- saving ---------------------------------------------------------------------------- */
-
-bool hl_cycle_save_due(const hl_cycle_t *c)
-{
-    return c->save_requested || (c->p.save_every > 0 && c->since_save >= c->p.save_every);
-}
+/* ---- saving (when: cycle_save.c) ------------------------------------------------------ */
 
 void hl_cycle_snapshot(const hl_cycle_t *c, hl_mapfile_t *out)
 {
@@ -327,20 +322,6 @@ void hl_cycle_snapshot(const hl_cycle_t *c, hl_mapfile_t *out)
         .scans = c->scans_total,
     };
     hl_slam_get_state(c->slam, &out->state);
-}
-
-void hl_cycle_saved(hl_cycle_t *c, bool ok, const char *why)
-{
-    c->since_save = 0;     /* after a failure too: retry after save_every more */
-    if (ok)
-        hl_count_add(&c->n.saves, 1);
-    else
-        hl_cycle_fault(c, NULL, "save", why);
-    if (c->save_request_seq)
-        hl_cycle_reply(c, c->save_request_seq, ok ? HL_BUS_REPLY_ACCEPTED : HL_BUS_REPLY_FAILED,
-                       ok ? "map saved" : why);
-    c->save_requested = false;
-    c->save_request_seq = 0;
 }
 
 const hl_cycle_counts_t *hl_cycle_counts(const hl_cycle_t *c)

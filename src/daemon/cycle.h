@@ -8,7 +8,8 @@
  *
  * Saving the map is file I/O, so the cycle only says when a save is due
  * (hl_cycle_save_due), lends its state for it (hl_cycle_snapshot) and is told the outcome
- * (hl_cycle_saved), which answers a pending SAVE request.
+ * (hl_cycle_saved), which answers a pending SAVE request. SAVE requests write the map at
+ * most once per HL_CYCLE_SAVE_MIN_INTERVAL_MS (cycle_save.c).
  */
 #ifndef HOUGHLOC_DAEMON_CYCLE_H
 #define HOUGHLOC_DAEMON_CYCLE_H
@@ -108,8 +109,22 @@ void hl_cycle_set_state(hl_cycle_t *c, int8_t state, int64_t now_us);
  *  (at shutdown: the last MAP of a run is the final map). */
 void hl_cycle_flush_map(hl_cycle_t *c);
 
-/** Whether the map should be saved now (save_every reached, or a SAVE request). */
+/** SAVE requests write the map file at most once in this much wall time: a write costs
+ *  the whole file and two fsyncs, and a client asking many times a second must not hold
+ *  up POSE; 5 s still answers an operator's SAVE within seconds. */
+#define HL_CYCLE_SAVE_MIN_INTERVAL_MS 5000
+
+/** Whether the map should be saved now (save_every reached, or a SAVE request: at once
+ *  when it came, or at the end of the interval once it waits, hl_cycle_save_wait). */
 bool hl_cycle_save_due(const hl_cycle_t *c);
+/** A due save that is only a SAVE request's, inside HL_CYCLE_SAVE_MIN_INTERVAL_MS after
+ *  the last write: a map unchanged since is answered (hl_cycle_save_unchanged), a changed
+ *  one may wait (hl_cycle_save_wait) instead of being written now. */
+bool hl_cycle_save_may_wait(const hl_cycle_t *c);
+/** The request waits: due again (and answered once written) when the interval ends. */
+void hl_cycle_save_wait(hl_cycle_t *c);
+/** The wall-clock time (the io's clock) a waiting save falls due; INT64_MAX if none. */
+int64_t hl_cycle_save_wake_us(const hl_cycle_t *c);
 /** Fills @p out with the state to save; out->vectors points into the cycle's map. */
 void hl_cycle_snapshot(const hl_cycle_t *c, hl_mapfile_t *out);
 /** The outcome of a save: answers a pending SAVE request and resets the count. */
@@ -118,7 +133,8 @@ void hl_cycle_saved(hl_cycle_t *c, bool ok, const char *why);
 int64_t hl_cycle_save_request(const hl_cycle_t *c);
 /** A due save that wrote nothing, the map file holding the state already: as
  *  hl_cycle_saved(c, true, ...), it answers a pending SAVE request (ACCEPTED, "map
- *  unchanged since the last save") and resets the count, but it counts no save. */
+ *  unchanged since the last save", with its age when this process wrote it) and resets
+ *  the count, but it counts no save and does not start a new interval. */
 void hl_cycle_save_unchanged(hl_cycle_t *c);
 
 const hl_cycle_counts_t *hl_cycle_counts(const hl_cycle_t *c);

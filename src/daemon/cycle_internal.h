@@ -37,10 +37,13 @@ struct hl_cycle {
     uint8_t *map_buf;
     size_t map_buf_len;
 
-    /* saving */
+    /* saving (cycle_save.c) */
     int32_t since_save;
     bool save_requested;
     int64_t save_request_seq;       /* 0 when none */
+    bool saved_once;                /* this process wrote the map file (last_save_us) */
+    int64_t last_save_us;           /* wall clock of the last write, to rate SAVE requests */
+    bool save_waiting;              /* the SAVE request waits for the interval's end */
 
     /* compute time per scan, the last compute_window of them */
     int32_t *compute_us, *compute_sorted;
@@ -67,6 +70,8 @@ bool hl_cycle_decoded(hl_cycle_t *c, hl_status_t st, const char *channel, const 
 
 void hl_cycle_on_destination(hl_cycle_t *c, const void *data, size_t len, int64_t now_us);
 void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t now_us);
+/** An admitted SAVE request (cycle_save.c): the one waiting before it is superseded. */
+void hl_cycle_on_save(hl_cycle_t *c, int64_t seq);
 void hl_cycle_reply(hl_cycle_t *c, int64_t seq, int8_t result, const char *message);
 void hl_cycle_publish_status(hl_cycle_t *c);
 void hl_cycle_record_compute(hl_cycle_t *c, int64_t us);

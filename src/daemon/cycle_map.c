@@ -13,9 +13,6 @@
  * the one hl_cycle_flush_map sends at the end (the final map, which a log's reader
  * takes). A map held back is not lost: the next MAP carries it, and STATUS's
  * map_version tells a consumer that a newer one exists.
- *
- * At its end, the map file's side of "changed": the answer to a save that found the file
- * holding the map already (hl_cycle_save_unchanged; the test is maplock.h's).
  */
 #include "cycle_internal.h"
 
@@ -87,21 +84,4 @@ void hl_cycle_flush_map(hl_cycle_t *c)
 {
     if (map_pending(c))
         publish_map(c);
-}
-
-/* ---- a save with nothing to write (loop.c's hl_loop_save; hl_cycle_saved's sibling) ---- */
-
-int64_t hl_cycle_save_request(const hl_cycle_t *c)
-{
-    return c->save_requested ? c->save_request_seq : 0;
-}
-
-void hl_cycle_save_unchanged(hl_cycle_t *c)
-{
-    c->since_save = 0;
-    if (c->save_request_seq)
-        hl_cycle_reply(c, c->save_request_seq, HL_BUS_REPLY_ACCEPTED,
-                       "map unchanged since the last save: nothing written");
-    c->save_requested = false;
-    c->save_request_seq = 0;
 }

@@ -128,12 +128,7 @@ void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t no
         set_pose(c, &cmd, now_us);
         break;
     case HL_BUS_COMMAND_SAVE:
-        /* answered by hl_cycle_saved once the loop has written the file */
-        if (c->save_request_seq)
-            hl_cycle_reply(c, c->save_request_seq, HL_BUS_REPLY_ACCEPTED,
-                           "superseded by SAVE request with a higher seq");
-        c->save_requested = true;
-        c->save_request_seq = cmd.seq;
+        hl_cycle_on_save(c, cmd.seq);   /* answered when the loop has saved (cycle_save.c) */
         break;
     case HL_BUS_COMMAND_RELOCALIZE:
         hl_cycle_enter_lost(c, "RELOCALIZE command", now_us);

@@ -39,6 +39,7 @@ struct hl_loop {
     sub_ctx_t subs[HL_CH_COUNT];
     int sfd, tfd;
     int64_t due[N_TIMERS], period[N_TIMERS];    /* monotonic us; period 0 = off */
+    int64_t save_wake_us;       /* a SAVE request waiting for its time; INT64_MAX: none */
     bool stop, input_ended, faulted;
     bool publish_failed;
 };
@@ -157,6 +158,7 @@ hl_loop_t *hl_loop_create(const hl_loop_params_t *p, char *why)
         return WHY("out of memory"), NULL;
     l->p = *p;
     l->sfd = l->tfd = -1;
+    l->save_wake_us = INT64_MAX;
     for (int ch = 0; ch < HL_CH_COUNT; ch++)
         if (!hl_bus_channel(p->prefix, hl_chan_name((hl_chan_t)ch), l->channel[ch])) {
             WHY("bad channel prefix '%s'", p->prefix);
@@ -206,6 +208,8 @@ static void arm_timer(hl_loop_t *l)
     for (int i = 0; i < N_TIMERS; i++)
         if (l->period[i] > 0 && l->due[i] < next)
             next = l->due[i];
+    if (l->save_wake_us < next)
+        next = l->save_wake_us;
     struct itimerspec its = { 0 };
     if (next != INT64_MAX) {
         its.it_value.tv_sec = next / 1000000;
@@ -253,7 +257,9 @@ static void start_timers(hl_loop_t *l)
 
 /* ---- saving and signals -------------------------------------------------------------- */
 
-bool hl_loop_save(hl_loop_t *l, hl_cycle_t *cycle)
+/* A save: written, or answered as unchanged, or (@p may_wait: a SAVE request inside the
+ * least interval between writes, cycle_save.c) left to wait for the interval's end. */
+static bool save(hl_loop_t *l, hl_cycle_t *cycle, bool may_wait)
 {
     hl_mapfile_t m;
     char why[HL_MAPSTORE_WHY_LEN];
@@ -262,8 +268,14 @@ bool hl_loop_save(hl_loop_t *l, hl_cycle_t *cycle)
      * which fields count and why); a SAVE request's own seq does not count. */
     int64_t request = hl_cycle_save_request(cycle);
     if (!hl_maplock_changed(&m, request != 0 && request == m.last_request_seq)) {
-        hl_log(HL_LOG_INFO, "map %s unchanged since the last save: not written", l->p.map_path);
+        /* a request flood asks this many times a second: logged only when debugging */
+        hl_log(may_wait ? HL_LOG_DEBUG : HL_LOG_INFO,
+               "map %s unchanged since the last save: not written", l->p.map_path);
         hl_cycle_save_unchanged(cycle);
+        return true;
+    }
+    if (may_wait) {
+        hl_cycle_save_wait(cycle);
         return true;
     }
     bool ok = hl_mapstore_save(l->p.map_path, &m, why) == HL_OK;
@@ -275,6 +287,23 @@ bool hl_loop_save(hl_loop_t *l, hl_cycle_t *cycle)
     }
     hl_cycle_saved(cycle, ok, why);
     return ok;
+}
+
+bool hl_loop_save(hl_loop_t *l, hl_cycle_t *cycle)
+{
+    return save(l, cycle, false);
+}
+
+/* The save the cycle says is due, if any; the timer follows a SAVE request left waiting. */
+static void save_when_due(hl_loop_t *l, hl_cycle_t *cycle)
+{
+    if (hl_cycle_save_due(cycle))
+        save(l, cycle, hl_cycle_save_may_wait(cycle));
+    int64_t wake = hl_cycle_save_wake_us(cycle);
+    if (wake != l->save_wake_us) {
+        l->save_wake_us = wake;
+        arm_timer(l);
+    }
 }
 
 static void on_signal(hl_loop_t *l)
@@ -333,8 +362,7 @@ int hl_loop_run(hl_loop_t *l, hl_cycle_t *cycle)
             on_lcm_readable(l);
         if (fds[3].fd >= 0 && fds[3].revents)
             hl_robot_on_ready(l->robot, fds[3].revents, mono_us() / 1000);
-        if (hl_cycle_save_due(cycle))
-            hl_loop_save(l, cycle);
+        save_when_due(l, cycle);
         if (fds[1].revents & POLLIN)
             run_timers(l);
         if (l->robot && hl_robot_replay_ended(l->robot)) {

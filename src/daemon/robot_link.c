@@ -57,19 +57,77 @@ static void note_fault(hl_robot_t *r, const char *why)
     hl_cycle_note_error(r->cycle, what);
 }
 
-static void drop_link(hl_robot_t *r, const char *cause, int64_t now_ms)
+/* The most a lost link's last bytes (the STOP the ARCOS connection queued) may hold the
+ * loop: a serial port at 9600 baud takes the few bytes in about 15 ms. */
+#define STOP_FLUSH_MS 200
+
+/* Writes what the ARCOS connection still holds (its STOP and CLOSE to a robot lost to
+ * silence) to a link that still takes bytes, waiting for room up to STOP_FLUSH_MS.
+ * @return NULL when all of it went out, else what stopped it (in @p why). */
+static const char *flush_before_close(hl_robot_t *r, char *why)
 {
-    /* a copy: the cause may be the ARCOS link's own text (hl_rlink_why), which
-     * hl_rlink_lost below rewrites */
-    char why[HL_LINK_WHY_LEN];
+    size_t n;
+    const uint8_t *out = hl_rlink_pending(&r->rlink, &n);
+    int waited_ms = 0;
+    while (n > 0) {
+        ssize_t put = hl_link_write(r->link, out, n, why);
+        if (put < 0)
+            return why;
+        if (put == 0) {
+            /* full: wait for room in slices, so that the bound holds whatever wakes us */
+            struct pollfd p = { .fd = hl_link_fd(r->link), .events = POLLOUT };
+            if (waited_ms >= STOP_FLUSH_MS)
+                return "the link took no more bytes";
+            poll(&p, 1, 10);
+            waited_ms += 10;
+            continue;
+        }
+        hl_rlink_sent(&r->rlink, (size_t)put);
+        out = hl_rlink_pending(&r->rlink, &n);
+    }
+    return NULL;
+}
+
+/* @p head, @p middle and @p tail joined into @p out (@p cap bytes): the middle is cut
+ * short when they do not fit, never the head or the tail. */
+static void join(char *out, size_t cap, const char *head, const char *middle,
+                 const char *tail)
+{
+    size_t nh = strlen(head), nt = strlen(tail), nm = strlen(middle);
+    if (nh + nt >= cap)
+        nt = 0;         /* cannot happen with this file's texts; stay in bounds anyway */
+    if (nh >= cap)
+        nh = cap - 1;
+    if (nm > cap - 1 - nh - nt)
+        nm = cap - 1 - nh - nt;
+    memmove(out, head, nh);
+    memmove(out + nh, middle, nm);
+    memmove(out + nh + nm, tail, nt);
+    out[nh + nm + nt] = '\0';
+}
+
+/* The link is lost: closed, the destination failed, a retry scheduled. @p writable: the
+ * link itself did not fail (the ARCOS connection gave up on it), so what that queued for
+ * the robot (a STOP, after silence) is written before it is closed. */
+static void drop_link(hl_robot_t *r, const char *cause, bool writable, int64_t now_ms)
+{
+    /* copies: the cause may be the ARCOS link's own text (hl_rlink_why), which
+     * hl_rlink_lost below rewrites; no text is formatted onto itself */
+    char why[HL_LINK_WHY_LEN], err[HL_LINK_WHY_LEN], stop[96] = "";
     snprintf(why, sizeof why, "%s", cause);
-    char what[HL_BUS_TEXT_MAX];
-    note_fault(r, why);
+    if (writable && r->link && hl_rlink_stop_queued(&r->rlink)) {
+        const char *failed = flush_before_close(r, err);
+        join(stop, sizeof stop, failed ? "; stop not sent: " : "; stop sent",
+             failed ? failed : "", "");
+    }
+    char full[HL_LINK_WHY_LEN], what[HL_BUS_TEXT_MAX];
+    join(full, sizeof full, "", why, stop);
+    join(what, sizeof what, "robot link lost: ", why, stop);
+    note_fault(r, full);
     hl_link_close(r->link);
     r->link = NULL;
     r->up = false;
-    hl_rlink_lost(&r->rlink, why);
-    snprintf(what, sizeof what, "robot link lost: %.140s", why);
+    hl_rlink_lost(&r->rlink, full);
     robot_abandon(r, what, now_ms);
     r->retry_at_ms = now_ms + r->backoff_ms;
     r->backoff_ms = r->backoff_ms * 2 > r->p.reconnect_max_ms ? r->p.reconnect_max_ms
@@ -86,7 +144,7 @@ static void check_connection(hl_robot_t *r, int64_t now_ms)
         r->bad_reported = bad;
     }
     if (r->link && !hl_link_connecting(r->link) && hl_rlink_state(&r->rlink) == HL_RLINK_DOWN) {
-        drop_link(r, hl_rlink_why(&r->rlink), now_ms);
+        drop_link(r, hl_rlink_why(&r->rlink), true, now_ms);
         return;
     }
     if (r->up || hl_rlink_state(&r->rlink) != HL_RLINK_UP)
@@ -124,7 +182,7 @@ void robot_flush(hl_robot_t *r, int64_t now_ms)
     while (r->link && !hl_link_connecting(r->link) && n > 0) {
         ssize_t put = hl_link_write(r->link, out, n, why);
         if (put < 0) {
-            drop_link(r, why, now_ms);
+            drop_link(r, why, false, now_ms);
             return;
         }
         if (put == 0)
@@ -146,7 +204,7 @@ static void connect_now(hl_robot_t *r, int64_t now_ms)
         return;
     }
     if (!r->link) {
-        drop_link(r, why, now_ms);
+        drop_link(r, why, false, now_ms);
         return;
     }
     if (!hl_link_connecting(r->link))
@@ -162,7 +220,7 @@ void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms)
         if (!(revents & (POLLOUT | POLLERR | POLLHUP)))
             return;
         if (!hl_link_connected(r->link, why)) {
-            drop_link(r, why, now_ms);
+            drop_link(r, why, false, now_ms);
             return;
         }
         hl_rlink_begin(&r->rlink, now_ms);
@@ -181,7 +239,7 @@ void hl_robot_on_ready(hl_robot_t *r, short revents, int64_t now_ms)
                 return;
             }
             if (got < 0) {
-                drop_link(r, why, now_ms);
+                drop_link(r, why, false, now_ms);
                 return;
             }
             if (got == 0)

@@ -97,6 +97,7 @@ void hl_rlink_begin(hl_rlink_t *l, int64_t now_ms)
     l->tries = 0;
     l->last_rx_ms = now_ms;
     l->why[0] = '\0';
+    l->stop_queued = false;
     send_sync(l, now_ms);
 }
 
@@ -173,6 +174,12 @@ void hl_rlink_tick(hl_rlink_t *l, int64_t now_ms)
         send_sync(l, now_ms);
     }
     if (l->state == HL_RLINK_UP && now_ms - l->last_rx_ms >= l->p.silence_ms) {
+        /* Silence may be one way only (a broken receive wire, a wedged reader): the
+         * robot may still hear us, and it must not drive on until its own watchdog
+         * notices. Tell it to stop and end the connection; the caller writes this before
+         * it closes the link (hl_rlink_stop_queued). */
+        l->stop_queued = queue_none(l, HL_ARCOS_STOP, now_ms);
+        queue_none(l, HL_ARCOS_CLOSE, now_ms);
         snprintf(l->why, sizeof l->why, "no packet from the robot for %d ms",
                  (int)(now_ms - l->last_rx_ms));
         l->state = HL_RLINK_DOWN;

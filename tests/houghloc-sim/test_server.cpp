@@ -1,7 +1,8 @@
 // test_server.cpp - houghloc-sim end to end over a real loopback socket, server and client
 // driven from one thread: handshake, a MOVE, one client at a time, injected garbage,
 // corrupt checksums and a dropped connection, and the robot kept across clients; a
-// connection dropped again and again (--drop-every), each living its full period.
+// connection dropped again and again (--drop-every), each living its full period; a
+// muted robot (--mute-after) that sends nothing and still obeys a STOP.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -257,6 +258,36 @@ static void test_drop_every_option(void **state)
     }
 }
 
+// --mute-after: from 2 s of robot time no SIP goes out, but the robot still obeys: a
+// STOP sent to it then stops it, and is counted.
+static void test_mute(void **state)
+{
+    (void)state;
+    Faults f;
+    f.mute_after_s = 2.0;
+    Rig r(f);
+    Reader rd;
+    int fd = open_connection(r, rd);
+    send_cmd(fd, HL_ARCOS_VEL, 200, true);
+    r.serve_until([&r] { return r.robot.base().moving(); });
+    std::vector<hl_arcos_sip_t> sips = run(r, rd, fd, 30);
+    const ServerCounts &c = r.server.counts();
+    assert_int_equal(c.sips, 20);       // 0.1 .. 2.0 s; none from the mute on
+    assert_int_equal(sips.size(), 20);
+    assert_int_equal(c.mutes, 1);
+    assert_int_equal(c.faults(), 1);
+    assert_true(r.server.connected());
+    assert_true(r.robot.base().moving());   // muted, not stopped
+    assert_int_equal(r.connection.muted_stops(), 0);
+    send_cmd(fd, HL_ARCOS_STOP, 0, false);
+    r.serve_until([&r] { return r.connection.muted_stops() == 1; });
+    run(r, rd, fd, 20);                 // 2 s to brake
+    assert_false(r.robot.base().moving());
+    assert_true(rd.packets.empty());
+    assert_int_equal(r.server.counts().sips, 20);
+    close(fd);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -264,6 +295,7 @@ int main(void)
         cmocka_unit_test(test_faults),
         cmocka_unit_test(test_drop_every),
         cmocka_unit_test(test_drop_every_option),
+        cmocka_unit_test(test_mute),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

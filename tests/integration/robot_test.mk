@@ -10,3 +10,6 @@ INTEGRATION_TESTS += tests/integration/test_lost.sh
 # path planned round a box, STOP from houghloc-ctl and from Ctrl-C on houghloc-goto, and
 # the robot stopped when the daemon stalls or dies (tests/integration/worlds/chairleg.world).
 INTEGRATION_TESTS += tests/integration/test_drive.sh
+# A one-way link loss: houghloc-sim falls silent but still obeys (--mute-after); the daemon
+# sends STOP before it closes the link, and the destination fails saying so.
+INTEGRATION_TESTS += tests/integration/test_link_loss.sh

@@ -155,6 +155,42 @@ static void test_silence_loses_the_link_and_pulses_keep_it(void **state)
     assert_false(hl_rlink_send(l, HL_ARCOS_STOP, 22001));
 }
 
+/* A silent robot may still hear us (a one-way loss): STOP, then CLOSE, wait for the caller
+ * to write before it closes the transport; a loss during the handshake queues none. */
+static void test_silence_queues_stop_and_close(void **state)
+{
+    (void)state;
+    hl_rlink_t *l = fresh();
+    handshake(l);
+    hl_arcos_cmd_t c[4];
+    assert_true(hl_rlink_send_int(l, HL_ARCOS_MOVE, 500, 30));   /* under way, unsent */
+    assert_false(hl_rlink_stop_queued(l));
+    hl_rlink_tick(l, 2019);
+    assert_int_equal(hl_rlink_state(l), HL_RLINK_UP);
+    hl_rlink_tick(l, 2020);
+    assert_int_equal(hl_rlink_state(l), HL_RLINK_DOWN);
+    assert_true(hl_rlink_stop_queued(l));
+    assert_string_equal(hl_rlink_why(l), "no packet from the robot for 2000 ms");
+    assert_int_equal(drain(l, c, 4), 3);
+    assert_int_equal(c[0].number, HL_ARCOS_MOVE);
+    assert_int_equal(c[1].number, HL_ARCOS_STOP);
+    assert_int_equal(c[2].number, HL_ARCOS_CLOSE);
+    hl_rlink_tick(l, 5000);                 /* DOWN: nothing more */
+    assert_int_equal(drain(l, c, 4), 0);
+
+    hl_rlink_begin(l, 6000);                /* a new connection forgets it */
+    assert_false(hl_rlink_stop_queued(l));
+    assert_int_equal(drain(l, c, 4), 1);
+    assert_int_equal(c[0].number, HL_ARCOS_SYNC0);
+    for (int64_t t = 6100; t <= 10000; t += 100)
+        hl_rlink_tick(l, t);
+    assert_int_equal(hl_rlink_state(l), HL_RLINK_DOWN);   /* SYNC0 never answered */
+    assert_false(hl_rlink_stop_queued(l));
+    hl_arcos_cmd_t syncs[8];
+    for (int k = drain(l, syncs, 8); k > 0; k--)
+        assert_int_equal(syncs[k - 1].number, HL_ARCOS_SYNC0);
+}
+
 static void test_a_robot_still_streaming_is_closed_first(void **state)
 {
     (void)state;
@@ -193,6 +229,7 @@ int main(void)
         cmocka_unit_test(test_handshake_then_sips_flow),
         cmocka_unit_test(test_unanswered_sync_is_resent_then_given_up),
         cmocka_unit_test(test_silence_loses_the_link_and_pulses_keep_it),
+        cmocka_unit_test(test_silence_queues_stop_and_close),
         cmocka_unit_test(test_a_robot_still_streaming_is_closed_first),
         cmocka_unit_test(test_garbage_and_bad_packets_are_counted),
     };

@@ -16,6 +16,8 @@
  *                                       two runs compare with cmp(1)
  *   hl-eval status LOG                  the last STATUS in LOG as one line of key=value
  *   hl-eval truth LOG                   the last GROUND_TRUTH pose in LOG as X,Y,DEG
+ *   hl-eval latency IN OUT              each POSE's time after its scan, by the
+ *                                       recorders' clocks (latency.h)
  *   hl-eval split LOG N FIRST REST      FIRST gets the events before the N-th SONAR scan
  *                                       (counting from 0), REST the others
  *   hl-eval garble LOG OUT              OUT is LOG with hostile events between the real
@@ -39,6 +41,7 @@
 #include "houghloc/logcheck.h"
 #include "houghloc/slam.h"
 #include "houghloc/version.h"
+#include "latency.h"
 #include "runlog.h"
 #include "truth_frame.h"
 
@@ -49,6 +52,7 @@ static const char usage[] =
     "       hl-eval extract LOG CHANNEL FILE\n"
     "       hl-eval status LOG\n"
     "       hl-eval truth LOG\n"
+    "       hl-eval latency IN.lcmlog OUT.lcmlog\n"
     "       hl-eval split LOG N FIRST REST\n"
     "       hl-eval garble LOG OUT\n"
     "Scores houghlocd's POSE output (OUT) against the GROUND_TRUTH of its input (IN),\n"
@@ -61,6 +65,10 @@ static const char usage[] =
     "The truth is compared in the daemon's map frame: its first pose (the robot standing\n"
     "where the run began) is laid on the daemon's start pose, --start (metres, metres,\n"
     "degrees; default 0,0,0, the daemon's default [start]).\n"
+    "latency pairs the SONAR recorded in IN with the POSE recorded in OUT by seq and\n"
+    "prints each POSE's delay after its scan by the recorders' event times:\n"
+    "  latency poses=<n> p50_ms=<x> p99_ms=<y> max_ms=<z> scans_unanswered=<k>\n"
+    "          poses_unpaired=<j>\n"
     "       hl-eval --help | --version\n";
 
 typedef hl_runlog_stop_t stop_t;
@@ -434,6 +442,8 @@ int main(int argc, char **argv)
         return cmd_status(argv[2]);
     if (argc == 3 && strcmp(argv[1], "truth") == 0)
         return cmd_truth(argv[2]);
+    if (argc == 4 && strcmp(argv[1], "latency") == 0)
+        return hl_eval_latency("hl-eval", argv[2], argv[3]);
     if (argc == 6 && strcmp(argv[1], "split") == 0) {
         const char *a = argv[3];
         char *end;
@@ -449,7 +459,7 @@ int main(int argc, char **argv)
         writer_t w = { .rng = 12345 };
         return cmd_write(argv[2], on_garble, &w, argv[3], NULL);
     }
-    fprintf(stderr, "hl-eval: expected start, score, live, extract, status, truth, split or garble with their "
+    fprintf(stderr, "hl-eval: expected start, score, live, extract, status, truth, latency, split or garble with their "
             "arguments (try --help)\n");
     return 2;
 }

@@ -9,9 +9,9 @@ BINS += $(BUILD)/bin/hl-eval
 RUNLOG_OBJ := $(BUILD)/obj/tools/eval/runlog.o
 TRUTH_FRAME_OBJ := $(BUILD)/obj/tools/eval/truth_frame.o
 
-$(BUILD)/bin/hl-eval: $(call obj,tools/eval/eval.c) $(RUNLOG_OBJ) $(TRUTH_FRAME_OBJ) $(BUS_LIB) \
-                      $(LCM_LIB) $(CORE_LIB)
+HL_EVAL_OBJS := $(call obj,tools/eval/eval.c tools/eval/latency.c) $(RUNLOG_OBJ) $(TRUTH_FRAME_OBJ)
+
+$(BUILD)/bin/hl-eval: $(HL_EVAL_OBJS) $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
-	$(Q)$(CC) -o $@ $(call obj,tools/eval/eval.c) $(RUNLOG_OBJ) $(TRUTH_FRAME_OBJ) $(BUS_LIB) \
-	    $(BUS_LDLIBS)
+	$(Q)$(CC) -o $@ $(HL_EVAL_OBJS) $(BUS_LIB) $(BUS_LDLIBS)

@@ -212,12 +212,22 @@ void Connection::take(const hl_arcos_cmd_t &cmd)
         robot_.connection_end();
         state_ = State::Closed;
         break;
-    default:
+    default: {
+        // a STOP reaching a robot the client cannot hear: what a client that noticed the
+        // silence should send (the speeds are the robot's as the STOP came)
+        const double v = robot_.base().velocity(), w = robot_.base().rot_velocity();
         if (!robot_.command(cmd)) {
             bad_++;
             return;
         }
+        if (muted_ && cmd.number == HL_ARCOS_STOP) {
+            muted_stops_++;
+            log_.line("fault: muted: the client sent STOP (%llu so far) at %.0f mm/s and "
+                      "%.1f deg/s", static_cast<unsigned long long>(muted_stops_), v,
+                      rad2deg(w));
+        }
         break;
+    }
     }
     commands_++;
 }

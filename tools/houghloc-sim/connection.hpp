@@ -78,6 +78,11 @@ public:
     uint64_t bad_commands() const { return bad_; }           // malformed, unsupported, ...
     uint64_t garbage_bytes() const { return garbage_; }      // bytes outside any packet
     uint64_t steps() const { return steps_; }                // STEPs taken (lockstep)
+    uint64_t muted_stops() const { return muted_stops_; }    // STOPs taken while muted
+
+    /** --mute-after: the robot's SIPs no longer reach the client (the server keeps them
+     *  back), for good; each STOP taken from now on is logged and counted. */
+    void set_muted() { muted_ = true; }
 
 private:
     void process(const uint8_t *in, std::size_t n, std::vector<uint8_t> *out);
@@ -95,7 +100,8 @@ private:
     bool lockstep_ = false;
     bool granted_ = false;           // lockstep: a period granted, not yet run
     std::vector<uint8_t> held_;      // lockstep: client bytes behind the granted period
-    uint64_t commands_ = 0, bad_ = 0, garbage_ = 0, steps_ = 0;
+    uint64_t commands_ = 0, bad_ = 0, garbage_ = 0, steps_ = 0, muted_stops_ = 0;
+    bool muted_ = false;
     uint64_t seen_checksums_ = 0, seen_lengths_ = 0, seen_garbage_ = 0;
 };
 

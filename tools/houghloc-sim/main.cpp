@@ -81,8 +81,8 @@ void summary(const Server &server, const Connection &connection, const SimRobot 
     std::fprintf(stderr,
                  "houghloc-sim: summary: sips_sent=%llu commands=%llu bad_commands=%llu "
                  "client_garbage_bytes=%llu faults=%llu (drop %llu, garbage %llu, corrupt "
-                 "%llu, stall %llu, teleport %llu) clients=%llu refused=%llu "
-                 "robot_time_s=%.1f collisions=%llu\n",
+                 "%llu, stall %llu, teleport %llu, mute %llu) clients=%llu refused=%llu "
+                 "muted_stops=%llu robot_time_s=%.1f collisions=%llu\n",
                  static_cast<unsigned long long>(c.sips),
                  static_cast<unsigned long long>(connection.commands()),
                  static_cast<unsigned long long>(connection.bad_commands()),
@@ -93,8 +93,10 @@ void summary(const Server &server, const Connection &connection, const SimRobot 
                  static_cast<unsigned long long>(c.corrupt),
                  static_cast<unsigned long long>(c.stalls),
                  static_cast<unsigned long long>(c.teleports),
+                 static_cast<unsigned long long>(c.mutes),
                  static_cast<unsigned long long>(c.clients),
                  static_cast<unsigned long long>(c.refused),
+                 static_cast<unsigned long long>(connection.muted_stops()),
                  static_cast<double>(robot.utime()) / 1e6,
                  static_cast<unsigned long long>(robot.collisions()));
 }
@@ -135,7 +137,9 @@ int run(Server &server, SimRobot &robot, Truth &truth, Log &log, int sigfd, doub
         const int64_t now = mono_ns();
         if (server.may_step() && now >= next_ns) {
             uint64_t seq = 0;
-            if (server.step(&seq))
+            // muted, the robot still moves and the lab still sees it: GROUND_TRUTH goes
+            // on (its scan_seq the next SIP's)
+            if (server.step(&seq) || server.period_muted())
                 truth.publish(robot, seq, log);
             // Live: never skipped, behind, the next is due at once. Lockstep: a period
             // a whole period late waited for its grant; the pace starts over from now.

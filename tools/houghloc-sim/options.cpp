@@ -60,6 +60,10 @@ void print_usage(FILE *f)
         "  --garbage-every N   every Nth SIP is preceded by 1..64 random bytes\n"
         "  --corrupt-every N   every Nth SIP has a wrong checksum\n"
         "  --stall-after S     from S s of robot time on the wheels do not turn\n"
+        "  --mute-after S      from S s of robot time on no SIP goes out, to this client\n"
+        "                      or the next, while commands are still read and obeyed (a\n"
+        "                      one-way link loss); STOPs sent meanwhile are logged and\n"
+        "                      counted (muted_stops in the summary)\n"
         "  --teleport-after S  kidnapped robot: at S s of robot time, once, 0..1e7, the\n"
         "                      true pose jumps; the wheels do not turn, so the odometry\n"
         "                      does not (due while the base moves, it waits until the\n"
@@ -202,11 +206,13 @@ bool take(const std::string &a, const char *v, SimOptions *o, std::string *err)
         if (!parse_number(v, &d) || d < 0.0 || d > 60.0)
             return bad(err, a, "seconds of robot time, 0..60", v);
         o->watchdog_s = d;
-    } else if (a == "--drop-after" || a == "--stall-after" || a == "--teleport-after") {
+    } else if (a == "--drop-after" || a == "--stall-after" || a == "--teleport-after" ||
+               a == "--mute-after") {
         if (!parse_number(v, &d) || d < 0.0 || d > kMaxSeconds)
             return bad(err, a, "seconds of robot time, 0..1e7", v);
         (a == "--drop-after"    ? o->faults.drop_after_s
          : a == "--stall-after" ? o->faults.stall_after_s
+         : a == "--mute-after"  ? o->faults.mute_after_s
                                 : o->teleport.after_s) = d;
     } else if (a == "--drop-every" || a == "--teleport-every") {
         if (!parse_number(v, &d) || d < 0.1 || d > kMaxSeconds)
@@ -246,7 +252,7 @@ ParseResult parse_options(int argc, char **argv, SimOptions *o, std::string *err
             "--sonar-model", "--start", "--lcm-url", "--prefix", "--drop-after",
             "--drop-every", "--stall-after", "--garbage-every", "--corrupt-every",
             "--watchdog", "--teleport-after", "--teleport-every", "--teleport-to",
-            "--capture"};
+            "--capture", "--mute-after"};
         bool known = false;
         for (const char *name : with_value)
             known = known || a == name;

@@ -235,6 +235,8 @@ void Server::shutdown()
 
 bool Server::queue_sip(const hl_arcos_sip_t &sip)
 {
+    if (muted_)
+        return false;   // the period ran; its SIP goes nowhere
     uint64_t k = counts_.sips + 1;   // this SIP's place in the stream, from 1
     if (faults_.garbage_every > 0 && k % faults_.garbage_every == 0) {
         int64_t n = rng_.uniform_int(1, 64);
@@ -264,6 +266,7 @@ bool Server::queue_sip(const hl_arcos_sip_t &sip)
 bool Server::step(uint64_t *seq)
 {
     const bool lockstep = connection_.lockstep();
+    period_muted_ = false;
     if (!may_step())
         return false;   // lockstep: no period granted, robot time stands
     const double t = static_cast<double>(robot_.utime()) / 1e6;
@@ -272,6 +275,13 @@ bool Server::step(uint64_t *seq)
         counts_.stalls++;
         robot_.stall_wheels();
         log_.line("fault: the wheels stall from now on (--stall-after %g)", faults_.stall_after_s);
+    }
+    if (!muted_ && faults_.mute_after_s >= 0.0 && t >= faults_.mute_after_s) {
+        muted_ = true;
+        counts_.mutes++;
+        connection_.set_muted();
+        log_.line("fault: no SIP goes out from now on; commands are still read and obeyed "
+                  "(--mute-after %g)", faults_.mute_after_s);
     }
     if (!dropped_ && faults_.drop_after_s >= 0.0 && t >= faults_.drop_after_s &&
         client_ >= 0) {
@@ -294,6 +304,7 @@ bool Server::step(uint64_t *seq)
         return false;
     *seq = counts_.sips;
     bool queued = queue_sip(sip);
+    period_muted_ = muted_;
     if (lockstep) {
         connection_.period_done(&out_);   // what the client sent after this grant
         after_input();

@@ -35,6 +35,8 @@ struct Faults {
     uint64_t garbage_every = 0;   // every Nth SIP is preceded by 1..64 random bytes
     uint64_t corrupt_every = 0;   // every Nth SIP has a wrong checksum
     double stall_after_s = -1.0;  // from this robot time on the wheels do not turn
+    double mute_after_s = -1.0;   // from this robot time on no SIP goes out (commands are
+                                  // still read and obeyed: a one-way link loss)
 };
 
 struct ServerCounts {
@@ -46,7 +48,8 @@ struct ServerCounts {
     uint64_t corrupt = 0;    // injected: bad checksums
     uint64_t stalls = 0;     // injected: wheel stalls
     uint64_t teleports = 0;  // injected: kidnappings (the robot's, SimRobot::teleports())
-    uint64_t faults() const { return drops + garbage + corrupt + stalls + teleports; }
+    uint64_t mutes = 0;      // injected: the SIP stream silenced (--mute-after, once)
+    uint64_t faults() const { return drops + garbage + corrupt + stalls + teleports + mutes; }
 };
 
 class Server {
@@ -95,6 +98,9 @@ public:
      * false, robot time unchanged.
      */
     bool step(uint64_t *seq);
+    /** Whether the last step() ran a period for a client whose SIP --mute-after kept
+     *  back (its @p seq is set: the number the next SIP sent will have). */
+    bool period_muted() const { return period_muted_; }
 
     /** Closes the client and the listening socket. */
     void shutdown();
@@ -119,7 +125,7 @@ private:
     int listen_ = -1, client_ = -1;
     uint16_t port_ = 0;
     std::vector<uint8_t> out_;
-    bool dropped_ = false, stalled_ = false;
+    bool dropped_ = false, stalled_ = false, muted_ = false, period_muted_ = false;
     int64_t accepted_utime_ = 0;    // robot time the client connected (--drop-every)
     FILE *capture_ = nullptr;       // --capture, while the first client is connected
     std::string capture_path_;

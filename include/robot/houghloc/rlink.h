@@ -61,6 +61,7 @@ typedef struct hl_rlink {
     uint64_t bad_packets;       /* packets dropped: undecodable SIPs, unknown types */
     uint64_t garbage_runs;      /* reads that held bytes belonging to no packet */
     uint64_t out_overflows;     /* commands dropped because the out-buffer was full */
+    bool stop_queued;           /* lost to silence: STOP and CLOSE wait in the out-buffer */
     char why[128];
 } hl_rlink_t;
 
@@ -82,8 +83,15 @@ typedef void (*hl_rlink_sip_fn)(void *ctx, const hl_arcos_sip_t *sip);
 void hl_rlink_feed(hl_rlink_t *l, const uint8_t *in, size_t n, int64_t now_ms,
                    hl_rlink_sip_fn on_sip, void *ctx);
 
-/** Resends unanswered SYNCs and gives up on a silent robot (wall clock). */
+/**
+ * Resends unanswered SYNCs and gives up on a silent robot (wall clock). A robot silent
+ * for silence_ms while UP may still hear commands (a one-way loss): STOP and CLOSE are
+ * queued as the link goes DOWN (hl_rlink_stop_queued), for the caller to write before it
+ * closes the transport.
+ */
 void hl_rlink_tick(hl_rlink_t *l, int64_t now_ms);
+/** Whether the link was lost with STOP queued for the robot (until hl_rlink_begin). */
+static inline bool hl_rlink_stop_queued(const hl_rlink_t *l) { return l->stop_queued; }
 
 /** Queues a PULSE when nothing was sent for pulse_ms of robot time; call once per SIP. */
 void hl_rlink_keepalive(hl_rlink_t *l, int64_t robot_ms);

@@ -6,6 +6,10 @@
  * The messages come from flood_msg.c, each checked to be refused by the daemon's own
  * decoder. The rate is per channel: --rate 10000 on the four inputs is 40,000 messages a
  * second in all. The last stdout line says what was sent.
+ *
+ * --kind save sends well-formed unsigned SAVE requests on COMMAND instead, seq 1, 2, ...
+ * (the save-flood trial, tools/lab/trials/save_flood.sh): requests a daemon without a key
+ * takes, each asking it to write its map.
  */
 #include <errno.h>
 #include <lcm/lcm.h>
@@ -25,7 +29,7 @@
 
 static const char usage[] =
     "Usage: hl-flood --lcm-url URL [--seconds S] [--rate N] [--seed N] [--prefix P]\n"
-    "                [--channels LIST]\n"
+    "                [--channels LIST] [--kind malformed|save]\n"
     "Publishes malformed messages on houghlocd's input channels: random bytes, truncated\n"
     "encodings, wrong fingerprints, messages of another type, trailing bytes and fields\n"
     "out of range, each checked to be refused by the channel's own decoder.\n"
@@ -37,6 +41,8 @@ static const char usage[] =
     "  --prefix P       the channel prefix, as houghlocd's --prefix\n"
     "  --channels LIST  comma-separated subset of SONAR,ODOMETRY,DESTINATION,COMMAND\n"
     "                   (default all four)\n"
+    "  --kind K         malformed (default) or save: well-formed unsigned SAVE requests\n"
+    "                   on COMMAND alone, seq 1, 2, ... (--rate of them a second)\n"
     "  --help, --version\n"
     "The last line on stdout:\n"
     "  flood sent=<n> seconds=<s> per_channel_per_s=<r> SONAR=<n> ODOMETRY=<n>\n"
@@ -50,6 +56,7 @@ typedef struct options {
     long rate;
     unsigned long long seed;
     bool use[FLOOD_INPUTS];
+    bool save;                  /* --kind save */
 } options_t;
 
 static volatile sig_atomic_t stop_requested;
@@ -114,8 +121,8 @@ static bool parse_channels(const char *list, bool *use)
 static int parse_args(int argc, char **argv, options_t *o)
 {
     static const char *const names[] = { "--lcm-url", "--seconds", "--rate", "--seed",
-                                          "--prefix", "--channels" };
-    const trial_cli_t cli = { PROG, usage, HL_VERSION, names, 6, true };
+                                          "--prefix", "--channels", "--kind" };
+    const trial_cli_t cli = { PROG, usage, HL_VERSION, names, 7, true };
     for (int i = 1; i < argc; i++) {
         const char *v;
         int status;
@@ -145,6 +152,11 @@ static int parse_args(int argc, char **argv, options_t *o)
                 return trial_usage_error(PROG, "--prefix: at most 32 letters, digits, '_-./', not", v);
             o->prefix = v;
             break;
+        case 6:
+            if (strcmp(v, "malformed") != 0 && strcmp(v, "save") != 0)
+                return trial_usage_error(PROG, "--kind: give malformed or save, not", v);
+            o->save = strcmp(v, "save") == 0;
+            break;
         default:
             if (!parse_channels(v, o->use))
                 return trial_usage_error(PROG, "--channels: a comma-separated subset of "
@@ -157,6 +169,9 @@ static int parse_args(int argc, char **argv, options_t *o)
     if (!loopback_url(o->url))
         return trial_usage_error(PROG, "refusing to flood beyond this host: give a udpm:// URL with "
                            "ttl=0, not", o->url);
+    if (o->save)    /* SAVE requests go on COMMAND */
+        for (int i = 0; i < FLOOD_INPUTS; i++)
+            o->use[i] = i == FLOOD_COMMAND;
     return -1;
 }
 
@@ -169,6 +184,7 @@ static int64_t mono_us(void)
 
 typedef struct flood {
     lcm_t *lcm;
+    bool save;
     hl_rng_t rng;
     int n_inputs;
     flood_input_t inputs[FLOOD_INPUTS];
@@ -182,16 +198,16 @@ static bool send_one(flood_t *f)
     static uint8_t buf[FLOOD_MSG_MAX];
     int which = (int)(f->sent % f->n_inputs);
     flood_input_t in = f->inputs[which];
-    flood_kind_t kind;
-    int len = flood_make(&f->rng, in, buf, &kind);
+    flood_kind_t kind = FLOOD_RANDOM;
+    int len = f->save ? flood_make_save(f->sent + 1, buf) : flood_make(&f->rng, in, buf, &kind);
     if (len < 0)
-        return fprintf(stderr, "%s: could not make a malformed %s message (a bug)\n", PROG,
-                       flood_input_name(in)), false;
+        return fprintf(stderr, "%s: could not make a %s %s message (a bug)\n", PROG,
+                       f->save ? "SAVE" : "malformed", flood_input_name(in)), false;
     if (lcm_publish(f->lcm, f->channel[which], buf, (unsigned)len) != 0)
         f->errors++;
     f->sent++;
     f->per_input[in]++;
-    f->per_kind[kind]++;
+    f->per_kind[kind] += !f->save;
     return true;
 }
 
@@ -219,7 +235,7 @@ int main(int argc, char **argv)
     int rc = parse_args(argc, argv, &o);
     if (rc >= 0)
         return rc;
-    flood_t f = { .n_inputs = 0 };
+    flood_t f = { .n_inputs = 0, .save = o.save };
     for (int i = 0; i < FLOOD_INPUTS; i++)
         if (o.use[i]) {
             f.inputs[f.n_inputs] = (flood_input_t)i;

@@ -240,3 +240,9 @@ int flood_make(hl_rng_t *rng, flood_input_t in, uint8_t *buf, flood_kind_t *kind
     }
     return -1;
 }
+
+int flood_make_save(int64_t seq, uint8_t *buf)
+{
+    hl_bus_command_t c = { .utime = seq, .seq = seq, .kind = HL_BUS_COMMAND_SAVE };
+    return hl_bus_encode_command(&c, buf, FLOOD_MSG_MAX);
+}

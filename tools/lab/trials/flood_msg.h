@@ -53,4 +53,11 @@ const char *flood_kind_name(flood_kind_t k);
  */
 int flood_make(hl_rng_t *rng, flood_input_t in, uint8_t *buf, flood_kind_t *kind);
 
+/**
+ * Makes a well-formed, unsigned SAVE request (COMMAND) with @p seq into @p buf
+ * (FLOOD_MSG_MAX bytes): what a daemon without a key takes and answers (hl-flood --kind
+ * save, the save-flood trial). @return its length, -1 if it does not encode.
+ */
+int flood_make_save(int64_t seq, uint8_t *buf);
+
 #endif

@@ -8,10 +8,14 @@
 #   corrupt  SIPs with a wrong checksum (--corrupt-every)
 #   stall    wheels that stop turning (--stall-after): the destination under way must fail
 #            naming the stall, and the daemon go on
+#   mute     a one-way loss: no SIP reaches the daemon while the robot still obeys
+#            (--mute-after 60, 3 s after the simulator starts at 20x): the daemon must
+#            send it STOP before it closes the silent link (the simulator counts a STOP
+#            taken while muted), and connect again
 #   restart  the robot killed (SIGKILL of houghloc-sim) and started again where it truly
 #            stood (`hl-eval truth`), its odometry back at zero
 # An episode is survived when afterwards the daemon is running, is connected again (drop,
-# stall, restart: a new "connected" line, after the backoff), counted it (STATUS
+# stall, mute, restart: a new "connected" line, after the backoff), counted it (STATUS
 # bad_packets for garbage and corrupt; reconnections and "robot link:" lines for the
 # others) and kept its map (STATUS map_vectors never smaller than before). Garbage and
 # corrupt episodes arrive several a second in one stream: they are judged together.
@@ -62,7 +66,8 @@ trap 'exit 130' INT TERM
 set -- $(sed -n 's/#.*//; s/^start //p' "$ROUTE")
 pose="$1,$2,$3"
 start_pose=$pose   # the daemon starts there too: hl-eval live lays the truth on it
-grep -v '^#\|^start\|^ *$' "$ROUTE" >"$T/route"
+# one destination a line, its comment (whole-line or trailing) dropped
+sed 's/#.*//' "$ROUTE" | grep -v '^start\|^ *$' >"$T/route"
 nroute=$(wc -l <"$T/route")
 . tools/houghloc-sim/daemon_conf.sh
 write_lab_robot_conf "$T/conf" "$1" "$2" "$3"
@@ -264,6 +269,29 @@ while [ $e -lt "$EPISODES" ]; do
 done
 example=$(grep '^stall [0-9]* 5 .*stall' "$T/answers" | tail -n 1 | cut -d' ' -f4-)
 end_kind stall "destinations failed naming the stall: $(stalled), e.g. \"$example\""
+
+# ---- mute: the robot falls silent but still obeys; the daemon must stop it ------------
+begin_kind mute
+muted_stops() { count "fault: muted: the client sent STOP" "$SIMERR"; }
+stops=0
+e=0
+while [ $e -lt "$EPISODES" ]; do
+    e=$((e + 1))
+    r0=$(reconnects)
+    start_sim --mute-after "${MUTE_AFTER_S:-60}"
+    ok=0
+    if wait_until 200 at_least muted_stops 1; then
+        wait_until 100 at_least reconnects $((r0 + 2)) && ok=1    # and connected again
+        [ $ok -eq 1 ] || say "mute $e: no reconnection after the STOP"
+    else
+        say "mute $e: the muted robot got no STOP in 20 s: $(tail -n 1 "$T/d.err")"
+    fi
+    stops=$((stops + $(muted_stops)))
+    stop_sim TERM
+    episode mute $ok
+done
+sent=$(count "no packet from the robot for [0-9]* ms; stop sent" "$T/answers")
+end_kind mute "STOPs taken by the muted robots: $stops, destinations failed with \"stop sent\": $sent"
 
 # ---- restart: the robot killed at a random moment, started again where it stood --------
 begin_kind restart
