@@ -185,6 +185,9 @@ typedef struct waiter {
     const hl_auth_key_t *key;   /* --key: only REPLY messages with its MAC count; NULL none */
     const char *prefix;         /* the channel prefix the MACs cover */
     int forged;                 /* REPLY messages to seq whose MAC was missing or wrong */
+    bool unverified_auth;       /* one of them was REJECTED_AUTH: what the daemon answers
+                                   a client whose key is not its own, which that client
+                                   cannot verify */
     int result;         /* WAITING, or the exit code */
     int64_t progress_us;        /* monotonic time of the last sign of progress (or of
                                    sending): the silence is measured from it */
@@ -234,6 +237,12 @@ static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user
     /* With a key, the daemon signs its answers: one without the MAC is not the daemon's
      * (a forged ARRIVED must not end the wait with success), so wait on for the real one. */
     if (w->key && !hl_auth_check_reply(w->key, w->prefix, &r)) {
+        /* the one answer a client with another key cannot verify: said once the wait is
+         * over (exchange), not here */
+        if (r.result == HL_BUS_REPLY_REJECTED_AUTH) {
+            w->unverified_auth = true;
+            return;
+        }
         if (w->forged++ == 0)
             fprintf(stderr, "%s: ignoring a REPLY (%s) to seq %lld without a valid MAC "
                     "(forged, or from a daemon without this key); waiting for the daemon's "
@@ -522,25 +531,35 @@ static int exchange(lcm_t *lcm, const char *prog, const req_options_t *o, req_re
     } while (rc == REQ_AGAIN);
     if (rc == REQ_INTERRUPTED)
         return stop_after_signal(lcm, prog, o, command_channel, w, (int)interrupted);
+    /* A refusal cannot be a false success: once the wait is over with nothing better, an
+     * unverified REJECTED_AUTH is the likeliest truth (a key that is not the daemon's). It
+     * never ends the wait early, where a forged one could hide the daemon's real ACCEPTED
+     * of a trip the robot then makes. */
+    if (rc == EXIT_TIMEOUT && w->unverified_auth && !w->answered) {
+        fprintf(stderr, "%s: REJECTED_AUTH, unverified (that answer's MAC does not match "
+                "--key either): is --key the daemon's key (auth.key_file), and --prefix its "
+                "prefix?\n", prog);
+        return EXIT_REJECTED;
+    }
+    char ignored[160] = "";
+    if (w->forged)
+        snprintf(ignored, sizeof ignored, " (%d REPLY message(s) without a valid MAC were "
+                 "ignored: forged, or from a daemon without this key)", w->forged);
     if (rc == EXIT_NO_ROBOT && !w->answered)
         fprintf(stderr, "%s: NO_ROBOT: the daemon's robot link did not come up within %g s\n",
                 prog, o->timeout_s);
     else if (rc == EXIT_TIMEOUT && (r->accepted || w->seen_status))
         report_stalled(w, o, ended);
     else if (rc == EXIT_TIMEOUT && ended == ENDED_DEADLINE)
-        fprintf(stderr, "%s: no reply from houghlocd within the --deadline of %g s\n", prog,
-                o->deadline_s);
+        fprintf(stderr, "%s: no reply from houghlocd within the --deadline of %g s%s\n", prog,
+                o->deadline_s, ignored);
     else if (rc == EXIT_TIMEOUT)
         fprintf(stderr,
                 "%s: no reply from houghlocd within %g s on channel %s: is it running, "
-                "with the same --lcm-url and prefix?%s\n",
+                "with the same --lcm-url and prefix?%s%s\n",
                 prog, o->timeout_s, reply_channel,
                 w->undecodable ? " (some REPLY messages did not decode: another version?)"
-                               : "");
-    if (rc == EXIT_TIMEOUT && w->forged)
-        fprintf(stderr, "%s: %d REPLY message(s) to this request without a valid MAC were "
-                "ignored: forged, or the daemon does not use this key (auth.key_file)\n",
-                prog, w->forged);
+                               : "", ignored);
     return rc;
 }
 

@@ -41,6 +41,7 @@ static const char usage[] =
     "accepted), unsigned and out-of-fence request. Each waits for its REPLY: valid\n"
     "destinations must get NO_ROBOT, valid commands ACCEPTED, forged and unsigned\n"
     "REJECTED_AUTH, replayed and stale REJECTED_REPLAY, out-of-fence REJECTED_FENCE.\n"
+    "Fresh seqs follow the wall clock in microseconds, as houghloc-goto's.\n"
     "  --lcm-url URL   the daemon's LCM URL (required)\n"
     "  --key FILE      the daemon's key file (required; mode 0600 or 0400)\n"
     "  --rounds N      1..10000 (default 60)\n"
@@ -386,9 +387,10 @@ int main(int argc, char **argv)
     lcm_t *lcm = lcm_create(o.url);
     if (!lcm)
         return fprintf(stderr, "%s: cannot open LCM at %s\n", PROG, o.url), 1;
+    /* seqs follow the wall clock, as houghloc-goto's do: fresh whatever the daemon took
+     * before (its request state outlives its map), and never ahead of its clock */
+    f.last_seq = now_us() - 1000000;
     if (o.cross_prefix || o.forge_replies_s > 0) {
-        /* the clock's seqs: fresh whatever this daemon accepted before */
-        f.last_seq = now_us();
         rc = o.cross_prefix ? cross_prefix(&f, lcm, &o) : forge_replies(&f, lcm, &o);
         lcm_destroy(lcm);
         return rc;

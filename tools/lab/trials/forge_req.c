@@ -134,11 +134,13 @@ void forge_make(forge_t *f, forge_kind_t kind, forge_req_t *r)
         r->kind = FORGE_REPLAYED;
         r->expect = HL_BUS_REPLY_REJECTED_REPLAY;
         break;
-    case FORGE_STALE:
-        build(f, r, 1 + (int64_t)hl_rng_below(&f->rng, (uint32_t)(f->last_seq - 1)), true,
-              &f->key, 0);
+    case FORGE_STALE: {
+        /* below the last accepted, by up to a second of the clock the seqs follow */
+        uint32_t below = f->last_seq - 1 > 1000000 ? 1000000u : (uint32_t)(f->last_seq - 1);
+        build(f, r, f->last_seq - 1 - (int64_t)hl_rng_below(&f->rng, below), true, &f->key, 0);
         r->expect = HL_BUS_REPLY_REJECTED_REPLAY;
         break;
+    }
     case FORGE_UNSIGNED:
         build(f, r, fresh, true, NULL, 0);
         r->expect = HL_BUS_REPLY_REJECTED_AUTH;
