@@ -20,8 +20,9 @@
 # --fresh-map and (b) with its map file renamed away in its folder, it is played every
 # request of those rounds again: none may be accepted (the request state file,
 # requests.seq beside the map, keeps the last accepted seq). Then, with the same key: a
-# daemon on another channel prefix is sent requests signed for the first one's prefix
-# (hl-forge --cross-prefix), none may be accepted; and houghloc-goto --key is run
+# daemon on channel prefix robot2/ is sent valid requests signed for prefix robot1/
+# (hl-forge --cross-prefix: captured from one robot, played to the other), none may be
+# accepted; and houghloc-goto --key is run
 # COMMANDS_GOTO_TRIES (5) times against hl-forge --forge-replies answering ARRIVED
 # (unsigned, wrong key, other prefix), with and without the keyed daemon answering too:
 # it may never exit 0 (only the daemon's signed answer counts, and without a robot that
@@ -73,8 +74,10 @@ url="udpm://239.255.76.67:$((9500 + $$ % 100))?ttl=0&recv_buf_size=4194304"  # 9
 D="$BIN/houghlocd --config /dev/null --map $work/map.hlmap --lcm-url $url --set auth.key_file=$work/key"
 
 wait_ready() {  # wait_ready ERRFILE: until the daemon says it is ready (10 s at most)
-    n=0
-    while ! grep -q 'ready:' "$1" 2>/dev/null && [ $n -lt 100 ]; do sleep 0.1; n=$((n + 1)); done
+    tenths=0
+    while ! grep -q 'ready:' "$1" 2>/dev/null && [ $tenths -lt 100 ]; do
+        sleep 0.1; tenths=$((tenths + 1))
+    done
 }
 start() {       # start NAME [--fresh-map]: the recorder, then the daemon
     lcm-logger -q -f -c 'DESTINATION|COMMAND|REPLY|STATUS' --lcm-url="$url" \
@@ -176,13 +179,13 @@ done
 [ "$after" -eq 0 ] || ok=0
 
 # ---- another prefix, the same key: requests signed for this one are refused there --------
-say "cross-prefix: a daemon on prefix robot2/ sent requests signed for prefix ''"
+say "cross-prefix: a daemon on prefix robot2/ sent requests signed for prefix robot1/"
 mkdir -p "$work/robot2"
 $BIN/houghlocd --config /dev/null --map "$work/robot2/map.hlmap" --fresh-map --lcm-url "$url" \
     --prefix robot2/ --set auth.key_file="$work/key" 2>"$work/robot2.err" &
 r2=$!; pids="$pids $r2"
 wait_ready "$work/robot2.err"
-"$BIN/hl-forge" --lcm-url "$url" --key "$work/key" --prefix robot2/ --cross-prefix "" \
+"$BIN/hl-forge" --lcm-url "$url" --key "$work/key" --prefix robot2/ --cross-prefix robot1/ \
     --rounds 20 >"$work/cross.out" 2>"$work/cross.err"
 cross=$(sed -n 's/.* accepted=\([0-9]*\)\/.*/\1/p' "$work/cross.out")
 say "  $(tail -1 "$work/cross.out")"
