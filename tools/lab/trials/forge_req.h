@@ -5,8 +5,8 @@
  *
  * The generator keeps what the daemon keeps: the last seq it admitted, and the messages
  * it accepted (to replay them). A request's expectation follows the daemon's documented
- * order of checks (README, "Who may command the robot"): MAC first, then freshness, then
- * the geofence; a refused MAC or seq leaves the last admitted seq alone, a fence refusal
+ * order of checks (docs/manual/channels.md, "What is signed"): MAC first, then freshness,
+ * then the geofence; a refused MAC or seq leaves the last admitted seq alone, a fence refusal
  * comes after the seq was taken.
  */
 #ifndef HOUGHLOC_TOOLS_TRIALS_FORGE_REQ_H
