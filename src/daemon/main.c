@@ -357,6 +357,10 @@ static int run_locked(const hl_config_t *cfg, const options_t *o, const char *pa
         if (state_lock < 0)
             return fprintf(stderr, "houghlocd: request state %s (give each daemon its own "
                            "auth.state_file)\n", swhy), 1;
+        if (!hl_request_state_check(state_path, swhy)) {
+            hl_mapstore_unlock(state_lock);
+            return fprintf(stderr, "houghlocd: %s\n", swhy), 1;
+        }
     }
     hl_loop_params_t lp = { .in_url = in_url, .out_url = out_url, .batch = reads_log == 1,
                             .prefix = cfg->prefix, .queue = cfg->queue,

@@ -26,6 +26,12 @@ bool hl_request_state_path(const char *configured, const char *map_path, char *o
                            size_t cap);
 
 /**
+ * Checks, before anything else is done (a map moved aside by --fresh-map), that the state
+ * file at @p path is missing or readable. @return false as hl_request_state_open.
+ */
+bool hl_request_state_check(const char *path, char *why);
+
+/**
  * Reads the state file at @p path into the cycle (hl_cycle_take_request_seq, with the
  * map file's seq already taken by hl_cycle_restore), then writes the file again when the
  * cycle's seq is above what it held (the map file's was higher, or none was kept yet).

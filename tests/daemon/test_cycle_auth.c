@@ -192,6 +192,9 @@ static void test_corrupt_state_is_a_start_error(void **state)
         hl_cycle_params_t p = keyed_params();
         hl_cycle_t *c = rig_cycle(r, &p);
         char why[HL_REQUEST_STATE_WHY_LEN] = "";
+        assert_false(hl_request_state_check(r->state_path, why));
+        assert_non_null(strstr(why, "remove the file"));
+        why[0] = '\0';
         assert_false(hl_request_state_open(c, r->state_path, why));
         assert_non_null(strstr(why, r->state_path));
         assert_non_null(strstr(why, "remove the file"));
@@ -206,6 +209,7 @@ static void test_corrupt_state_is_a_start_error(void **state)
     }
     /* no file at all is an empty state, written at once */
     unlink(r->state_path);
+    assert_true(hl_request_state_check(r->state_path, (char[HL_REQUEST_STATE_WHY_LEN]){ 0 }));
     hl_cycle_params_t p = keyed_params();
     hl_cycle_t *c = rig_cycle(r, &p);
     char why[HL_REQUEST_STATE_WHY_LEN];
