@@ -1,4 +1,4 @@
-/* auth.c - MACs on DESTINATION and COMMAND, and key parsing (see houghloc/auth.h). */
+/* auth.c - MACs on DESTINATION, COMMAND and REPLY, and key parsing (see houghloc/auth.h). */
 #include "houghloc/auth.h"
 
 #include <stdio.h>
@@ -9,78 +9,124 @@
 _Static_assert(HL_AUTH_KEY_BYTES == crypto_auth_KEYBYTES, "key size is crypto_auth's");
 _Static_assert(HL_BUS_MAC_BYTES == crypto_auth_BYTES, "mac size is crypto_auth's");
 
-/* The largest message signed here; both have fixed sizes. */
-#define AUTH_BUF_BYTES                                                                     \
-    (HL_BUS_DESTINATION_BYTES > HL_BUS_COMMAND_BYTES ? HL_BUS_DESTINATION_BYTES            \
-                                                     : HL_BUS_COMMAND_BYTES)
+/* The largest message signed here: a reply with the longest message. */
+#define AUTH_MSG_BYTES                                                                      \
+    (HL_BUS_REPLY_MAX_BYTES > HL_BUS_DESTINATION_BYTES                                       \
+         ? (HL_BUS_REPLY_MAX_BYTES > HL_BUS_COMMAND_BYTES ? HL_BUS_REPLY_MAX_BYTES            \
+                                                          : HL_BUS_COMMAND_BYTES)           \
+         : HL_BUS_DESTINATION_BYTES)
+/* The signed bytes: the prefix's length and bytes, then the message. */
+#define AUTH_BUF_BYTES (1 + HL_BUS_PREFIX_MAX + AUTH_MSG_BYTES)
+
+_Static_assert(HL_BUS_PREFIX_MAX <= 255, "the prefix's length is one byte");
 
 bool hl_auth_init(void)
 {
     return sodium_init() >= 0; /* 1 when already initialized: fine */
 }
 
-/* The signed bytes: the message encoded by the bus with its mac all zero. */
-static int encode_destination(const hl_bus_destination_t *d, uint8_t *buf)
+/* Writes the prefix part of the signed bytes. @return its length, or -1 when the prefix
+ * is missing or too long. */
+static int put_prefix(const char *prefix, uint8_t *buf)
 {
+    if (!prefix)
+        return -1;
+    size_t n = strnlen(prefix, HL_BUS_PREFIX_MAX + 1);
+    if (n > HL_BUS_PREFIX_MAX)
+        return -1;
+    buf[0] = (uint8_t)n;
+    memcpy(buf + 1, prefix, n);
+    return (int)(1 + n);
+}
+
+/* The signed bytes of each message: the prefix, then the message encoded by the bus
+ * with its mac all zero. @return their length, or -1. */
+static int signed_destination(const char *prefix, const hl_bus_destination_t *d, uint8_t *buf)
+{
+    int head = put_prefix(prefix, buf);
+    if (head < 0)
+        return -1;
     hl_bus_destination_t z = *d;
     memset(z.mac, 0, sizeof z.mac);
-    return hl_bus_encode_destination(&z, buf, AUTH_BUF_BYTES);
+    int len = hl_bus_encode_destination(&z, buf + head, AUTH_BUF_BYTES - (size_t)head);
+    return len < 0 ? -1 : head + len;
 }
 
-static int encode_command(const hl_bus_command_t *c, uint8_t *buf)
+static int signed_command(const char *prefix, const hl_bus_command_t *c, uint8_t *buf)
 {
+    int head = put_prefix(prefix, buf);
+    if (head < 0)
+        return -1;
     hl_bus_command_t z = *c;
     memset(z.mac, 0, sizeof z.mac);
-    return hl_bus_encode_command(&z, buf, AUTH_BUF_BYTES);
+    int len = hl_bus_encode_command(&z, buf + head, AUTH_BUF_BYTES - (size_t)head);
+    return len < 0 ? -1 : head + len;
 }
 
-static bool all_zero(const uint8_t *mac)
+static int signed_reply(const char *prefix, const hl_bus_reply_t *r, uint8_t *buf)
 {
-    return sodium_is_zero(mac, HL_BUS_MAC_BYTES) == 1;
+    int head = put_prefix(prefix, buf);
+    if (head < 0)
+        return -1;
+    hl_bus_reply_t z = *r;
+    memset(z.mac, 0, sizeof z.mac);
+    int len = hl_bus_encode_reply(&z, buf + head, AUTH_BUF_BYTES - (size_t)head);
+    return len < 0 ? -1 : head + len;
 }
 
-bool hl_auth_sign_destination(const hl_auth_key_t *key, hl_bus_destination_t *d)
+static bool sign(const hl_auth_key_t *key, const uint8_t *buf, int len, uint8_t *mac)
 {
-    uint8_t buf[AUTH_BUF_BYTES];
-    if (!key || !d)
-        return false;
-    int len = encode_destination(d, buf);
     if (len < 0)
         return false;
-    crypto_auth(d->mac, buf, (unsigned long long)len, key->bytes);
-    return true;
-}
-
-bool hl_auth_sign_command(const hl_auth_key_t *key, hl_bus_command_t *c)
-{
-    uint8_t buf[AUTH_BUF_BYTES];
-    if (!key || !c)
-        return false;
-    int len = encode_command(c, buf);
-    if (len < 0)
-        return false;
-    crypto_auth(c->mac, buf, (unsigned long long)len, key->bytes);
+    crypto_auth(mac, buf, (unsigned long long)len, key->bytes);
     return true;
 }
 
 /* crypto_auth_verify compares in constant time. An all-zero MAC is what an unsigned
- * client sends: refused outright, so it never reaches the comparison at all. */
-bool hl_auth_check_destination(const hl_auth_key_t *key, const hl_bus_destination_t *d)
+ * sender sends: refused outright, so it never reaches the comparison at all. */
+static bool check(const hl_auth_key_t *key, const uint8_t *buf, int len, const uint8_t *mac)
 {
-    uint8_t buf[AUTH_BUF_BYTES];
-    if (!key || !d || all_zero(d->mac))
-        return false;
-    int len = encode_destination(d, buf);
-    return len >= 0 && crypto_auth_verify(d->mac, buf, (unsigned long long)len, key->bytes) == 0;
+    return len >= 0 && sodium_is_zero(mac, HL_BUS_MAC_BYTES) != 1 &&
+           crypto_auth_verify(mac, buf, (unsigned long long)len, key->bytes) == 0;
 }
 
-bool hl_auth_check_command(const hl_auth_key_t *key, const hl_bus_command_t *c)
+bool hl_auth_sign_destination(const hl_auth_key_t *key, const char *prefix,
+                              hl_bus_destination_t *d)
 {
     uint8_t buf[AUTH_BUF_BYTES];
-    if (!key || !c || all_zero(c->mac))
-        return false;
-    int len = encode_command(c, buf);
-    return len >= 0 && crypto_auth_verify(c->mac, buf, (unsigned long long)len, key->bytes) == 0;
+    return key && d && sign(key, buf, signed_destination(prefix, d, buf), d->mac);
+}
+
+bool hl_auth_sign_command(const hl_auth_key_t *key, const char *prefix, hl_bus_command_t *c)
+{
+    uint8_t buf[AUTH_BUF_BYTES];
+    return key && c && sign(key, buf, signed_command(prefix, c, buf), c->mac);
+}
+
+bool hl_auth_sign_reply(const hl_auth_key_t *key, const char *prefix, hl_bus_reply_t *r)
+{
+    uint8_t buf[AUTH_BUF_BYTES];
+    return key && r && sign(key, buf, signed_reply(prefix, r, buf), r->mac);
+}
+
+bool hl_auth_check_destination(const hl_auth_key_t *key, const char *prefix,
+                               const hl_bus_destination_t *d)
+{
+    uint8_t buf[AUTH_BUF_BYTES];
+    return key && d && check(key, buf, signed_destination(prefix, d, buf), d->mac);
+}
+
+bool hl_auth_check_command(const hl_auth_key_t *key, const char *prefix,
+                           const hl_bus_command_t *c)
+{
+    uint8_t buf[AUTH_BUF_BYTES];
+    return key && c && check(key, buf, signed_command(prefix, c, buf), c->mac);
+}
+
+bool hl_auth_check_reply(const hl_auth_key_t *key, const char *prefix, const hl_bus_reply_t *r)
+{
+    uint8_t buf[AUTH_BUF_BYTES];
+    return key && r && check(key, buf, signed_reply(prefix, r, buf), r->mac);
 }
 
 static bool refuse(char *why, const char *what)

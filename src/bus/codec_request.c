@@ -4,7 +4,7 @@
  * On the wire, after the 8-byte hash:
  *   destination_t  8 utime | 8 seq | 4 x | 4 y | 1 has_heading | 2 heading | 32 mac
  *   command_t      8 utime | 8 seq | 1 kind | 4 x | 4 y | 2 heading | 32 mac
- *   reply_t        8 utime | 8 seq | 1 result | message as an LCM string
+ *   reply_t        8 utime | 8 seq | 1 result | message as an LCM string | 32 mac
  * The fingerprints come from the generated __houghloc_X_t_get_hash (see codec_scan.c).
  * The MAC bytes are carried, not checked: that is auth.h's job.
  */
@@ -22,7 +22,8 @@ _Static_assert(HOUGHLOC_COMMAND_T_SET_POSE == HL_BUS_COMMAND_SET_POSE &&
                HOUGHLOC_COMMAND_T_STOP == HL_BUS_COMMAND_STOP,
                "bus.h's HL_BUS_COMMAND_* disagree with lcmtypes/houghloc_command_t.lcm");
 
-_Static_assert(HL_BUS_REPLY_MAX_BYTES == REPLY_FIXED_BYTES + 4 + HL_BUS_TEXT_MAX,
+_Static_assert(HL_BUS_REPLY_MAX_BYTES ==
+                   REPLY_FIXED_BYTES + 4 + HL_BUS_TEXT_MAX + HL_BUS_MAC_BYTES,
                "bus.h's HL_BUS_REPLY_MAX_BYTES disagrees with the layout");
 
 static hl_status_t check_request(const char *msg, int64_t utime, int64_t seq, int32_t x,
@@ -176,6 +177,7 @@ int hl_bus_encode_reply(const hl_bus_reply_t *in, void *buf, size_t cap)
     hl_wire_put_i64(&w, in->seq);
     hl_wire_put_i8(&w, in->result);
     hl_wire_put_text(&w, in->message);
+    hl_wire_put_bytes(&w, in->mac, HL_BUS_MAC_BYTES);
     return hl_wire_out_len(&w);
 }
 
@@ -183,7 +185,8 @@ hl_status_t hl_bus_decode_reply(const void *data, size_t len, hl_bus_reply_t *ou
 {
     hl_wire_in_t r;
     hl_status_t st = hl_wire_begin(&r, data, len, out, (uint64_t)__houghloc_reply_t_get_hash(),
-                                   REPLY_FIXED_BYTES + 4 + 1, false, "reply", why);
+                                   REPLY_FIXED_BYTES + 4 + 1 + HL_BUS_MAC_BYTES, false,
+                                   "reply", why);
     if (st != HL_OK)
         return st;
     out->utime = hl_wire_get_i64(&r);
@@ -191,6 +194,7 @@ hl_status_t hl_bus_decode_reply(const void *data, size_t len, hl_bus_reply_t *ou
     out->result = hl_wire_get_i8(&r);
     if ((st = hl_wire_get_text(&r, out->message, "reply", "message", why)) != HL_OK)
         return st;
+    hl_wire_get_bytes(&r, out->mac, HL_BUS_MAC_BYTES);
     if ((st = hl_wire_end(&r, "reply", why)) != HL_OK)
         return st;
     return check_reply(out, why);

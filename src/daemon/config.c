@@ -104,6 +104,7 @@ void hl_config_defaults(hl_config_t *c)
     c->idle_after_ms = 5000;
     c->compute_window = 100;
     c->log_level = HL_LOG_INFO;
+    c->max_ahead_s = 300;
     snprintf(c->robot_profile, sizeof c->robot_profile, "bonnie");
     c->robot_sound_on_connect = true;
     c->robot_lost_soundings = 3;

@@ -52,6 +52,10 @@ typedef struct hl_config {
     int32_t log_level;                  /* HL_LOG_* */
     /* [auth] */
     char key_file[HL_CONFIG_PATH_MAX];  /* "" = requests are not authenticated */
+    char state_file[HL_CONFIG_PATH_MAX];    /* the request state file; "" = requests.seq
+                                               in the map file's folder (seqfile.h) */
+    int32_t max_ahead_s;                /* request seqs further ahead of the clock are
+                                           refused */
     /* [start] */
     hl_pose_t start;                    /* where the first scan is placed */
     /* [fence] */

@@ -52,6 +52,12 @@ const hl_config_key_t hl_config_keys[] = {
     { "auth.key_file", HL_KEY_STR, F(key_file), 0, 0,
       "a file of 64 hex digits, mode 0600; when set, DESTINATION and COMMAND must carry its MAC "
       "(under systemd: /run/credentials/houghlocd.service/key, see docs/manual/service.md)" },
+    { "auth.state_file", HL_KEY_STR, F(state_file), 0, 0,
+      "with a key: the file keeping the last accepted request seq against replays after a "
+      "crash or a new map; empty: requests.seq in the map file's folder; one daemon per file" },
+    { "auth.max_ahead_s", HL_KEY_I32, F(max_ahead_s), 1, 31622400,
+      "refuse a request seq (the sender's clock, us) this many seconds ahead of the daemon's "
+      "clock, so a sender with a wrong clock cannot lock others out; 300: NTP clocks and more" },
     { "start.x_m", HL_KEY_METRES, F(start.x_mm), -4194, 4194,
       "where the first scan is placed, metres (this defines the map frame)" },
     { "start.y_m", HL_KEY_METRES, F(start.y_mm), -4194, 4194, "metres" },

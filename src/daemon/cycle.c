@@ -26,7 +26,8 @@ hl_cycle_t *hl_cycle_create(const hl_cycle_params_t *p, const hl_cycle_io_t *io)
     if (!p || !io || !io->emit || !io->now_us || p->compute_window < 1 ||
         p->compute_window > 10000 || p->save_every < 0 || p->map_period_ms < 0 ||
         p->map_input_ratio < 0 || p->map_input_ratio > HL_CYCLE_MAP_RATIO_MAX ||
-        !hl_pose_in_range(p->start))
+        !hl_pose_in_range(p->start) || p->max_ahead_us < 0 ||
+        !memchr(p->prefix, '\0', sizeof p->prefix))
         return NULL;
     hl_cycle_t *c = calloc(1, sizeof *c);
     if (!c)
@@ -67,7 +68,7 @@ hl_status_t hl_cycle_restore(hl_cycle_t *c, const hl_mapfile_t *m)
     hl_status_t st = hl_slam_restore(c->slam, &m->state, m->vectors, m->count);
     if (st != HL_OK)
         return st;
-    c->last_request_seq = m->last_request_seq;
+    hl_cycle_take_request_seq(c, m->last_request_seq, "the map file");
     c->scans_total = m->scans;
     /* the first change after a restart is saved at once: a daemon killed again and again
      * before a save falls due would otherwise never write a newer file */

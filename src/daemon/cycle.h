@@ -51,6 +51,14 @@ typedef struct hl_cycle_io {
     /** STOP (request @p seq): stop the robot at once and cancel its destination; NULL
      *  when no robot is attached (the STOP is answered all the same). */
     void (*stop)(void *ctx, int64_t seq, int64_t now_us);
+    /** The wall clock (CLOCK_REALTIME) in microseconds, which request seqs follow: a
+     *  seq more than max_ahead_us ahead of it is refused. NULL: no such check. */
+    int64_t (*wall_us)(void *ctx);
+    /** Keeps @p seq, the highest request seq accepted, durably (the request state file,
+     *  seqfile.h) before the request it belongs to is carried out; called only when
+     *  requests are authenticated. @return false with one line in @p why (@p cap bytes):
+     *  the request is then refused (FAILED) and the seq not taken. NULL: not kept. */
+    bool (*keep_seq)(void *ctx, int64_t seq, char *why, size_t cap);
     void *ctx;
 } hl_cycle_io_t;
 
@@ -61,8 +69,12 @@ typedef struct hl_cycle_params {
     hl_slam_params_t slam;
     hl_pose_t start;            /* where the first scan is placed */
     hl_fence_t fence;           /* destinations must lie inside */
-    bool authenticate;          /* requests must carry a MAC made with key */
+    bool authenticate;          /* requests must carry a MAC made with key, and every
+                                   REPLY is signed with it */
     hl_auth_key_t key;
+    char prefix[HL_BUS_PREFIX_MAX + 1];     /* the channel prefix, which every MAC covers */
+    int64_t max_ahead_us;       /* a request seq further ahead of io.wall_us is refused,
+                                   and a stored one clamped (auth.max_ahead_s); 0: none */
     int32_t save_every;         /* integrations between saves; 0 = only when asked */
     int32_t map_period_ms;      /* least message time between two MAP messages */
     int32_t map_input_ratio;    /* 0..HL_CYCLE_MAP_RATIO_MAX: after the first, a MAP goes
@@ -125,6 +137,17 @@ bool hl_cycle_save_may_wait(const hl_cycle_t *c);
 void hl_cycle_save_wait(hl_cycle_t *c);
 /** The wall-clock time (the io's clock) a waiting save falls due; INT64_MAX if none. */
 int64_t hl_cycle_save_wake_us(const hl_cycle_t *c);
+/**
+ * Takes @p seq, the highest request seq a store kept (the request state file, or the map
+ * file: hl_cycle_restore takes that one), as the last accepted one if it is above the
+ * cycle's. One further ahead of io.wall_us than max_ahead_us is clamped to that bound
+ * (logged, with @p from naming the store): nothing above it is accepted anyway, and a
+ * far-ahead seq must not lock every client out for good.
+ */
+void hl_cycle_take_request_seq(hl_cycle_t *c, int64_t seq, const char *from);
+/** The highest request seq accepted (or taken from a store), 0 when none. */
+int64_t hl_cycle_request_seq(const hl_cycle_t *c);
+
 /** Fills @p out with the state to save; out->vectors points into the cycle's map. */
 void hl_cycle_snapshot(const hl_cycle_t *c, hl_mapfile_t *out);
 /** The outcome of a save: answers a pending SAVE request and resets the count. */

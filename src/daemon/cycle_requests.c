@@ -1,5 +1,12 @@
 /* cycle_requests.c - DESTINATION and COMMAND: authenticity, freshness, the geofence,
- * and one REPLY for every request whose seq could be read. */
+ * and one REPLY (signed when there is a key) for every request whose seq could be read.
+ *
+ * Freshness is a window: a request's seq must be above the last accepted one and at most
+ * max_ahead_us ahead of the wall clock (senders stamp their wall clock in microseconds),
+ * so that one request from a client whose clock is wrong cannot move the window a year
+ * ahead and lock every other client out. With a key, the accepted seq is kept in the
+ * request state file (io.keep_seq) before the request is carried out: a crash, a new map
+ * or a lost map file cannot reopen the window to requests captured before. */
 #include <stdio.h>
 
 #include "cycle_internal.h"
@@ -9,6 +16,10 @@ void hl_cycle_reply(hl_cycle_t *c, int64_t seq, int8_t result, const char *messa
 {
     hl_bus_reply_t r = { .utime = c->newest_utime, .seq = seq, .result = result };
     snprintf(r.message, sizeof r.message, "%s", message);
+    /* signed, so that a client holding the key can tell the daemon's answer from a forged
+     * one (a false ARRIVED); a reply that does not sign does not encode either */
+    if (c->p.authenticate)
+        hl_auth_sign_reply(&c->p.key, c->p.prefix, &r);
     int len = hl_bus_encode_reply(&r, c->buf, sizeof c->buf);
     if (len > 0)
         c->io.emit(c->io.ctx, HL_CH_REPLY, c->buf, (size_t)len);
@@ -31,10 +42,21 @@ static void refuse(hl_cycle_t *c, const char *channel, int64_t seq, int8_t resul
     hl_cycle_reply(c, seq, result, why);
 }
 
-/* Authentic and fresh? Answers and returns false if not; else takes the seq. */
+/* How far @p seq is ahead of the wall clock, in microseconds (<= 0: not ahead); 0 when
+ * the cycle has no wall clock. */
+static int64_t ahead_of_clock(const hl_cycle_t *c, int64_t seq)
+{
+    if (!c->io.wall_us)
+        return 0;
+    int64_t now = c->io.wall_us(c->io.ctx);
+    return now < 0 || seq <= now ? 0 : seq - now;
+}
+
+/* Authentic and fresh? Answers and returns false if not; else keeps the seq (with a
+ * key: durably, before anything is done) and takes it. */
 static bool admit(hl_cycle_t *c, const char *channel, int64_t seq, bool mac_ok)
 {
-    char why[HL_BUS_TEXT_MAX];
+    char why[HL_BUS_TEXT_MAX], kept[HL_BUS_TEXT_MAX];
     if (c->p.authenticate && !mac_ok) {
         refuse(c, channel, seq, HL_BUS_REPLY_REJECTED_AUTH, "request auth",
                "missing or wrong MAC: sign requests with the daemon's key");
@@ -46,8 +68,42 @@ static bool admit(hl_cycle_t *c, const char *channel, int64_t seq, bool mac_ok)
         refuse(c, channel, seq, HL_BUS_REPLY_REJECTED_REPLAY, "request replay", why);
         return false;
     }
+    int64_t ahead = ahead_of_clock(c, seq);
+    if (c->p.max_ahead_us > 0 && ahead > c->p.max_ahead_us) {
+        snprintf(why, sizeof why, "seq %lld is %.0f s ahead of the daemon's clock, more than "
+                 "auth.max_ahead_s (%.0f s): is the sender's clock (or the daemon's) wrong?",
+                 (long long)seq, ahead / 1e6, c->p.max_ahead_us / 1e6);
+        refuse(c, channel, seq, HL_BUS_REPLY_REJECTED_REPLAY, "request ahead", why);
+        return false;
+    }
+    if (c->p.authenticate && c->io.keep_seq &&
+        !c->io.keep_seq(c->io.ctx, seq, kept, sizeof kept)) {
+        snprintf(why, sizeof why, "not done: the request state cannot be kept: %.110s", kept);
+        refuse(c, channel, seq, HL_BUS_REPLY_FAILED, "request state", why);
+        return false;
+    }
     c->last_request_seq = seq;
     return true;
+}
+
+void hl_cycle_take_request_seq(hl_cycle_t *c, int64_t seq, const char *from)
+{
+    if (seq > c->last_request_seq)
+        c->last_request_seq = seq;
+    int64_t ahead = ahead_of_clock(c, c->last_request_seq);
+    if (c->p.max_ahead_us > 0 && ahead > c->p.max_ahead_us) {
+        int64_t bound = c->last_request_seq - ahead + c->p.max_ahead_us;
+        hl_log(HL_LOG_NOTICE, "the last accepted request seq %lld (from %s) is %.0f s ahead of "
+               "the clock: taken as %lld, auth.max_ahead_s ahead (requests above that are "
+               "refused anyway)", (long long)c->last_request_seq, from, ahead / 1e6,
+               (long long)bound);
+        c->last_request_seq = bound;
+    }
+}
+
+int64_t hl_cycle_request_seq(const hl_cycle_t *c)
+{
+    return c->last_request_seq;
 }
 
 void hl_cycle_answer(hl_cycle_t *c, int64_t seq, int8_t result, const char *message)
@@ -62,7 +118,7 @@ void hl_cycle_on_destination(hl_cycle_t *c, const void *data, size_t len, int64_
     if (!hl_cycle_decoded(c, hl_bus_decode_destination(data, len, &d, why),
                           HL_CHANNEL_DESTINATION, "destination decode", why))
         return;
-    bool mac_ok = c->p.authenticate && hl_auth_check_destination(&c->p.key, &d);
+    bool mac_ok = c->p.authenticate && hl_auth_check_destination(&c->p.key, c->p.prefix, &d);
     if (!admit(c, HL_CHANNEL_DESTINATION, d.seq, mac_ok))
         return;
     if (!hl_fence_contains(&c->p.fence, d.x_mm, d.y_mm)) {
@@ -120,7 +176,7 @@ void hl_cycle_on_command(hl_cycle_t *c, const void *data, size_t len, int64_t no
         stop(c, cmd.seq, now_us);
         return;
     }
-    bool mac_ok = c->p.authenticate && hl_auth_check_command(&c->p.key, &cmd);
+    bool mac_ok = c->p.authenticate && hl_auth_check_command(&c->p.key, c->p.prefix, &cmd);
     if (!admit(c, HL_CHANNEL_COMMAND, cmd.seq, mac_ok))
         return;
     switch (cmd.kind) {

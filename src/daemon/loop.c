@@ -18,6 +18,7 @@
 #include "log.h"
 #include "maplock.h"
 #include "houghloc/mapstore.h"
+#include "houghloc/seqfile.h"
 
 #define WHY(...) snprintf(why, HL_CONFIG_WHY_LEN, __VA_ARGS__)
 
@@ -57,6 +58,25 @@ static int64_t clock_cb(void *ctx)
     return mono_us();
 }
 
+static int64_t wall_cb(void *ctx)
+{
+    (void)ctx;
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+/* An accepted request's seq, on disk before the request is carried out (cycle.h). */
+static bool keep_seq_cb(void *ctx, int64_t seq, char *why, size_t cap)
+{
+    hl_loop_t *l = ctx;
+    char reason[HL_SEQFILE_WHY_LEN];
+    if (hl_seqfile_save(l->p.state_path, seq, reason) == HL_OK)
+        return true;
+    snprintf(why, cap, "%s", reason);
+    return false;
+}
+
 static void emit_cb(void *ctx, hl_chan_t ch, const void *data, size_t len)
 {
     hl_loop_t *l = ctx;
@@ -87,7 +107,8 @@ hl_cycle_io_t hl_loop_io(hl_loop_t *l)
 {
     return (hl_cycle_io_t){ .emit = emit_cb, .now_us = clock_cb,
                             .destination = l->p.robot ? destination_cb : NULL,
-                            .stop = l->p.robot ? stop_cb : NULL, .ctx = l };
+                            .stop = l->p.robot ? stop_cb : NULL, .wall_us = wall_cb,
+                            .keep_seq = l->p.state_path ? keep_seq_cb : NULL, .ctx = l };
 }
 
 void hl_loop_attach_robot(hl_loop_t *l, hl_robot_t *robot)

@@ -24,6 +24,8 @@ typedef struct hl_loop_params {
     int queue;                  /* liblcm queue per subscription */
     int status_period_ms;
     const char *map_path;       /* where to save */
+    const char *state_path;     /* the request state file (seqfile.h), written on every
+                                   accepted request; NULL: none (no key) */
     bool robot;                 /* a live robot will be attached: SONAR and ODOMETRY come
                                    from it, not from LCM, and it answers destinations */
 } hl_loop_params_t;

@@ -21,6 +21,7 @@
 #include "maplock.h"
 #include "houghloc/mapstore.h"
 #include "profiles.h"
+#include "request_state.h"
 
 
 #define HOST_ONLY_URL "udpm://239.255.76.67:7667?ttl=0"
@@ -283,7 +284,9 @@ static bool cycle_params(const hl_config_t *cfg, hl_cycle_params_t *p)
         .save_every = cfg->save_every, .map_period_ms = cfg->map_period_ms,
         .map_input_ratio = cfg->map_input_ratio,
         .idle_after_ms = cfg->idle_after_ms, .compute_window = cfg->compute_window,
+        .max_ahead_us = (int64_t)cfg->max_ahead_s * 1000000,
     };
+    snprintf(p->prefix, sizeof p->prefix, "%s", cfg->prefix);
     if (!cfg->key_file[0])
         return true;
     char why[HL_KEYFILE_WHY_LEN];
@@ -344,13 +347,33 @@ static int run_locked(const hl_config_t *cfg, const options_t *o, const char *pa
     hl_cycle_params_t cp;
     if (!cycle_params(cfg, &cp))
         return 1;
+    /* with a key, the request state file: one daemon's, as the map file is */
+    char state_path[HL_CONFIG_PATH_MAX], swhy[HL_REQUEST_STATE_WHY_LEN];
+    int state_lock = -1;
+    if (cp.authenticate) {
+        if (!hl_request_state_path(cfg->state_file, path, state_path, sizeof state_path))
+            return fprintf(stderr, "houghlocd: the request state file's path is too long "
+                           "(set auth.state_file)\n"), 1;
+        pid_t holder;
+        state_lock = hl_mapstore_lock(state_path, &holder, swhy);
+        if (state_lock < 0)
+            return fprintf(stderr, "houghlocd: request state %s (give each daemon its own "
+                           "auth.state_file)\n", swhy), 1;
+        if (!hl_request_state_check(state_path, swhy)) {
+            hl_mapstore_unlock(state_lock);
+            return fprintf(stderr, "houghlocd: %s\n", swhy), 1;
+        }
+    }
     hl_loop_params_t lp = { .in_url = in_url, .out_url = out_url, .batch = reads_log == 1,
                             .prefix = cfg->prefix, .queue = cfg->queue,
                             .status_period_ms = cfg->status_period_ms, .map_path = path,
+                            .state_path = cp.authenticate ? state_path : NULL,
                             .robot = live_robot };
     hl_loop_t *loop = hl_loop_create(&lp, why);
-    if (!loop)
+    if (!loop) {
+        hl_mapstore_unlock(state_lock);
         return fprintf(stderr, "houghlocd: %s\n", why), 1;
+    }
     hl_cycle_io_t io = hl_loop_io(loop);
     hl_cycle_t *cycle = hl_cycle_create(&cp, &io);
     hl_robot_t *robot = cycle && live_robot ? hl_robot_create(&rp, cycle, &io) : NULL;
@@ -358,7 +381,11 @@ static int run_locked(const hl_config_t *cfg, const options_t *o, const char *pa
     if (!cycle || (live_robot && !robot))
         fprintf(stderr, "houghlocd: out of memory for a map of %u vectors\n",
                 cfg->slam.map_capacity);
-    else if (load_map(cycle, path, o->fresh_map, cfg->slam.map_capacity)) {
+    else if (!load_map(cycle, path, o->fresh_map, cfg->slam.map_capacity))
+        ;   /* said why */
+    else if (cp.authenticate && !hl_request_state_open(cycle, state_path, swhy))
+        fprintf(stderr, "houghlocd: %s\n", swhy);
+    else {
         hl_loop_attach_robot(loop, robot);
         if (live_robot)
             hl_log(HL_LOG_INFO, "robot: %s, profile %s, %d x %d readings per sounding, "
@@ -386,6 +413,7 @@ static int run_locked(const hl_config_t *cfg, const options_t *o, const char *pa
     hl_robot_destroy(robot);
     hl_cycle_destroy(cycle);
     hl_loop_destroy(loop);
+    hl_mapstore_unlock(state_lock);
     return rc;
 }
 

@@ -22,6 +22,8 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include "fileio.h"
+
 static const uint8_t MAGIC[8] = { 'H', 'L', 'M', 'A', 'P', '\r', '\n', 0x1a };
 
 enum {
@@ -200,77 +202,6 @@ static const char *header_error(const hl_mapfile_t *m)
     return NULL;
 }
 
-/* ---- POSIX calls, through EINTR ------------------------------------------------------ */
-
-#define RETRY(r, call)                      \
-    do                                      \
-        (r) = (call);                       \
-    while ((r) < 0 && errno == EINTR)
-
-/* Writes all of @p n bytes, through short writes. @return false with errno. */
-static bool write_all(int fd, const uint8_t *b, size_t n)
-{
-    while (n > 0) {
-        ssize_t w;
-        RETRY(w, write(fd, b, n));
-        if (w == 0)     /* not expected from a regular file; do not spin */
-            errno = EIO;
-        if (w <= 0)
-            return false;
-        b += w;
-        n -= (size_t)w;
-    }
-    return true;
-}
-
-/* Reads up to @p n bytes, through short reads. @return bytes read (fewer only at the end
- * of the file), or -1 with errno. */
-static ssize_t read_full(int fd, uint8_t *b, size_t n)
-{
-    size_t got = 0;
-    while (got < n) {
-        ssize_t r;
-        RETRY(r, read(fd, b + got, n - got));
-        if (r < 0)
-            return -1;
-        if (r == 0)
-            break;
-        got += (size_t)r;
-    }
-    return (ssize_t)got;
-}
-
-static int fsync_retry(int fd)
-{
-    int r;
-    RETRY(r, fsync(fd));
-    return r;
-}
-
-/* close() keeping errno; not retried on EINTR (Linux has closed the fd anyway). */
-static void close_quietly(int fd)
-{
-    int saved = errno;
-    close(fd);
-    errno = saved;
-}
-
-/* fsyncs the folder holding @p path, so that a rename or link in it is durable. */
-static bool sync_folder(const char *path)
-{
-    char dir[PATH_MAX];
-    const char *slash = strrchr(path, '/');
-    int len = !slash ? 1 : slash == path ? 1 : (int)(slash - path);
-    snprintf(dir, sizeof dir, "%.*s", len, !slash ? "." : path);
-    int fd;
-    RETRY(fd, open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-    if (fd < 0)
-        return false;
-    bool ok = fsync_retry(fd) == 0;
-    close_quietly(fd);
-    return ok;
-}
-
 /* ---- saving -------------------------------------------------------------------------- */
 
 /* Header, vectors and checksum into @p fd through one buffer. @return false with errno. */
@@ -283,7 +214,7 @@ static bool write_map(int fd, const hl_mapfile_t *m)
     for (uint32_t i = 0; i <= m->count; i++) {
         if (i == m->count || n + VEC_LEN > sizeof buf) {
             crc = crc32(crc, buf, (uInt)n);
-            if (!write_all(fd, buf, n))
+            if (!hl_fileio_write_all(fd, buf, n))
                 return false;
             n = 0;
         }
@@ -295,7 +226,7 @@ static bool write_map(int fd, const hl_mapfile_t *m)
         }
     }
     put(buf, crc, 4);
-    return write_all(fd, buf, CRC_LEN);
+    return hl_fileio_write_all(fd, buf, CRC_LEN);
 }
 
 hl_status_t hl_mapstore_save(const char *path, const hl_mapfile_t *m, char *why)
@@ -314,33 +245,27 @@ hl_status_t hl_mapstore_save(const char *path, const hl_mapfile_t *m, char *why)
         errno = ENAMETOOLONG;
         return fail(HL_ERR_OS, why, path, "not saved: the path is too long");
     }
-    /* O_NOFOLLOW: a symlink planted at PATH.tmp must not redirect the write. A stale
-     * PATH.tmp (a crash mid-save) is simply truncated. */
-    int fd;
-    RETRY(fd, open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644));
+    /* A symlink planted at PATH.tmp does not redirect the write; a stale PATH.tmp (a
+     * crash mid-save) is simply truncated (hl_fileio_open_tmp). */
+    int fd = hl_fileio_open_tmp(tmp);
     if (fd < 0)
         return fail(HL_ERR_OS, why, path, "not saved: cannot create %s: %s", tmp,
                     strerror(errno));
     const char *step = NULL;
-    if (!write_map(fd, m))
+    if (!write_map(fd, m)) {
         step = "write";
-    else if (fsync_retry(fd) != 0)
-        step = "fsync";
-    if (step)
-        close_quietly(fd);
-    else if (close(fd) != 0)    /* late write-back errors (NFS): the file may be short */
-        step = "close";
-    else if (rename(tmp, path) != 0)
-        step = "rename";
-    if (step) {
+        hl_fileio_close_quietly(fd);
         int saved = errno;
         unlink(tmp);
         errno = saved;
-        return fail(HL_ERR_OS, why, path, "not saved: %s of %s failed: %s", step, tmp,
-                    strerror(saved));
+    } else {
+        hl_fileio_commit_tmp(fd, tmp, path, &step);
     }
+    if (step)
+        return fail(HL_ERR_OS, why, path, "not saved: %s of %s failed: %s", step, tmp,
+                    strerror(errno));
     /* The new file is whole under PATH; only the folder entry may not be on disk yet. */
-    if (!sync_folder(path))
+    if (!hl_fileio_sync_folder(path))
         return fail(HL_ERR_OS, why, path, "saved, but syncing its folder failed: %s",
                     strerror(errno));
     return done(why);
@@ -359,7 +284,7 @@ static hl_status_t load_fd(int fd, const char *path, hl_mapfile_t *out, char *wh
     long long size = (long long)sb.st_size;
     uint8_t hdr[HDR_LEN], buf[IO_LEN];
     /* The first bytes say the format, and so the header's length: read no further yet. */
-    ssize_t got = read_full(fd, hdr, HDR_PREFIX);
+    ssize_t got = hl_fileio_read_full(fd, hdr, HDR_PREFIX);
     if (got < 0)
         return fail(HL_ERR_OS, why, path, "read failed: %s", strerror(errno));
     size_t have = (size_t)got;
@@ -372,7 +297,7 @@ static hl_status_t load_fd(int fd, const char *path, hl_mapfile_t *out, char *wh
                     "and %u", format, HL_MAPSTORE_VERSION);
     int hdr_len = format == 1 ? HDR_LEN_V1 : HDR_LEN;
     if (have == HDR_PREFIX) {
-        got = read_full(fd, hdr + HDR_PREFIX, (size_t)hdr_len - HDR_PREFIX);
+        got = hl_fileio_read_full(fd, hdr + HDR_PREFIX, (size_t)hdr_len - HDR_PREFIX);
         if (got < 0)
             return fail(HL_ERR_OS, why, path, "read failed: %s", strerror(errno));
         have += (size_t)got;
@@ -396,7 +321,7 @@ static hl_status_t load_fd(int fd, const char *path, hl_mapfile_t *out, char *wh
     uLong crc = crc32(crc32(0L, Z_NULL, 0), hdr, (uInt)hdr_len);
     for (uint32_t k, n = 0; n < m.count; n += k) {
         k = m.count - n < IO_LEN / VEC_LEN ? m.count - n : IO_LEN / VEC_LEN;
-        got = read_full(fd, buf, (size_t)k * VEC_LEN);
+        got = hl_fileio_read_full(fd, buf, (size_t)k * VEC_LEN);
         if (got < 0)
             return fail(HL_ERR_OS, why, path, "read failed: %s", strerror(errno));
         if ((size_t)got < (size_t)k * VEC_LEN)
@@ -408,7 +333,7 @@ static hl_status_t load_fd(int fd, const char *path, hl_mapfile_t *out, char *wh
                                               (uint16_t)get(buf + i * VEC_LEN + 10, 2) };
         }
     }
-    got = read_full(fd, buf, CRC_LEN + 1);  /* one byte more: the file must end here */
+    got = hl_fileio_read_full(fd, buf, CRC_LEN + 1);  /* one byte more: the file must end here */
     if (got < 0)
         return fail(HL_ERR_OS, why, path, "read failed: %s", strerror(errno));
     if (got != CRC_LEN)
@@ -442,11 +367,11 @@ hl_status_t hl_mapstore_load(const char *path, hl_mapfile_t *out, char *why)
         return fail(HL_ERR_ARG, why, path, "load: no path or no storage");
     int fd;
     /* O_NONBLOCK: a FIFO at PATH must not hang the start; no effect on a regular file. */
-    RETRY(fd, open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK));
+    HL_FILEIO_RETRY(fd, open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK));
     if (fd < 0)
         return fail(HL_ERR_OS, why, path, "cannot open: %s", strerror(errno));
     hl_status_t st = load_fd(fd, path, out, why);
-    close_quietly(fd);
+    hl_fileio_close_quietly(fd);
     return st;
 }
 
@@ -484,7 +409,7 @@ hl_status_t hl_mapstore_move_aside_as(const char *path, const char *kind, char *
         }
         if (moved_to && cap > 0)
             snprintf(moved_to, cap, "%s", name);
-        if (!sync_folder(path))
+        if (!hl_fileio_sync_folder(path))
             return fail(HL_ERR_OS, why, path,
                         "moved to %s, but syncing its folder failed: %s", name,
                         strerror(errno));
@@ -524,7 +449,7 @@ static pid_t read_pid(int fd)
 {
     char text[32];
     ssize_t n;
-    RETRY(n, pread(fd, text, sizeof text - 1, 0));
+    HL_FILEIO_RETRY(n, pread(fd, text, sizeof text - 1, 0));
     if (n <= 0)
         return 0;
     text[n] = '\0';
@@ -570,26 +495,26 @@ int hl_mapstore_lock(const char *path, pid_t *holder, char *why)
     /* O_NOFOLLOW: a symlink planted at PATH.lock must not make us create or truncate
      * another file; O_NONBLOCK: a FIFO there must not hang the start. */
     int fd;
-    RETRY(fd, open(name, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644));
+    HL_FILEIO_RETRY(fd, open(name, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644));
     if (fd < 0 && errno == EACCES)  /* another user's lock file: flock needs no write */
-        RETRY(fd, open(name, O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK));
+        HL_FILEIO_RETRY(fd, open(name, O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK));
     if (fd < 0) {
         fail(HL_ERR_OS, why, path, "cannot open its lock file %s: %s", name, strerror(errno));
         return -1;
     }
     struct stat sb;
     if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        close_quietly(fd);
+        hl_fileio_close_quietly(fd);
         errno = EINVAL;
         fail(HL_ERR_OS, why, path, "its lock file %s is not a regular file", name);
         return -1;
     }
     int r;
-    RETRY(r, flock(fd, LOCK_EX | LOCK_NB));
+    HL_FILEIO_RETRY(r, flock(fd, LOCK_EX | LOCK_NB));
     if (r != 0) {
         int err = errno;
         pid_t pid = err == EWOULDBLOCK ? holder_pid(fd) : 0;
-        close_quietly(fd);
+        hl_fileio_close_quietly(fd);
         if (holder)
             *holder = pid;
         errno = err;
@@ -608,9 +533,9 @@ int hl_mapstore_lock(const char *path, pid_t *holder, char *why)
     char text[24];
     int n = snprintf(text, sizeof text, "%ld\n", (long)getpid());
     ssize_t w;
-    RETRY(w, pwrite(fd, text, (size_t)n, 0));
+    HL_FILEIO_RETRY(w, pwrite(fd, text, (size_t)n, 0));
     if (w == n) {
-        RETRY(r, ftruncate(fd, n));
+        HL_FILEIO_RETRY(r, ftruncate(fd, n));
     }
     done(why);
     return fd;
@@ -622,7 +547,7 @@ void hl_mapstore_unlock(int fd)
         return;
     /* emptied while still held, so no later holder's pid is cut */
     int r;
-    RETRY(r, ftruncate(fd, 0));
+    HL_FILEIO_RETRY(r, ftruncate(fd, 0));
     (void)r;
-    close_quietly(fd);
+    hl_fileio_close_quietly(fd);
 }

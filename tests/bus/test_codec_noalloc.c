@@ -56,7 +56,7 @@ static void encode_all(fixture_t *f)
     strcpy(status.last_error, "map save failed: disk full");
     hl_bus_destination_t dest = { 6, 7, 100, 200, true, 1000, { 1, 2, 3 } };
     hl_bus_command_t cmd = { 7, 8, HL_BUS_COMMAND_SAVE, { 0, 0, 0 }, { 0 } };
-    hl_bus_reply_t reply = { 8, 9, HL_BUS_REPLY_FAILED, "no robot link" };
+    hl_bus_reply_t reply = { 8, 9, HL_BUS_REPLY_FAILED, "no robot link", { 0 } };
     size_t cap = sizeof f->buf[0];
     f->len[0] = hl_bus_encode_scan(&f->scan, f->buf[0], cap);
     f->len[1] = hl_bus_encode_odometry(&odo, f->buf[1], cap);

@@ -128,10 +128,10 @@ static void test_status_matches_generated_code(void **state)
 /* The string's framing and content, at @p off in a message of @p len bytes whose text
  * is "abc": the length field, the terminator, embedded NULs, control characters. */
 static void check_text_field(const tk_codec_t *c, const uint8_t *a, size_t len, size_t off,
-                             const char *field)
+                             size_t after, const char *field)
 {
     uint8_t b[512];
-    assert_int_equal(len, off + 4 + 4);
+    assert_int_equal(len, off + 4 + 4 + after);
     struct { uint32_t n; size_t at; uint8_t byte; hl_status_t st; } bad[] = {
         { 0, 0, 0, HL_ERR_PARSE },                   /* length 0: no room for the NUL */
         { (uint32_t)-1, 0, 0, HL_ERR_PARSE },
@@ -171,7 +171,7 @@ static void test_status_hostile_bytes(void **state)
     tk_check_truncations(&c, a, len);
     tk_check_bad_hash(&c, a, len);
     tk_check_small_buffers(&c, &s, len);
-    check_text_field(&c, a, len, STATUS_TEXT_OFF, "last_error");
+    check_text_field(&c, a, len, STATUS_TEXT_OFF, 0, "last_error");
     /* offsets: 8 utime 16 state 17 destination_seq 25 counters (9 x 8: scans ..
      * rejected_requests) 97 map_vectors 101 map_version 109 saves 117 x 121 y 125 heading
      * 127 compute_median_us 131 p99 135 samples 139 last_error */
@@ -242,20 +242,24 @@ static void test_reply_matches_generated_code(void **state)
             .result = (int8_t)tk_range(&rng, 0, 7),
         }, back;
         tk_text(&rng, r.message, HL_BUS_TEXT_MAX - 1);
+        for (int i = 0; i < HL_BUS_MAC_BYTES; i++)
+            r.mac[i] = (uint8_t)hl_rng_next(&rng);
         int len = hl_bus_encode_reply(&r, a, sizeof a);
-        assert_int_equal(len, REPLY_TEXT_OFF + 4 + (int)strlen(r.message) + 1);
+        assert_int_equal(len, REPLY_TEXT_OFF + 4 + (int)strlen(r.message) + 1 + HL_BUS_MAC_BYTES);
         houghloc_reply_t g;
         assert_int_equal(houghloc_reply_t_decode(a, 0, len, &g), len);
         assert_int_equal(g.utime, r.utime);
         assert_int_equal(g.seq, r.seq);
         assert_int_equal(g.result, r.result);
         assert_string_equal(g.message, r.message);
+        assert_memory_equal(g.mac, r.mac, HL_BUS_MAC_BYTES);
         assert_int_equal(houghloc_reply_t_encode(b, 0, sizeof b, &g), len);
         assert_memory_equal(a, b, (size_t)len);
         assert_int_equal(hl_bus_decode_reply(b, (size_t)len, &back, NULL), HL_OK);
         assert_int_equal(back.seq, g.seq);
         assert_int_equal(back.result, g.result);
         assert_string_equal(back.message, g.message);
+        assert_memory_equal(back.mac, r.mac, HL_BUS_MAC_BYTES);
         assert_int_equal(hl_bus_encode_reply(&back, a, sizeof a), len);
         assert_memory_equal(a, b, (size_t)len);
         houghloc_reply_t_decode_cleanup(&g);
@@ -266,13 +270,13 @@ static void test_reply_hostile_bytes(void **state)
 {
     (void)state;
     uint8_t a[HL_BUS_REPLY_MAX_BYTES], b[HL_BUS_REPLY_MAX_BYTES];
-    hl_bus_reply_t r = { 10, -3, HL_BUS_REPLY_REJECTED_INVALID, "abc" }, out;
+    hl_bus_reply_t r = { 10, -3, HL_BUS_REPLY_REJECTED_INVALID, "abc", { 0 } }, out;
     tk_codec_t c = { "reply", dec_reply, enc_reply, NULL, &out };
     size_t len = (size_t)hl_bus_encode_reply(&r, a, sizeof a);
     tk_check_truncations(&c, a, len);
     tk_check_bad_hash(&c, a, len);
     tk_check_small_buffers(&c, &r, len);
-    check_text_field(&c, a, len, REPLY_TEXT_OFF, "message");
+    check_text_field(&c, a, len, REPLY_TEXT_OFF, HL_BUS_MAC_BYTES, "message");
     memcpy(b, a, len);
     b[24] = 8;
     tk_refused(&c, b, len, HL_ERR_RANGE, "result");

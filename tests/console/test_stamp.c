@@ -26,7 +26,7 @@ static void test_stop_unsigned(void **state)
     uint8_t buf[STAMP_MAX_BYTES];
     hl_bus_command_t c;
     memset(&c, 0x5a, sizeof c); /* every field written */
-    int len = stamp_stop(&c, 1700000000123456, 1700000000123457, NULL, buf, sizeof buf);
+    int len = stamp_stop(&c, 1700000000123456, 1700000000123457, NULL, "", buf, sizeof buf);
     assert_int_equal(len, HL_BUS_COMMAND_BYTES);
     hl_bus_command_t got;
     char why[HL_BUS_WHY_LEN] = "";
@@ -49,7 +49,7 @@ static void test_stop_signed(void **state)
     const hl_auth_key_t key = test_key(7), other = test_key(8);
     uint8_t buf[STAMP_MAX_BYTES];
     hl_bus_command_t c;
-    int len = stamp_stop(&c, 42, 43, &key, buf, sizeof buf);
+    int len = stamp_stop(&c, 42, 43, &key, "robot1/", buf, sizeof buf);
     assert_int_equal(len, HL_BUS_COMMAND_BYTES);
     hl_bus_command_t got;
     assert_int_equal(hl_bus_decode_command(buf, (size_t)len, &got, NULL), HL_OK);
@@ -57,11 +57,13 @@ static void test_stop_signed(void **state)
     assert_int_equal(got.seq, 43);
     assert_int_equal(got.utime, 42);
     assert_memory_not_equal(got.mac, zero_mac, sizeof zero_mac);
-    assert_true(hl_auth_check_command(&key, &got));
-    assert_false(hl_auth_check_command(&other, &got));
+    assert_true(hl_auth_check_command(&key, "robot1/", &got));
+    assert_false(hl_auth_check_command(&other, "robot1/", &got));
+    /* the MAC covers the prefix it was made for */
+    assert_false(hl_auth_check_command(&key, "", &got));
     /* the MAC covers the seq */
     got.seq++;
-    assert_false(hl_auth_check_command(&key, &got));
+    assert_false(hl_auth_check_command(&key, "robot1/", &got));
 }
 
 static void test_stop_does_not_fit(void **state)
@@ -69,9 +71,9 @@ static void test_stop_does_not_fit(void **state)
     (void)state;
     uint8_t buf[STAMP_MAX_BYTES];
     hl_bus_command_t c;
-    assert_int_equal(stamp_stop(&c, 1, 2, NULL, buf, HL_BUS_COMMAND_BYTES - 1), -1);
+    assert_int_equal(stamp_stop(&c, 1, 2, NULL, "", buf, HL_BUS_COMMAND_BYTES - 1), -1);
     /* a seq the bus refuses (not positive) does not encode either */
-    assert_int_equal(stamp_stop(&c, 1, 0, NULL, buf, sizeof buf), -1);
+    assert_int_equal(stamp_stop(&c, 1, 0, NULL, "", buf, sizeof buf), -1);
 }
 
 static void test_destination(void **state)
@@ -82,7 +84,7 @@ static void test_destination(void **state)
     uint8_t buf[STAMP_MAX_BYTES];
     hl_bus_destination_t d = { .x_mm = 1250, .y_mm = -2000, .has_heading = true,
                                .heading = 16384 };
-    int len = stamp_destination(&d, 100, 101, &key, buf, sizeof buf);
+    int len = stamp_destination(&d, 100, 101, &key, "", buf, sizeof buf);
     assert_int_equal(len, HL_BUS_DESTINATION_BYTES);
     hl_bus_destination_t got;
     assert_int_equal(hl_bus_decode_destination(buf, (size_t)len, &got, NULL), HL_OK);
@@ -90,8 +92,8 @@ static void test_destination(void **state)
     assert_int_equal(got.utime, 100);
     assert_int_equal(got.x_mm, 1250);
     assert_int_equal(got.y_mm, -2000);
-    assert_true(hl_auth_check_destination(&key, &got));
-    len = stamp_destination(&d, 100, 102, NULL, buf, sizeof buf);
+    assert_true(hl_auth_check_destination(&key, "", &got));
+    len = stamp_destination(&d, 100, 102, NULL, "", buf, sizeof buf);
     assert_int_equal(hl_bus_decode_destination(buf, (size_t)len, &got, NULL), HL_OK);
     assert_memory_equal(got.mac, zero_mac, sizeof zero_mac);
 }

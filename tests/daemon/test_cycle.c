@@ -193,7 +193,7 @@ static void send_destination(hl_cycle_t *c, int64_t seq, double x_m, double y_m,
     hl_bus_destination_t d = { .utime = 1, .seq = seq, .x_mm = (int32_t)(x_m * 1000),
                                .y_mm = (int32_t)(y_m * 1000) };
     if (key)
-        assert_true(hl_auth_sign_destination(key, &d));
+        assert_true(hl_auth_sign_destination(key, "", &d));
     uint8_t buf[HL_BUS_DESTINATION_BYTES];
     int len = hl_bus_encode_destination(&d, buf, sizeof buf);
     assert_true(len > 0);
@@ -205,7 +205,7 @@ static void send_command(hl_cycle_t *c, int64_t seq, int8_t kind, hl_pose_t pose
 {
     hl_bus_command_t m = { .utime = 1, .seq = seq, .kind = kind, .pose = pose };
     if (key)
-        assert_true(hl_auth_sign_command(key, &m));
+        assert_true(hl_auth_sign_command(key, "", &m));
     uint8_t buf[HL_BUS_COMMAND_BYTES];
     int len = hl_bus_encode_command(&m, buf, sizeof buf);
     assert_true(len > 0);

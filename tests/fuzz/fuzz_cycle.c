@@ -2,7 +2,8 @@
  * fuzz_cycle.c - sequences of messages through the daemon's cycle (src/daemon/cycle.h):
  * scans and odometry with arbitrary seq and utime (in order, stepped, repeated, far ahead
  * or behind), destinations and commands with arbitrary seq and kind, raw bytes on any
- * input channel, timer ticks and saves that succeed or fail, in any order.
+ * input channel, timer ticks (the wall clock request seqs are held to) and saves that
+ * succeed or fail, and a request state file that can or cannot be written, in any order.
  *
  * What cycle.h and stream.h promise, checked on every input:
  *   - everything the cycle publishes decodes (POSE, MAP, STATUS, REPLY, PATH): no counter,
@@ -60,6 +61,7 @@ typedef struct run {
     int32_t tail_first_seq;     /* the tail: POSE answers to seqs from here on ... */
     size_t tail_poses;          /* ... counted here */
     bool in_tail;
+    bool keep_fails;            /* the request state cannot be written */
     hl_bus_map_t map;           /* decode storage for MAP */
     uint8_t buf[HL_BUS_SCAN_MAX_BYTES];
 } run_t;
@@ -68,6 +70,22 @@ static int64_t mono_clock(void *ctx)
 {
     run_t *r = ctx;
     return r->mono_us += 7;
+}
+
+static int64_t wall_clock(void *ctx)
+{
+    const run_t *r = ctx;
+    return r->wall_us;
+}
+
+/* The request state file: written, or not (a full disk), as the input says. */
+static bool keep_seq(void *ctx, int64_t seq, char *why, size_t cap)
+{
+    const run_t *r = ctx;
+    FUZZ_CHECK(seq > 0);
+    if (r->keep_fails)
+        snprintf(why, cap, "disk full (fuzzed)");
+    return !r->keep_fails;
 }
 
 /* Every message out must decode with its own channel's decoder. */
@@ -220,7 +238,9 @@ static void op_save(run_t *r, op_reader_t *in)
 
 static void op_tick(run_t *r, op_reader_t *in)
 {
-    r->wall_us += (int64_t)take(in, 2) * 1000;
+    uint16_t t = (uint16_t)take(in, 2);
+    r->keep_fails = t & 1u;
+    r->wall_us += (int64_t)t * 1000;
     hl_cycle_tick(r->cycle, r->wall_us);
 }
 
@@ -269,6 +289,7 @@ static hl_cycle_params_t params_from(uint8_t b)
     p.slam.map_capacity = 200;     /* culling reached within a few scans */
     hl_fence_rect(&p.fence, -10000, -10000, 10000, 10000);
     p.authenticate = b & 8u;
+    p.max_ahead_us = b & 32u ? 300 * 1000000LL : 0;
     for (int i = 0; i < HL_AUTH_KEY_BYTES; i++)
         p.key.bytes[i] = (uint8_t)(i + 1);
     return p;
@@ -284,7 +305,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(r->map.vectors != NULL);
     r->wall_us = 1000000;
     hl_cycle_params_t p = params_from((uint8_t)take(&in, 1));
-    hl_cycle_io_t io = { .emit = emitted, .now_us = mono_clock, .ctx = r };
+    hl_cycle_io_t io = { .emit = emitted, .now_us = mono_clock, .wall_us = wall_clock,
+                         .keep_seq = keep_seq, .ctx = r };
     r->cycle = hl_cycle_create(&p, &io);
     FUZZ_CHECK(r->cycle != NULL);
     for (int ops = 0; ops < MAX_OPS && in.left > 0; ops++) {

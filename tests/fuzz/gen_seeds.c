@@ -181,7 +181,7 @@ static void encode_bus(void)
 
     hl_bus_destination_t d = { .utime = 1700000000000000, .seq = 1700000000000001,
                                .x_mm = 2500, .y_mm = -1200 };
-    hl_auth_sign_destination(&key, &d);
+    hl_auth_sign_destination(&key, "", &d);
     put_msg("bus_destination", "signed", buf, hl_bus_encode_destination(&d, buf, sizeof buf));
     d = (hl_bus_destination_t){ .utime = 5, .seq = 2, .x_mm = -HL_COORD_MAX_MM,
                                 .y_mm = HL_COORD_MAX_MM, .has_heading = true,
@@ -191,7 +191,7 @@ static void encode_bus(void)
 
     hl_bus_command_t c = { .utime = 1700000000000000, .seq = 7,
                            .kind = HL_BUS_COMMAND_SET_POSE, .pose = { 1200, 3400, 16384 } };
-    hl_auth_sign_command(&key, &c);
+    hl_auth_sign_command(&key, "", &c);
     put_msg("bus_command", "set-pose", buf, hl_bus_encode_command(&c, buf, sizeof buf));
     c = (hl_bus_command_t){ .utime = 0, .seq = 8, .kind = HL_BUS_COMMAND_SAVE };
     put_msg("bus_command", "save", buf, hl_bus_encode_command(&c, buf, sizeof buf));

@@ -245,6 +245,15 @@ rejects "goto signed with the wrong key: REJECTED_AUTH (exit 3)" 3 "REJECTED_AUT
 kill -TERM $daemon; wait $daemon
 check "the daemon with a key stops cleanly" test $? -eq 0
 check "refused requests are logged" grep -q 'REJECTED_AUTH' "$tmp/k.err"
+check "with a key, the request state file sits beside the map" \
+    grep -q '^hlseq 1 [0-9]* [0-9a-f]\{8\}$' "$tmp/requests.seq"
+cp "$tmp/requests.seq" "$tmp/requests.seq.good"
+printf 'hlseq 1 17\n' >"$tmp/requests.seq"
+rejects "a request state file cut short stops the start, saying how to reset it" 1 \
+    "request state $tmp/requests.seq: cut short\|request state $tmp/requests.seq: malformed" \
+    $D --map "$tmp/k.map" --lcm-url "$url" --set auth.key_file="$tmp/key"
+check "... naming the way out" grep -q "remove the file" "$tmp/err"
+mv "$tmp/requests.seq.good" "$tmp/requests.seq"
 rejects "goto with no daemon times out (exit 6)" 6 "no reply from houghlocd" $BIN/houghloc-goto --lcm-url "$url" --timeout 0.3 1 1
 
 # ---- a channel prefix: robots sharing one network hear only their own channels ----------

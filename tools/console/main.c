@@ -49,6 +49,7 @@ typedef struct console {
     jbuf_t json;                /* reused for every message */
     char channel[CH_COUNT][HL_BUS_CHANNEL_MAX];
     unsigned long undecodable[CH_COUNT];
+    unsigned long forged_replies;   /* with a key: REPLY messages whose MAC is wrong */
     hl_truth_frame_t truth_frame;   /* GROUND_TRUTH (the simulator's world) to the map */
 } console_t;
 
@@ -120,6 +121,15 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
         hl_bus_reply_t r;
         if (hl_bus_decode_reply(rbuf->data, rbuf->data_size, &r, why) != HL_OK)
             return undecodable(c, ch, why);
+        /* with a key, only the daemon's own answers reach the pages: a forged ARRIVED must
+         * not tell the operator that the robot got there */
+        if (!sender_reply_authentic(&c->sender, &r)) {
+            if (c->forged_replies++ == 0)
+                LOG("%s: ignoring a reply to seq %lld without a valid MAC (forged, or from a "
+                    "daemon without this key); further ones are only counted", c->channel[ch],
+                    (long long)r.seq);
+            return;
+        }
         bool mine = sender_is_mine(&c->sender, r.seq);
         if (mine)
             LOG("reply to seq %lld: %s%s%s", (long long)r.seq, hl_bus_reply_name(r.result),
@@ -330,6 +340,9 @@ int main(int argc, char **argv)
     for (int ch = 0; ch < CH_COUNT; ch++)
         if (c.undecodable[ch])
             LOG("%s: %lu messages did not decode", c.channel[ch], c.undecodable[ch]);
+    if (c.forged_replies)
+        LOG("%s: %lu replies without a valid MAC were ignored", c.channel[CH_REPLY],
+            c.forged_replies);
     if (c.hub.cut_off)
         LOG("%llu pages were cut off for reading too slowly", (unsigned long long)c.hub.cut_off);
     if (c.http.gate.displaced || c.http.gate.expired || c.http.gate.refused)

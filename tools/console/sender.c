@@ -16,6 +16,7 @@ hl_status_t sender_init(sender_t *s, lcm_t *lcm, const char *prefix, const char 
     if (!hl_bus_channel(prefix, HL_CHANNEL_DESTINATION, s->channel) ||
         !hl_bus_channel(prefix, HL_CHANNEL_COMMAND, s->command_channel))
         return HL_ERR_ARG; /* the command line checked the prefix already */
+    snprintf(s->prefix, sizeof s->prefix, "%s", prefix);
     if (!key_file)
         return HL_OK;
     if (!hl_auth_init()) {
@@ -54,7 +55,7 @@ hl_status_t sender_send(sender_t *s, hl_bus_destination_t *d)
     int64_t now = wall_us();
     uint8_t buf[STAMP_MAX_BYTES];
     int len = stamp_destination(d, now, stamp_seq(now, s->last_seq),
-                                s->has_key ? &s->key : NULL, buf, sizeof buf);
+                                s->has_key ? &s->key : NULL, s->prefix, buf, sizeof buf);
     hl_status_t st = publish(s, s->channel, buf, len, d->seq);
     if (st == HL_OK)
         s->sent++;
@@ -66,11 +67,16 @@ hl_status_t sender_stop(sender_t *s, hl_bus_command_t *c)
     int64_t now = wall_us();
     uint8_t buf[STAMP_MAX_BYTES];
     int len = stamp_stop(c, now, stamp_seq(now, s->last_seq), s->has_key ? &s->key : NULL,
-                         buf, sizeof buf);
+                         s->prefix, buf, sizeof buf);
     hl_status_t st = publish(s, s->command_channel, buf, len, c->seq);
     if (st == HL_OK)
         s->stops++;
     return st;
+}
+
+bool sender_reply_authentic(const sender_t *s, const hl_bus_reply_t *r)
+{
+    return !s->has_key || hl_auth_check_reply(&s->key, s->prefix, r);
 }
 
 bool sender_is_mine(const sender_t *s, int64_t seq)

@@ -25,6 +25,7 @@ typedef struct sender {
     lcm_t *lcm;
     char channel[HL_BUS_CHANNEL_MAX];           /* DESTINATION, with the prefix */
     char command_channel[HL_BUS_CHANNEL_MAX];   /* COMMAND, with the prefix */
+    char prefix[HL_BUS_PREFIX_MAX + 1];         /* which every MAC covers (auth.h) */
     bool has_key;
     hl_auth_key_t key;
     int64_t last_seq;
@@ -53,6 +54,13 @@ hl_status_t sender_send(sender_t *s, hl_bus_destination_t *d);
  * COMMAND; @p c receives what was sent. @return as sender_send.
  */
 hl_status_t sender_stop(sender_t *s, hl_bus_command_t *c);
+
+/**
+ * Whether REPLY @p r may be shown as the daemon's: always without a key; with one, only
+ * when its MAC is right for the key and the prefix (a forged REPLY, or the answer of a
+ * daemon without the key, is not).
+ */
+bool sender_reply_authentic(const sender_t *s, const hl_bus_reply_t *r);
 
 /** @return true when @p seq is one of the last SENDER_KEPT the console sent. */
 bool sender_is_mine(const sender_t *s, int64_t seq);

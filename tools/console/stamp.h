@@ -29,19 +29,21 @@ int64_t stamp_seq(int64_t now_us, int64_t last_seq);
 
 /**
  * Stamps @p d (x, y and heading filled by the caller) with utime @p now_us and @p seq,
- * signs it with @p key (NULL: the MAC all zeros) and encodes it into @p buf.
+ * signs it with @p key (NULL: the MAC all zeros) for the channels of @p prefix (auth.h;
+ * "" for none) and encodes it into @p buf.
  * @return the encoded length, or -1 when it does not encode (a field out of range,
  *         @p cap too small).
  */
 int stamp_destination(hl_bus_destination_t *d, int64_t now_us, int64_t seq,
-                      const hl_auth_key_t *key, uint8_t *buf, size_t cap);
+                      const hl_auth_key_t *key, const char *prefix, uint8_t *buf, size_t cap);
 
 /**
  * Writes into @p c the STOP command made at @p now_us with @p seq (kind
- * HL_BUS_COMMAND_STOP, pose zero), signed with @p key (NULL: the MAC all zeros), and
+ * HL_BUS_COMMAND_STOP, pose zero), signed with @p key (NULL: the MAC all zeros) for
+ * @p prefix, and
  * encodes it into @p buf. @return the encoded length, or -1 as stamp_destination.
  */
 int stamp_stop(hl_bus_command_t *c, int64_t now_us, int64_t seq, const hl_auth_key_t *key,
-               uint8_t *buf, size_t cap);
+               const char *prefix, uint8_t *buf, size_t cap);
 
 #endif

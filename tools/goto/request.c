@@ -182,6 +182,12 @@ typedef struct waiter {
     bool no_robot;              /* a NO_ROBOT was waited out */
     int64_t again_us;           /* wait_for_robot: monotonic time to send again */
     int undecodable;    /* REPLY messages that did not decode */
+    const hl_auth_key_t *key;   /* --key: only REPLY messages with its MAC count; NULL none */
+    const char *prefix;         /* the channel prefix the MACs cover */
+    int forged;                 /* REPLY messages to seq whose MAC was missing or wrong */
+    bool unverified_auth;       /* one of them was REJECTED_AUTH: what the daemon answers
+                                   a client whose key is not its own, which that client
+                                   cannot verify */
     int result;         /* WAITING, or the exit code */
     int64_t progress_us;        /* monotonic time of the last sign of progress (or of
                                    sending): the silence is measured from it */
@@ -228,6 +234,21 @@ static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user
     }
     if (r.seq != w->seq || w->result != WAITING)
         return; /* another client's request */
+    /* With a key, the daemon signs its answers: one without the MAC is not the daemon's
+     * (a forged ARRIVED must not end the wait with success), so wait on for the real one. */
+    if (w->key && !hl_auth_check_reply(w->key, w->prefix, &r)) {
+        /* the one answer a client with another key cannot verify: said once the wait is
+         * over (exchange), not here */
+        if (r.result == HL_BUS_REPLY_REJECTED_AUTH) {
+            w->unverified_auth = true;
+            return;
+        }
+        if (w->forged++ == 0)
+            fprintf(stderr, "%s: ignoring a REPLY (%s) to seq %lld without a valid MAC "
+                    "(forged, or from a daemon without this key); waiting for the daemon's "
+                    "own\n", w->prog, hl_bus_reply_name(r.result), (long long)w->seq);
+        return;
+    }
     if (r.result == HL_BUS_REPLY_ACCEPTED && w->r->accepted)
         return; /* a repeated answer */
     /* a daemon with no link configured will never have one: that NO_ROBOT is final */
@@ -380,10 +401,11 @@ static void report_stalled(const waiter_t *w, const req_options_t *o, ended_t en
 
 /* ---- sending ------------------------------------------------------------------------- */
 
-/* Stamps the request with the clock and signs it when a key file is given, then encodes
- * it into buf (cap bytes). @return the length, or -1 after the message (exit 1). */
-static int stamp_sign_encode(const char *prog, const req_options_t *o, req_request_t *r,
-                             uint8_t *buf, size_t cap)
+/* Stamps the request with the clock and signs it with @p key (NULL: unsigned) for the
+ * channels of @p prefix, then encodes it into buf (cap bytes). @return the length, or -1
+ * after the message (exit 1). */
+static int stamp_sign_encode(const char *prog, const hl_auth_key_t *key, const char *prefix,
+                             req_request_t *r, uint8_t *buf, size_t cap)
 {
     const bool is_cmd = r->kind == REQ_COMMAND;
     const char *noun = is_cmd ? "command" : "destination";
@@ -396,24 +418,10 @@ static int stamp_sign_encode(const char *prog, const req_options_t *o, req_reque
         r->msg.destination.utime = r->msg.destination.seq = now;
         memset(r->msg.destination.mac, 0, sizeof r->msg.destination.mac);
     }
-    if (o->key_file) {
-        if (!hl_auth_init()) {
-            fprintf(stderr, "%s: libsodium does not initialize\n", prog);
-            return -1;
-        }
-        hl_auth_key_t key;
-        char why[HL_KEYFILE_WHY_LEN];
-        if (hl_keyfile_load(o->key_file, &key, why) != HL_OK) {
-            fprintf(stderr, "%s: %s\n", prog, why);
-            return -1;
-        }
-        bool ok = is_cmd ? hl_auth_sign_command(&key, &r->msg.command)
-                         : hl_auth_sign_destination(&key, &r->msg.destination);
-        sodium_memzero(&key, sizeof key);
-        if (!ok) {
-            fprintf(stderr, "%s: the %s does not encode\n", prog, noun);
-            return -1;
-        }
+    if (key && !(is_cmd ? hl_auth_sign_command(key, prefix, &r->msg.command)
+                        : hl_auth_sign_destination(key, prefix, &r->msg.destination))) {
+        fprintf(stderr, "%s: the %s does not encode\n", prog, noun);
+        return -1;
     }
     int len = is_cmd ? hl_bus_encode_command(&r->msg.command, buf, cap)
                      : hl_bus_encode_destination(&r->msg.destination, buf, cap);
@@ -422,14 +430,29 @@ static int stamp_sign_encode(const char *prog, const req_options_t *o, req_reque
     return len;
 }
 
+/* The key of --key (when given) into @p key. @return false after the message. */
+static bool load_key(const char *prog, const req_options_t *o, hl_auth_key_t *key)
+{
+    if (!hl_auth_init()) {
+        fprintf(stderr, "%s: libsodium does not initialize\n", prog);
+        return false;
+    }
+    char why[HL_KEYFILE_WHY_LEN];
+    if (hl_keyfile_load(o->key_file, key, why) != HL_OK) {
+        fprintf(stderr, "%s: %s\n", prog, why);
+        return false;
+    }
+    return true;
+}
+
 /* Stamps, signs, encodes and publishes @p r on @p channel; the waiter then waits for
  * its seq. @return false after a one-line message. */
-static bool send_request(lcm_t *lcm, const char *prog, const req_options_t *o,
-                         req_request_t *r, const char *channel, waiter_t *w)
+static bool send_request(lcm_t *lcm, const char *prog, req_request_t *r, const char *channel,
+                         waiter_t *w)
 {
     _Static_assert(HL_BUS_COMMAND_BYTES <= HL_BUS_DESTINATION_BYTES, "buffer size");
     uint8_t buf[HL_BUS_DESTINATION_BYTES];
-    int len = stamp_sign_encode(prog, o, r, buf, sizeof buf);
+    int len = stamp_sign_encode(prog, w->key, w->prefix, r, buf, sizeof buf);
     if (len < 0)
         return false;
     w->seq = r->kind == REQ_COMMAND ? r->msg.command.seq : r->msg.destination.seq;
@@ -454,10 +477,10 @@ static int stop_after_signal(lcm_t *lcm, const char *prog, const req_options_t *
     req_options_t quick = *o;
     quick.timeout_s = STOP_WAIT_S;
     quick.deadline_s = 0;
-    *w = (waiter_t){ .prog = prog, .r = &stop, .result = WAITING,
-                     .progress_us = clock_us(CLOCK_MONOTONIC) };
+    *w = (waiter_t){ .prog = prog, .r = &stop, .result = WAITING, .key = w->key,
+                     .prefix = w->prefix, .progress_us = clock_us(CLOCK_MONOTONIC) };
     ended_t ended;
-    if (send_request(lcm, prog, &quick, &stop, command_channel, w) &&
+    if (send_request(lcm, prog, &stop, command_channel, w) &&
         wait_for_answer(lcm, w, &quick, w->progress_us, &ended) == EXIT_TIMEOUT)
         fprintf(stderr, "%s: no answer to STOP within %g s: is the daemon running?\n", prog,
                 STOP_WAIT_S);
@@ -473,6 +496,73 @@ static void catch_signals(void)
     sigaction(SIGTERM, &sa, NULL);
 }
 
+/* req_run with LCM started: subscribes, sends, waits, and says why a wait failed. */
+static int exchange(lcm_t *lcm, const char *prog, const req_options_t *o, req_request_t *r,
+                    waiter_t *w)
+{
+    const bool is_cmd = r->kind == REQ_COMMAND;
+    char req_channel[HL_BUS_CHANNEL_MAX], reply_channel[HL_BUS_CHANNEL_MAX];
+    char command_channel[HL_BUS_CHANNEL_MAX], status_channel[HL_BUS_CHANNEL_MAX];
+    /* req_run checked that the prefix fits every name */
+    hl_bus_channel(o->prefix, is_cmd ? HL_CHANNEL_COMMAND : HL_CHANNEL_DESTINATION,
+                   req_channel);
+    hl_bus_channel(o->prefix, HL_CHANNEL_REPLY, reply_channel);
+    hl_bus_channel(o->prefix, HL_CHANNEL_COMMAND, command_channel);
+    hl_bus_channel(o->prefix, HL_CHANNEL_STATUS, status_channel);
+    /* Subscribe before publishing, so that no answer can come before we listen. */
+    if (!lcm_subscribe(lcm, reply_channel, on_reply, w)) {
+        fprintf(stderr, "%s: cannot subscribe to %s\n", prog, reply_channel);
+        return EXIT_ERROR;
+    }
+    if (r->follow_progress && !lcm_subscribe(lcm, status_channel, on_status, w)) {
+        fprintf(stderr, "%s: cannot subscribe to STATUS\n", prog);
+        return EXIT_ERROR;
+    }
+    if (r->stop_on_signal)
+        catch_signals();
+    const int64_t sent_us = clock_us(CLOCK_MONOTONIC);
+    w->progress_us = sent_us;
+    ended_t ended = ENDED_SILENCE;
+    int rc;
+    do {    /* wait_for_robot: again with a new seq until the robot link answers */
+        if (!send_request(lcm, prog, r, req_channel, w))
+            return EXIT_ERROR;
+        rc = wait_for_answer(lcm, w, o, sent_us, &ended);
+    } while (rc == REQ_AGAIN);
+    if (rc == REQ_INTERRUPTED)
+        return stop_after_signal(lcm, prog, o, command_channel, w, (int)interrupted);
+    /* A refusal cannot be a false success: once the wait is over with nothing better, an
+     * unverified REJECTED_AUTH is the likeliest truth (a key that is not the daemon's). It
+     * never ends the wait early, where a forged one could hide the daemon's real ACCEPTED
+     * of a trip the robot then makes. */
+    if (rc == EXIT_TIMEOUT && w->unverified_auth && !w->answered) {
+        fprintf(stderr, "%s: REJECTED_AUTH, unverified (that answer's MAC does not match "
+                "--key either): is --key the daemon's key (auth.key_file), and --prefix its "
+                "prefix?\n", prog);
+        return EXIT_REJECTED;
+    }
+    char ignored[160] = "";
+    if (w->forged)
+        snprintf(ignored, sizeof ignored, " (%d REPLY message(s) without a valid MAC were "
+                 "ignored: forged, or from a daemon without this key)", w->forged);
+    if (rc == EXIT_NO_ROBOT && !w->answered)
+        fprintf(stderr, "%s: NO_ROBOT: the daemon's robot link did not come up within %g s\n",
+                prog, o->timeout_s);
+    else if (rc == EXIT_TIMEOUT && (r->accepted || w->seen_status))
+        report_stalled(w, o, ended);
+    else if (rc == EXIT_TIMEOUT && ended == ENDED_DEADLINE)
+        fprintf(stderr, "%s: no reply from houghlocd within the --deadline of %g s%s\n", prog,
+                o->deadline_s, ignored);
+    else if (rc == EXIT_TIMEOUT)
+        fprintf(stderr,
+                "%s: no reply from houghlocd within %g s on channel %s: is it running, "
+                "with the same --lcm-url and prefix?%s%s\n",
+                prog, o->timeout_s, reply_channel,
+                w->undecodable ? " (some REPLY messages did not decode: another version?)"
+                               : "", ignored);
+    return rc;
+}
+
 int req_run(const char *prog, const req_options_t *o, req_request_t *r)
 {
     const char *url = o->url;
@@ -480,67 +570,28 @@ int req_run(const char *prog, const req_options_t *o, req_request_t *r)
         const char *env = getenv("LCM_DEFAULT_URL");
         url = env && *env ? env : REQ_DEFAULT_URL;
     }
-    const bool is_cmd = r->kind == REQ_COMMAND;
-    char req_channel[HL_BUS_CHANNEL_MAX], reply_channel[HL_BUS_CHANNEL_MAX];
-    char command_channel[HL_BUS_CHANNEL_MAX], status_channel[HL_BUS_CHANNEL_MAX];
-    if (!hl_bus_channel(o->prefix, is_cmd ? HL_CHANNEL_COMMAND : HL_CHANNEL_DESTINATION,
-                        req_channel) ||
-        !hl_bus_channel(o->prefix, HL_CHANNEL_REPLY, reply_channel) ||
-        !hl_bus_channel(o->prefix, HL_CHANNEL_COMMAND, command_channel) ||
-        !hl_bus_channel(o->prefix, HL_CHANNEL_STATUS, status_channel))
-        return req_usage_error(prog, "--prefix \"%s\" is too long", o->prefix);
+    char channel[HL_BUS_CHANNEL_MAX];
+    static const char *const names[] = { HL_CHANNEL_DESTINATION, HL_CHANNEL_COMMAND,
+                                         HL_CHANNEL_REPLY, HL_CHANNEL_STATUS };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (!hl_bus_channel(o->prefix, names[i], channel))
+            return req_usage_error(prog, "--prefix \"%s\" is too long", o->prefix);
 
     r->accepted = false;
+    hl_auth_key_t key;
+    if (o->key_file && !load_key(prog, o, &key))
+        return EXIT_ERROR;
+    waiter_t w = { .prog = prog, .r = r, .result = WAITING, .key = o->key_file ? &key : NULL,
+                   .prefix = o->prefix };
+    int rc = EXIT_ERROR;
     lcm_t *lcm = lcm_create(url);
-    if (!lcm) {
+    if (lcm) {
+        rc = exchange(lcm, prog, o, r, &w);
+        lcm_destroy(lcm);
+    } else {
         fprintf(stderr, "%s: cannot start LCM with URL \"%s\"\n", prog, url);
-        return EXIT_ERROR;
     }
-    /* Subscribe before publishing, so that no answer can come before we listen. */
-    waiter_t w = { .prog = prog, .r = r, .result = WAITING };
-    if (!lcm_subscribe(lcm, reply_channel, on_reply, &w)) {
-        fprintf(stderr, "%s: cannot subscribe to %s\n", prog, reply_channel);
-        lcm_destroy(lcm);
-        return EXIT_ERROR;
-    }
-    if (r->follow_progress && !lcm_subscribe(lcm, status_channel, on_status, &w)) {
-        fprintf(stderr, "%s: cannot subscribe to STATUS\n", prog);
-        lcm_destroy(lcm);
-        return EXIT_ERROR;
-    }
-    if (r->stop_on_signal)
-        catch_signals();
-    const int64_t sent_us = clock_us(CLOCK_MONOTONIC);
-    w.progress_us = sent_us;
-    ended_t ended = ENDED_SILENCE;
-    int rc;
-    do {    /* wait_for_robot: again with a new seq until the robot link answers */
-        if (!send_request(lcm, prog, o, r, req_channel, &w)) {
-            lcm_destroy(lcm);
-            return EXIT_ERROR;
-        }
-        rc = wait_for_answer(lcm, &w, o, sent_us, &ended);
-    } while (rc == REQ_AGAIN);
-    if (rc == REQ_INTERRUPTED) {
-        rc = stop_after_signal(lcm, prog, o, command_channel, &w, (int)interrupted);
-        lcm_destroy(lcm);
-        return rc;
-    }
-    lcm_destroy(lcm);
-    if (rc == EXIT_NO_ROBOT && !w.answered)
-        fprintf(stderr, "%s: NO_ROBOT: the daemon's robot link did not come up within %g s\n",
-                prog, o->timeout_s);
-    else if (rc == EXIT_TIMEOUT && (r->accepted || w.seen_status))
-        report_stalled(&w, o, ended);
-    else if (rc == EXIT_TIMEOUT && ended == ENDED_DEADLINE)
-        fprintf(stderr, "%s: no reply from houghlocd within the --deadline of %g s\n", prog,
-                o->deadline_s);
-    else if (rc == EXIT_TIMEOUT)
-        fprintf(stderr,
-                "%s: no reply from houghlocd within %g s on channel %s: is it running, "
-                "with the same --lcm-url and prefix?%s\n",
-                prog, o->timeout_s, reply_channel,
-                w.undecodable ? " (some REPLY messages did not decode: another version?)"
-                              : "");
+    if (o->key_file)
+        sodium_memzero(&key, sizeof key);
     return rc;
 }

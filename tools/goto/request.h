@@ -127,11 +127,18 @@ typedef struct req_request {
  * Sends @p r with the options @p o and waits for its answers. In order: resolves the URL
  * and the channel names (with o->prefix), stamps utime and seq with the wall clock in
  * microseconds (strictly increasing from call to call, as the daemon requires of the
- * seq it shares between DESTINATION and COMMAND), signs with the key in o->key_file when
- * one is given, subscribes to REPLY (and STATUS when r->follow_progress), publishes, and
+ * seq it shares between DESTINATION and COMMAND), signs with the key in o->key_file for
+ * o->prefix's channels when one is given, subscribes to REPLY (and STATUS when r->follow_progress), publishes, and
  * handles the messages with poll() until an answer to this seq ends the wait, o->timeout_s
  * passes with no answer (with r->follow_progress: no sign of progress either), or
  * o->deadline_s (when not 0) passes since the request was sent.
+ *
+ * With a key, only REPLY messages whose MAC is right for the key and o->prefix count
+ * (auth.h): any other answer to the seq (a forged ARRIVED, or that of a daemon without
+ * the key) is ignored, with one warning on stderr the first time, and the wait goes on;
+ * their number is added to a timeout's message. An unverifiable REJECTED_AUTH (what a
+ * daemon answers a client whose key is not its own) is reported, EXIT_REJECTED, only
+ * when the wait runs out with no signed answer.
  *
  * Each answer is printed as one line "<prog>: <RESULT>: <message>", ACCEPTED and ARRIVED
  * on stdout, the others on stderr. After a timeout with no answer at all it says so on

@@ -268,9 +268,10 @@ typedef struct hl_bus_reply {
     int64_t seq;                /* the request's, as it came: any value */
     int8_t result;              /* HL_BUS_REPLY_* */
     char message[HL_BUS_TEXT_MAX];      /* as status last_error */
+    uint8_t mac[HL_BUS_MAC_BYTES];      /* auth.h; all zero when unsigned */
 } hl_bus_reply_t;
 
-#define HL_BUS_REPLY_MAX_BYTES (8 + 8 + 8 + 1 + 4 + HL_BUS_TEXT_MAX)
+#define HL_BUS_REPLY_MAX_BYTES (8 + 8 + 8 + 1 + 4 + HL_BUS_TEXT_MAX + HL_BUS_MAC_BYTES)
 /** The constant's name, e.g. "REJECTED_FENCE"; "?" for an unknown value. */
 const char *hl_bus_reply_name(int8_t result);
 hl_status_t hl_bus_decode_reply(const void *data, size_t len, hl_bus_reply_t *out, char *why);

@@ -13,11 +13,13 @@ const char *forge_kind_name(forge_kind_t k)
     return (unsigned)k < FORGE_KINDS ? kind_names[k] : "?";
 }
 
-bool forge_init(forge_t *f, const hl_auth_key_t *key, uint64_t seed, double fence_m)
+bool forge_init(forge_t *f, const hl_auth_key_t *key, const char *prefix, uint64_t seed,
+                double fence_m)
 {
     memset(f, 0, sizeof *f);
-    if (!hl_auth_init())
+    if (!hl_auth_init() || strlen(prefix) > HL_BUS_PREFIX_MAX)
         return false;
+    memcpy(f->prefix, prefix, strlen(prefix) + 1);
     f->key = *key;
     for (int i = 0; i < HL_AUTH_KEY_BYTES; i++)
         f->wrong_key.bytes[i] = (uint8_t)(key->bytes[i] ^ 0x5a);
@@ -82,12 +84,12 @@ static void build(forge_t *f, forge_req_t *r, int64_t seq, bool in_fence,
         command(f, &c, seq);
         r->what = c.kind == HL_BUS_COMMAND_SAVE ? "SAVE" : "SET_POSE";
         if (key)
-            hl_auth_sign_command(key, &c);
+            hl_auth_sign_command(key, f->prefix, &c);
     } else {
         destination(f, &d, seq, in_fence);
         r->what = "destination";
         if (key)
-            hl_auth_sign_destination(key, &d);
+            hl_auth_sign_destination(key, f->prefix, &d);
     }
     uint8_t *mac = r->command ? c.mac : d.mac;
     if (tamper == 1)
@@ -132,11 +134,13 @@ void forge_make(forge_t *f, forge_kind_t kind, forge_req_t *r)
         r->kind = FORGE_REPLAYED;
         r->expect = HL_BUS_REPLY_REJECTED_REPLAY;
         break;
-    case FORGE_STALE:
-        build(f, r, 1 + (int64_t)hl_rng_below(&f->rng, (uint32_t)(f->last_seq - 1)), true,
-              &f->key, 0);
+    case FORGE_STALE: {
+        /* below the last accepted, by up to a second of the clock the seqs follow */
+        uint32_t below = f->last_seq - 1 > 1000000 ? 1000000u : (uint32_t)(f->last_seq - 1);
+        build(f, r, f->last_seq - 1 - (int64_t)hl_rng_below(&f->rng, below), true, &f->key, 0);
         r->expect = HL_BUS_REPLY_REJECTED_REPLAY;
         break;
+    }
     case FORGE_UNSIGNED:
         build(f, r, fresh, true, NULL, 0);
         r->expect = HL_BUS_REPLY_REJECTED_AUTH;

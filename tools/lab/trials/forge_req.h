@@ -5,8 +5,8 @@
  *
  * The generator keeps what the daemon keeps: the last seq it admitted, and the messages
  * it accepted (to replay them). A request's expectation follows the daemon's documented
- * order of checks (README, "Who may command the robot"): MAC first, then freshness, then
- * the geofence; a refused MAC or seq leaves the last admitted seq alone, a fence refusal
+ * order of checks (docs/manual/channels.md, "What is signed"): MAC first, then freshness,
+ * then the geofence; a refused MAC or seq leaves the last admitted seq alone, a fence refusal
  * comes after the seq was taken.
  */
 #ifndef HOUGHLOC_TOOLS_TRIALS_FORGE_REQ_H
@@ -44,6 +44,7 @@ typedef struct forge_req {
 
 typedef struct forge {
     hl_auth_key_t key, wrong_key;
+    char prefix[HL_BUS_PREFIX_MAX + 1];     /* the channel prefix the MACs are made for */
     hl_rng_t rng;
     int32_t fence_mm;       /* the daemon's fence holds the square +-fence_mm */
     int64_t last_seq;       /* the last seq the daemon admitted */
@@ -57,10 +58,13 @@ const char *forge_kind_name(forge_kind_t k);
 
 /**
  * Starts a generator: @p key is the daemon's; the wrong key differs from it in every byte;
+ * @p prefix is the channel prefix MACs are made for (auth.h: the daemon's, or another
+ * robot's to check that a request signed for one is refused by the other);
  * @p fence_m is the half side of a square the daemon's fence contains and beyond which
  * it refuses (10 for the default fence). @return false when libsodium cannot start.
  */
-bool forge_init(forge_t *f, const hl_auth_key_t *key, uint64_t seed, double fence_m);
+bool forge_init(forge_t *f, const hl_auth_key_t *key, const char *prefix, uint64_t seed,
+                double fence_m);
 
 /**
  * Makes the next request of @p kind into @p r (REPLAYED and STALE need an accepted request
