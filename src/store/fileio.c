@@ -66,28 +66,62 @@ bool hl_fileio_sync_folder(const char *path)
     return ok;
 }
 
-int hl_fileio_open_tmp(const char *tmp)
+/* A symlink planted at PATH.tmp does not redirect the write (O_NOFOLLOW); a stale one (a
+ * crash mid-save) is simply truncated. */
+static int open_tmp(const char *tmp)
 {
     int fd;
     HL_FILEIO_RETRY(fd, open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644));
     return fd;
 }
 
-bool hl_fileio_commit_tmp(int fd, const char *tmp, const char *path, const char **step)
+/* fsync, close (which reports late write-back errors: on NFS the file may be short),
+ * rename. @return NULL, or the call that failed, with errno. */
+static const char *commit_tmp(int fd, const char *tmp, const char *path)
 {
-    *step = NULL;
     if (hl_fileio_fsync(fd) != 0) {
-        *step = "fsync";
         hl_fileio_close_quietly(fd);
-    } else if (close(fd) != 0) {    /* late write-back errors (NFS): the file may be short */
-        *step = "close";
-    } else if (rename(tmp, path) != 0) {
-        *step = "rename";
+        return "fsync";
     }
-    if (!*step)
-        return true;
-    int saved = errno;
-    unlink(tmp);
-    errno = saved;
-    return false;
+    if (close(fd) != 0)
+        return "close";
+    if (rename(tmp, path) != 0)
+        return "rename";
+    return NULL;
+}
+
+bool hl_fileio_replace(const char *path, hl_fileio_writer_t write, const void *ctx,
+                       char *reason, size_t cap)
+{
+    char tmp[PATH_MAX];
+    if ((size_t)snprintf(tmp, sizeof tmp, "%s.tmp", path) >= sizeof tmp) {
+        snprintf(reason, cap, "not saved: the path is too long");
+        errno = ENAMETOOLONG;
+        return false;
+    }
+    int fd = open_tmp(tmp);
+    if (fd < 0) {
+        snprintf(reason, cap, "not saved: cannot create %s: %s", tmp, strerror(errno));
+        return false;
+    }
+    const char *step = NULL;
+    if (!write(fd, ctx)) {
+        step = "write";
+        hl_fileio_close_quietly(fd);
+    } else {
+        step = commit_tmp(fd, tmp, path);
+    }
+    if (step) {
+        int saved = errno;
+        unlink(tmp);
+        snprintf(reason, cap, "not saved: %s of %s failed: %s", step, tmp, strerror(saved));
+        errno = saved;
+        return false;
+    }
+    /* The new file is whole under PATH; only the folder entry may not be on disk yet. */
+    if (!hl_fileio_sync_folder(path)) {
+        snprintf(reason, cap, "saved, but syncing its folder failed: %s", strerror(errno));
+        return false;
+    }
+    return true;
 }

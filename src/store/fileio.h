@@ -35,20 +35,19 @@ void hl_fileio_close_quietly(int fd);
  *  @return false with errno. */
 bool hl_fileio_sync_folder(const char *path);
 
-/**
- * Opens @p tmp for writing a new version of a file: created 0644 when missing, truncated
- * (a stale one from a crash mid-save), never through a symbolic link planted there.
- * @return the descriptor, or -1 with errno.
- */
-int hl_fileio_open_tmp(const char *tmp);
+/** Writes a file's whole contents into @p fd. @return false with errno. */
+typedef bool (*hl_fileio_writer_t)(int fd, const void *ctx);
 
 /**
- * Finishes a write begun with hl_fileio_open_tmp, whose bytes are all in @p fd: fsync,
- * close (which reports late write-back errors), rename over @p path; on failure @p tmp
- * is removed and @p step names the call that failed ("fsync", "close", "rename").
- * The folder is not synced: hl_fileio_sync_folder does that.
- * @return false with errno.
+ * Replaces @p path's contents durably: PATH.tmp (created 0644, truncated if a crash left
+ * one, never through a symbolic link planted there) filled by @p write, fsync, close,
+ * rename over @p path, fsync of the folder. A crash at any point leaves the old file or
+ * the new one, whole.
+ * @return true; or false with errno and one line in @p reason (@p cap bytes): "not
+ *         saved: ..." when @p path still holds the old contents (PATH.tmp removed), or
+ *         "saved, but syncing its folder failed: ..." when only the folder sync failed.
  */
-bool hl_fileio_commit_tmp(int fd, const char *tmp, const char *path, const char **step);
+bool hl_fileio_replace(const char *path, hl_fileio_writer_t write, const void *ctx,
+                       char *reason, size_t cap);
 
 #endif

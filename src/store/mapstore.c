@@ -229,6 +229,11 @@ static bool write_map(int fd, const hl_mapfile_t *m)
     return hl_fileio_write_all(fd, buf, CRC_LEN);
 }
 
+static bool write_map_cb(int fd, const void *m)
+{
+    return write_map(fd, m);
+}
+
 hl_status_t hl_mapstore_save(const char *path, const hl_mapfile_t *m, char *why)
 {
     if (!path || !m || (!m->vectors && m->count > 0))
@@ -240,34 +245,9 @@ hl_status_t hl_mapstore_save(const char *path, const hl_mapfile_t *m, char *why)
             bad = "a vector is out of range";
     if (bad)
         return fail(HL_ERR_RANGE, why, path, "not saved: %s", bad);
-    char tmp[PATH_MAX];
-    if ((size_t)snprintf(tmp, sizeof tmp, "%s.tmp", path) >= sizeof tmp) {
-        errno = ENAMETOOLONG;
-        return fail(HL_ERR_OS, why, path, "not saved: the path is too long");
-    }
-    /* A symlink planted at PATH.tmp does not redirect the write; a stale PATH.tmp (a
-     * crash mid-save) is simply truncated (hl_fileio_open_tmp). */
-    int fd = hl_fileio_open_tmp(tmp);
-    if (fd < 0)
-        return fail(HL_ERR_OS, why, path, "not saved: cannot create %s: %s", tmp,
-                    strerror(errno));
-    const char *step = NULL;
-    if (!write_map(fd, m)) {
-        step = "write";
-        hl_fileio_close_quietly(fd);
-        int saved = errno;
-        unlink(tmp);
-        errno = saved;
-    } else {
-        hl_fileio_commit_tmp(fd, tmp, path, &step);
-    }
-    if (step)
-        return fail(HL_ERR_OS, why, path, "not saved: %s of %s failed: %s", step, tmp,
-                    strerror(errno));
-    /* The new file is whole under PATH; only the folder entry may not be on disk yet. */
-    if (!hl_fileio_sync_folder(path))
-        return fail(HL_ERR_OS, why, path, "saved, but syncing its folder failed: %s",
-                    strerror(errno));
+    char reason[HL_MAPSTORE_WHY_LEN];
+    if (!hl_fileio_replace(path, write_map_cb, m, reason, sizeof reason))
+        return fail(HL_ERR_OS, why, path, "%s", reason);
     return done(why);
 }
 

@@ -155,36 +155,21 @@ hl_status_t hl_seqfile_load(const char *path, int64_t *seq, char *why)
     return HL_OK;
 }
 
+/* The file's one line (NUL-terminated: hl_seqfile_format wrote it). */
+static bool write_text_cb(int fd, const void *text)
+{
+    return hl_fileio_write_all(fd, text, strlen(text));
+}
+
 hl_status_t hl_seqfile_save(const char *path, int64_t seq, char *why)
 {
-    char text[HL_SEQFILE_MAX_BYTES + 1], tmp[PATH_MAX];
+    char text[HL_SEQFILE_MAX_BYTES + 1];
     int len = hl_seqfile_format(seq, text, sizeof text);
     if (!path || len < 0)
         return fail(HL_ERR_ARG, why, path, "save: no path or a negative request number");
-    if ((size_t)snprintf(tmp, sizeof tmp, "%s.tmp", path) >= sizeof tmp) {
-        errno = ENAMETOOLONG;
-        return fail(HL_ERR_OS, why, path, "not saved: the path is too long");
-    }
-    int fd = hl_fileio_open_tmp(tmp);
-    if (fd < 0)
-        return fail(HL_ERR_OS, why, path, "not saved: cannot create %s: %s", tmp,
-                    strerror(errno));
-    const char *step = NULL;
-    if (!hl_fileio_write_all(fd, (const uint8_t *)text, (size_t)len)) {
-        step = "write";
-        hl_fileio_close_quietly(fd);
-        int saved = errno;
-        unlink(tmp);
-        errno = saved;
-    } else {
-        hl_fileio_commit_tmp(fd, tmp, path, &step);
-    }
-    if (step)
-        return fail(HL_ERR_OS, why, path, "not saved: %s of %s failed: %s", step, tmp,
-                    strerror(errno));
-    if (!hl_fileio_sync_folder(path))
-        return fail(HL_ERR_OS, why, path, "saved, but syncing its folder failed: %s",
-                    strerror(errno));
+    char reason[HL_SEQFILE_WHY_LEN];
+    if (!hl_fileio_replace(path, write_text_cb, text, reason, sizeof reason))
+        return fail(HL_ERR_OS, why, path, "%s", reason);
     if (why)
         why[0] = '\0';
     return HL_OK;
