@@ -167,11 +167,17 @@ static int64_t mono_ms(void)
     return (int64_t)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
 }
 
+/* How long a SAVE may wait for its answer: houghlocd writes the map for requests at most
+ * once per 5 s, and answers a SAVE that comes sooner once the 5 s are over. */
+#define SAVE_WAIT_S 7.0
+
 /* Publishes @p r and waits for its REPLY. @return false on an LCM error. */
 static bool ask(lcm_t *lcm, const char *channel, const forge_req_t *r, waiter_t *w,
                 double timeout_s)
 {
     *w = (waiter_t){ .seq = r->seq };
+    if (r->waits_for_save && timeout_s < SAVE_WAIT_S)
+        timeout_s = SAVE_WAIT_S;
     if (lcm_publish(lcm, channel, r->bytes, (unsigned)r->len) != 0)
         return fprintf(stderr, "%s: cannot publish on %s\n", PROG, channel), false;
     int64_t deadline = mono_ms() + (int64_t)(timeout_s * 1000);

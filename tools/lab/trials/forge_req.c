@@ -56,10 +56,11 @@ static void destination(forge_t *f, hl_bus_destination_t *d, int64_t seq, bool i
                                  .heading = (hl_bam_t)hl_rng_next(&f->rng) };
 }
 
-/* SET_POSE two times in three, SAVE the third (each SAVE writes the map file). */
+/* SET_POSE five times in six, SAVE the sixth (each SAVE writes the map file, and one
+ * within 5 s of the last write waits for the 5 s: channels.md). */
 static void command(forge_t *f, hl_bus_command_t *c, int64_t seq)
 {
-    bool save = hl_rng_below(&f->rng, 3) == 0;
+    bool save = hl_rng_below(&f->rng, 6) == 0;
     *c = (hl_bus_command_t){ .utime = now_utime(), .seq = seq,
                              .kind = save ? HL_BUS_COMMAND_SAVE : HL_BUS_COMMAND_SET_POSE };
     if (!save)
@@ -83,6 +84,7 @@ static void build(forge_t *f, forge_req_t *r, int64_t seq, bool in_fence,
     if (r->command) {
         command(f, &c, seq);
         r->what = c.kind == HL_BUS_COMMAND_SAVE ? "SAVE" : "SET_POSE";
+        r->waits_for_save = c.kind == HL_BUS_COMMAND_SAVE;
         if (key)
             hl_auth_sign_command(key, f->prefix, &c);
     } else {

@@ -38,6 +38,8 @@ typedef struct forge_req {
     const char *what;       /* e.g. "SET_POSE", "flipped MAC bit" */
     int64_t seq;            /* the seq the REPLY will carry */
     int8_t expect;          /* HL_BUS_REPLY_* the daemon must answer */
+    bool waits_for_save;    /* a valid SAVE: answered once the map is written, which
+                               houghlocd does at most once per 5 s for requests */
     int len;
     uint8_t bytes[FORGE_MSG_MAX];
 } forge_req_t;

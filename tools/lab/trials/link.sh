@@ -72,6 +72,12 @@ nroute=$(wc -l <"$T/route")
 . tools/houghloc-sim/daemon_conf.sh
 write_lab_robot_conf "$T/conf" "$1" "$2" "$3"
 printf '[daemon]\nmap_file = %s\n' "$T/map.hlmap" >>"$T/conf"
+# The link's silence is wall-clock time and the robot runs SPEED times faster: the default
+# 2 s would let a muted robot drive on blind for 2 x SPEED s of its own time (40 s at 20x:
+# metres past its destination, into walls) before the daemon stops it. 4 s of the robot's
+# time (200 ms at 20x; the key's least is 100 ms) keeps it near a real robot's case.
+silence_ms=$((4000 / SPEED > 100 ? 4000 / SPEED : 100))
+printf '[link]\nsilence_ms = %s\n' "$silence_ms" >>"$T/conf"
 
 count() {       # count TEXT FILE: the lines of FILE holding TEXT (0 if no FILE yet)
     c=$(grep -c -- "$1" "$2" 2>/dev/null)

@@ -76,7 +76,7 @@ trap 'exit 130' INT TERM
 
 set -- $(sed -n 's/#.*//; s/^start //p' "$ROUTE")
 sx=$1 sy=$2 sh=$3
-grep -v '^#\|^start\|^ *$' "$ROUTE" >"$T/route"
+sed 's/#.*//' "$ROUTE" | grep -v '^start\|^ *$' >"$T/route"   # comments (whole-line or trailing) dropped
 nroute=$(wc -l <"$T/route")
 echo 1 >"$T/next"
 cat >"$T/conf" <<EOF

@@ -2,12 +2,13 @@
 # sanitizers.sh - the daemon and the simulated robot under AddressSanitizer and
 # UndefinedBehaviorSanitizer, and the daemon under valgrind
 # (docs/results/reliability.md, "Sanitizers and valgrind"):
-#   1. houghlocd, houghloc-sim, houghloc-goto, houghloc-ctl and hl-eval built with
-#      ASan+UBSan into SAN_BUILD (default $BUILD-san). The top Makefile puts OPT on the
-#      compile lines only, not on the link lines, so the sanitizers go in through CC and
-#      CXX, which both use.
-#   2. tests/integration/test_robot.sh, test_daemon.sh, test_goto.sh and test_ctl.sh run
-#      against that build, every sanitizer report written to a file of its own
+#   1. houghlocd, houghloc-sim, houghloc-goto, houghloc-ctl, hl-eval and hl-forge (which
+#      test_goto.sh's forged replies come from) built with ASan+UBSan into SAN_BUILD
+#      (default $BUILD-san). The top Makefile puts OPT on the compile lines only, not on
+#      the link lines, so the sanitizers go in through CC and CXX, which both use.
+#   2. tests/integration/test_robot.sh, test_daemon.sh, test_goto.sh, test_ctl.sh and
+#      test_link_loss.sh (the link lost to silence, its reason formatted) run against
+#      that build, every sanitizer report written to a file of its own
 #      (ASAN_OPTIONS/UBSAN_OPTIONS log_path, so that the tests' checks of stderr are not
 #      disturbed): the tests must pass and no report be written (LeakSanitizer included).
 #   3. valgrind memcheck over a batch replay of logs/tour.lcmlog by the ordinary build's
@@ -37,7 +38,7 @@ t0=$(date +%s)
 
 # ---- 1. the sanitized build -----------------------------------------------------------
 SANFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
-PROGS="houghlocd houghloc-sim houghloc-goto houghloc-ctl hl-eval"
+PROGS="houghlocd houghloc-sim houghloc-goto houghloc-ctl hl-eval hl-forge"
 targets=""
 for p in $PROGS; do targets="$targets $SAN_BUILD/bin/$p"; done
 say "building$targets with ASan+UBSan ..."
@@ -76,6 +77,7 @@ run_test test_robot
 run_test test_daemon
 run_test test_goto
 run_test test_ctl
+run_test test_link_loss
 nrep=$(find "$T/reports" -type f | wc -l)
 if [ "$nrep" -ne 0 ]; then
     say "$nrep sanitizer reports:"
