@@ -421,7 +421,12 @@ void robot_on_sip(void *ctx, const hl_arcos_sip_t *sip)
 void robot_link_up(hl_robot_t *r, int64_t now_ms)
 {
     r->anchored = false;
-    r->polling_ahead = false;       /* a robot's firing order starts as the whole ring */
+    /* The firing order is the robot's, not the connection's: ARCOS keeps a POLLING until
+     * told otherwise, so a client killed while driving leaves the robot firing its front
+     * transducers alone, and a sounding would wait for the others in vain. The whole ring
+     * is set explicitly. */
+    r->polling_ahead = true;
+    robot_nav_polling(r, false, now_ms);
     if (r->p.sound_on_connect && !r->sounded_once)
         start_sounding(r, now_ms);
     else

@@ -107,6 +107,25 @@ check "box: the way has corners (planned round the box)" grep -q "planned [3-9] 
 stop_robot box
 check "box: no contact, no stall" no_contact box
 
+# ---- a daemon killed while driving: the next one's sounding completes ------------------
+# While a leg is driven the robot fires its front transducers alone (the safety stop's
+# POLLING), and ARCOS keeps that order after the client is gone: the next daemon must set
+# the whole ring again, or its sounding on connecting waits for readings that never come.
+run_robot killed live
+goto killed 3.5 0.6 &
+client=$!; pids="$pids $client"
+wait_for "$tmp/killed.d" "state .* -> MOVING" 1 300
+kill -9 $daemon; wait $daemon 2>/dev/null
+kill $client 2>/dev/null; wait $client 2>/dev/null
+"$BIN/houghlocd" --lcm-url "$URL" --map "$tmp/killed.hlmap" \
+    --set robot.link=tcp:127.0.0.1:$PORT --set robot.profile=houghloc-sim \
+    --set daemon.log_level=debug 2>"$tmp/killed2.d" &
+daemon=$!; pids="$pids $daemon"
+check "killed while driving: the next daemon's sounding on connecting completes" \
+    wait_for "$tmp/killed2.d" "^<7>houghlocd: scan [0-9]* (seq" 1 300
+check "... with no transducer left silent" sh -c "! grep -q 'gave no reading' '$tmp/killed2.d'"
+stop_robot killed
+
 # ---- a robot that falls silent while driving: the destination fails, naming why --------
 run_robot mute lockstep -- robot.sound_on_connect=false
 goto mute 3.5 0.6 &
