@@ -427,6 +427,14 @@ void robot_link_up(hl_robot_t *r, int64_t now_ms)
      * is set explicitly. */
     r->polling_ahead = true;
     robot_nav_polling(r, false, now_ms);
+    /* A robot that moved while its link was silent is somewhere the odometry did not
+     * see: found again as a lost one is, by soundings searched over the whole map,
+     * rather than tracked from where it was last heard. */
+    if (r->moved_unseen) {
+        r->moved_unseen = false;
+        hl_cycle_enter_lost(r->cycle, "the robot moved while its link was silent",
+                            now_ms * 1000);
+    }
     if (r->p.sound_on_connect && !r->sounded_once)
         start_sounding(r, now_ms);
     else

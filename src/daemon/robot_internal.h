@@ -27,6 +27,8 @@ struct hl_robot {
     bool dest_pending;              /* accepted during a sounding: starts after it */
     hl_bus_destination_t pending;
     bool sounded_once;
+    bool moved_unseen;              /* the link fell silent while the robot was under way
+                                       (a leg or a sounding): where it stopped is unknown */
     uint32_t lost_epoch;            /* the cycle's lost epoch that lost_soundings counts */
     int32_t lost_soundings;         /* soundings made for it */
 

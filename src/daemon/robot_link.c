@@ -127,6 +127,12 @@ static void drop_link(hl_robot_t *r, const char *cause, bool writable, int64_t n
     hl_link_close(r->link);
     r->link = NULL;
     r->up = false;
+    /* Silence is not a closed connection: the robot went on obeying what it was last
+     * told until the STOP reached it (or its own watchdog fired), and nothing of that
+     * motion was heard. */
+    if (hl_rlink_stop_queued(&r->rlink) &&
+        (r->dest_seq >= 0 || hl_sounder_state(&r->sounder) == HL_SOUNDER_BUSY))
+        r->moved_unseen = true;
     hl_rlink_lost(&r->rlink, full);
     robot_abandon(r, what, now_ms);
     r->retry_at_ms = now_ms + r->backoff_ms;
