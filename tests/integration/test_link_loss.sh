@@ -62,6 +62,8 @@ check "... before the CLOSE that ends the connection" \
 # with a STOP; GROUND_TRUTH (which goes on while muted) shows it still, a second apart.
 check "the daemon connects to the muted robot again" \
     wait_for "$tmp/d.err" "robot 'houghloc-sim' (Pioneer bonnie) connected" 2 100
+check "... and, the robot having driven on unseen, is lost until soundings find it" \
+    grep -q "lost: the robot moved while its link was silent; each scan now searches" "$tmp/d.err"
 pose1=$(true_pose)
 sleep 1
 pose2=$(true_pose)
