@@ -13,7 +13,7 @@
 #include <set>
 #include <string>
 
-#include "../../sim/world.hpp"
+#include "world.hpp"
 #include "experiment.hpp"
 #include "limits.hpp"
 #include "overrides.hpp"

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../../sim/sonar.hpp"
-#include "../../sim/world.hpp"
+#include "sonar.hpp"
+#include "world.hpp"
 #include "stats.hpp"
 
 namespace hlexp {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "../experiments/dataset.hpp"
+#include "dataset.hpp"
 #include "houghloc-internal/daemon_config.h"
 #include "houghloc/map.h"
 #include "houghloc/slam.h"

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "../experiments/dataset.hpp"
+#include "dataset.hpp"
 #include "inputs.hpp"
 #include "houghloc/map.h"
 #include "houghloc-internal/slam_search.h"

@@ -5,8 +5,8 @@
 #include <memory>
 #include <vector>
 
-#include "../experiments/experiment.hpp"
-#include "../experiments/stats.hpp"
+#include "experiment.hpp"
+#include "stats.hpp"
 #include "kidnap.hpp"
 
 namespace hlkid {

@@ -8,10 +8,10 @@ extern "C" {
 #include "houghloc/mapstore.h"
 }
 
-#include "../../sim/logwriter.hpp"
-#include "../../sim/robot.hpp"
-#include "../../sim/tour.hpp"
-#include "../../sim/world.hpp"
+#include "logwriter.hpp"
+#include "robot.hpp"
+#include "tour.hpp"
+#include "world.hpp"
 #include "kidnap.hpp"
 
 namespace hlkid {

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <ctime>
 
-#include "../experiments/stats.hpp"
+#include "stats.hpp"
 #include "kidnap.hpp"
 
 namespace hlkid {
