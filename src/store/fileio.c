@@ -7,6 +7,21 @@
 #include <string.h>
 #include <unistd.h>
 
+void hl_fileio_why(char *why, size_t cap, const char *path, const char *fmt, va_list ap)
+{
+    if (!why || cap == 0)
+        return;
+    int saved = errno;
+    int n = path ? snprintf(why, cap / 2, "%s: ", path) : 0;
+    if (n < 0 || (size_t)n >= cap / 2)
+        n = path ? (int)strlen(why) : 0;
+    vsnprintf(why + n, cap - (size_t)n, fmt, ap);
+    for (unsigned char *p = (unsigned char *)why; *p; p++)
+        if (*p < 0x20 || *p == 0x7f)
+            *p = '?';
+    errno = saved;
+}
+
 bool hl_fileio_write_all(int fd, const uint8_t *b, size_t n)
 {
     while (n > 0) {

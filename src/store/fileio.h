@@ -8,6 +8,7 @@
 #define HOUGHLOC_STORE_FILEIO_H
 
 #include <errno.h>
+#include <stdarg.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -17,6 +18,12 @@
     do                                      \
         (r) = (call);                       \
     while ((r) < 0 && errno == EINTR)
+
+/** Writes "PATH: text" (no "PATH: " when @p path is NULL) into @p why, @p cap bytes, as
+ *  one line: control characters (a newline in the path, say) become '?'. A very long
+ *  path keeps its start and leaves half of @p why to the text. Keeps errno; nothing is
+ *  written when @p why is NULL. */
+void hl_fileio_why(char *why, size_t cap, const char *path, const char *fmt, va_list ap);
 
 /** Writes all of @p n bytes, through short writes. @return false with errno. */
 bool hl_fileio_write_all(int fd, const uint8_t *b, size_t n);

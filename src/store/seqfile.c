@@ -20,20 +20,10 @@
 static hl_status_t __attribute__((format(printf, 4, 5)))
 fail(hl_status_t st, char *why, const char *path, const char *fmt, ...)
 {
-    if (!why)
-        return st;
-    int saved = errno;
-    int n = path ? snprintf(why, HL_SEQFILE_WHY_LEN / 2, "%s: ", path) : 0;
-    if (n < 0 || n >= HL_SEQFILE_WHY_LEN / 2)
-        n = (int)strlen(why);
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(why + n, HL_SEQFILE_WHY_LEN - (size_t)n, fmt, ap);
+    hl_fileio_why(why, HL_SEQFILE_WHY_LEN, path, fmt, ap);
     va_end(ap);
-    for (unsigned char *p = (unsigned char *)why; *p; p++)
-        if (*p < 0x20 || *p == 0x7f)
-            *p = '?';
-    errno = saved;
     return st;
 }
 

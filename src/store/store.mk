@@ -1,9 +1,10 @@
 # src/store/store.mk - the store library: the files a daemon keeps between runs and its
-# tools read, each written whole or not at all (temp + fsync + rename) and checked on the
-# way in: the map file (mapstore.c, zlib's crc32) and the request-signing key
-# (keyfile.c, libsodium; the key's text parsed by the bus's auth.c). The daemon links it, and so do houghloc-map, houghloc-goto,
-# houghloc-ctl, the console and the laboratory's tools, without the daemon's library.
-
+# tools read, each written whole or not at all (fileio.c: temp + fsync + rename) and
+# checked on the way in: the map file (mapstore.c, zlib's crc32) and its lock
+# (mapstore_lock.c), the request state file (seqfile.c) and the request-signing key
+# (keyfile.c, libsodium; the key's text parsed by the bus's auth.c). The daemon links it,
+# and so do houghloc-map, houghloc-goto, houghloc-ctl, the console and the laboratory's
+# tools, without the daemon's library.
 STORE_PKGS      := zlib libsodium
 STORE_CFLAGS    := $(shell pkg-config --cflags $(STORE_PKGS) 2>/dev/null)
 STORE_SRCS      := $(sort $(wildcard src/store/*.c))
