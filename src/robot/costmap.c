@@ -10,12 +10,15 @@
  * grown by its 8 neighbours. So the transform runs on the obstacles grown by one cell:
  * its column pass looks at three columns and takes one row off the distance, its row
  * pass is Meijster, Roerdink and Hesselink's (2000) lower envelope of parabolas. All in
- * integers; squared distances in cells^2.
+ * integers; squared distances in cells^2. The cells a wall or a beam crosses come from
+ * gridwalk.c.
  *
  * Coordinates inside the grid are in half millimetres from the grid's corner
  * (X = 2 (x - x0) + cell_mm), so that an odd cell's borders are whole numbers too.
  */
 #include "houghloc/plan.h"
+
+#include "gridwalk.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -34,12 +37,6 @@ struct hl_costmap {
     int32_t queue_n;
     hl_plan_grid_t grid;
 };
-
-static int64_t floor_div(int64_t a, int64_t b)
-{
-    int64_t q = a / b;
-    return q * b > a ? q - 1 : q;
-}
 
 /* Rounds v / 2^14 to nearest (ties away from zero), for Q14 products. */
 static int32_t round_q14(int64_t v)
@@ -136,111 +133,6 @@ void hl_costmap_grid(const hl_costmap_t *cm, hl_plan_grid_t *out)
         *out = (hl_plan_grid_t){ .goal_clearance_mm = -1 };
 }
 
-/* ---- walking a segment over the cells ------------------------------------------------- */
-
-/* Every cell a segment touches, in order (Amanatides and Woo's traversal in integers).
- * Where the segment passes exactly through a cell corner it steps diagonally: the corner
- * belongs to both cells it joins, and corner.side_* name the two it only touches. */
-typedef struct walk {
-    int32_t col, row, end_col, end_row, step_col, step_row;
-    int64_t next_c, next_r;     /* crossing times of the next column / row border, in
-                                   units of 1 / (|dX| |dY|); INT64_MAX: never */
-    int64_t inc_c, inc_r;
-    int32_t left;               /* steps still allowed (a guard; exact arithmetic ends
-                                   on the end cell) */
-    bool corner;                /* the last step went through a corner */
-} walk_t;
-
-static void walk_init(walk_t *w, const hl_plan_grid_t *g, int64_t ax, int64_t ay, int64_t bx,
-                      int64_t by)
-{
-    int64_t s = 2 * (int64_t)g->cell_mm;
-    int64_t X0 = 2 * (ax - g->x0_mm) + g->cell_mm, Y0 = 2 * (ay - g->y0_mm) + g->cell_mm;
-    int64_t X1 = 2 * (bx - g->x0_mm) + g->cell_mm, Y1 = 2 * (by - g->y0_mm) + g->cell_mm;
-    int64_t dx = X1 - X0, dy = Y1 - Y0, adx = llabs(dx), ady = llabs(dy);
-    w->col = (int32_t)floor_div(X0, s);
-    w->row = (int32_t)floor_div(Y0, s);
-    w->end_col = (int32_t)floor_div(X1, s);
-    w->end_row = (int32_t)floor_div(Y1, s);
-    w->step_col = dx > 0 ? 1 : -1;
-    w->step_row = dy > 0 ? 1 : -1;
-    /* A coordinate on a border moving down crosses it at once: the point touches both. */
-    int64_t to_c = dx > 0 ? (w->col + 1) * s - X0 : X0 - w->col * s;
-    int64_t to_r = dy > 0 ? (w->row + 1) * s - Y0 : Y0 - w->row * s;
-    w->next_c = dx ? to_c * ady : INT64_MAX;
-    w->next_r = dy ? to_r * adx : INT64_MAX;
-    w->inc_c = s * ady;
-    w->inc_r = s * adx;
-    w->left = abs(w->end_col - w->col) + abs(w->end_row - w->row);
-    w->corner = false;
-}
-
-/* Moves to the next cell; false when the end cell was reached. */
-static bool walk_next(walk_t *w)
-{
-    if ((w->col == w->end_col && w->row == w->end_row) || w->left <= 0)
-        return false;
-    bool c = w->next_c <= w->next_r, r = w->next_r <= w->next_c;
-    /* A tie at the very end (the end point on a corner) must not step past the end. */
-    if (c && r) {
-        if (w->col == w->end_col)
-            c = false;
-        else if (w->row == w->end_row)
-            r = false;
-    }
-    w->corner = c && r;
-    if (c) {
-        w->col += w->step_col;
-        w->next_c += w->inc_c;
-        w->left--;
-    }
-    if (r) {
-        w->row += w->step_row;
-        w->next_r += w->inc_r;
-        w->left--;
-    }
-    return true;
-}
-
-static bool in_grid(const hl_plan_grid_t *g, int32_t col, int32_t row)
-{
-    return col >= 0 && row >= 0 && col < g->cols && row < g->rows;
-}
-
-static bool cell_ok(const hl_plan_grid_t *g, int32_t col, int32_t row, uint8_t max_cost)
-{
-    size_t i = (size_t)row * (size_t)g->cols + (size_t)col;
-    uint8_t v = g->cells[i];
-    return v <= max_cost || (g->start_region[i] && v != HL_PLAN_CELL_OBSTACLE);
-}
-
-bool hl_plan_segment_clear(const hl_plan_grid_t *g, hl_mm_t ax, hl_mm_t ay, hl_mm_t bx,
-                           hl_mm_t by, uint8_t max_cost)
-{
-    if (!g || g->cols <= 0)
-        return false;
-    walk_t w;
-    walk_init(&w, g, ax, ay, bx, by);
-    if (!in_grid(g, w.col, w.row) || !in_grid(g, w.end_col, w.end_row))
-        return false;
-    if (!cell_ok(g, w.col, w.row, max_cost))
-        return false;
-    while (walk_next(&w)) {
-        if (!cell_ok(g, w.col, w.row, max_cost))
-            return false;
-        if (w.corner) {
-            /* Squeezing between two obstacle cells through their common corner touches
-             * both. (Only the start's lethal region can be next to an obstacle.) */
-            const uint8_t *v = g->cells;
-            size_t side_a = (size_t)(w.row - w.step_row) * (size_t)g->cols + (size_t)w.col;
-            size_t side_b = (size_t)w.row * (size_t)g->cols + (size_t)(w.col - w.step_col);
-            if (v[side_a] == HL_PLAN_CELL_OBSTACLE || v[side_b] == HL_PLAN_CELL_OBSTACLE)
-                return false;
-        }
-    }
-    return true;
-}
-
 /* ---- building ----------------------------------------------------------------------- */
 
 /* The two ends of a vector's wall segment: along the tangent, half-length
@@ -294,9 +186,9 @@ static hl_plan_result_t lay_out(hl_costmap_t *cm, const hl_costmap_input_t *in)
         grow_box(box, e[2], e[3]);
     }
     int64_t c = cm->p.cell_mm, m = (int64_t)cm->p.radius_mm + cm->p.clearance_mm + c;
-    int64_t i0 = floor_div(box[0] - m, c), j0 = floor_div(box[1] - m, c);
-    int64_t cols = -floor_div(-(box[2] + m), c) - i0 + 1;
-    int64_t rows = -floor_div(-(box[3] + m), c) - j0 + 1;
+    int64_t i0 = hl_walk_floor_div(box[0] - m, c), j0 = hl_walk_floor_div(box[1] - m, c);
+    int64_t cols = -hl_walk_floor_div(-(box[2] + m), c) - i0 + 1;
+    int64_t rows = -hl_walk_floor_div(-(box[3] + m), c) - j0 + 1;
     if (cols * rows > cm->p.max_cells || cols > cm->max_cols)
         return HL_PLAN_TOO_BIG;
     hl_plan_grid_t *g = &cm->grid;
@@ -307,10 +199,10 @@ static hl_plan_result_t lay_out(hl_costmap_t *cm, const hl_costmap_input_t *in)
     g->y0_mm = (hl_mm_t)(j0 * c);
     g->cells = cm->cells;
     g->start_region = cm->region;
-    g->start_col = (int32_t)floor_div(2 * ((int64_t)in->start_x - g->x0_mm) + c, 2 * c);
-    g->start_row = (int32_t)floor_div(2 * ((int64_t)in->start_y - g->y0_mm) + c, 2 * c);
-    g->goal_col = (int32_t)floor_div(2 * ((int64_t)in->goal_x - g->x0_mm) + c, 2 * c);
-    g->goal_row = (int32_t)floor_div(2 * ((int64_t)in->goal_y - g->y0_mm) + c, 2 * c);
+    g->start_col = (int32_t)hl_walk_floor_div(2 * ((int64_t)in->start_x - g->x0_mm) + c, 2 * c);
+    g->start_row = (int32_t)hl_walk_floor_div(2 * ((int64_t)in->start_y - g->y0_mm) + c, 2 * c);
+    g->goal_col = (int32_t)hl_walk_floor_div(2 * ((int64_t)in->goal_x - g->x0_mm) + c, 2 * c);
+    g->goal_row = (int32_t)hl_walk_floor_div(2 * ((int64_t)in->goal_y - g->y0_mm) + c, 2 * c);
     return HL_PLAN_OK;
 }
 
@@ -319,13 +211,13 @@ static uint32_t draw_segment(hl_costmap_t *cm, int64_t ax, int64_t ay, int64_t b
 {
     const hl_plan_grid_t *g = &cm->grid;
     walk_t w;
-    walk_init(&w, g, ax, ay, bx, by);
+    hl_walk_init(&w, g, ax, ay, bx, by);
     uint32_t added = 0;
     do {
         uint8_t *v = &cm->cells[(size_t)w.row * (size_t)g->cols + (size_t)w.col];
         added += *v != HL_PLAN_CELL_OBSTACLE;
         *v = HL_PLAN_CELL_OBSTACLE;
-    } while (walk_next(&w));
+    } while (hl_walk_next(&w));
     return added;
 }
 
@@ -346,11 +238,11 @@ static void count_segment(const hl_plan_grid_t *g, uint8_t *count, int64_t ax, i
                           int64_t bx, int64_t by)
 {
     walk_t w;
-    walk_init(&w, g, ax, ay, bx, by);
+    hl_walk_init(&w, g, ax, ay, bx, by);
     do {
-        if (in_grid(g, w.col, w.row))
+        if (hl_walk_in_grid(g, w.col, w.row))
             add_saturating(&count[(size_t)w.row * (size_t)g->cols + (size_t)w.col]);
-    } while (walk_next(&w));
+    } while (hl_walk_next(&w));
 }
 
 /* A vector's beam, from where its sensor stood to CARVE_SHORT_MM before its surface
@@ -421,7 +313,7 @@ static uint32_t clear_start(hl_costmap_t *cm, hl_mm_t sx, hl_mm_t sy)
     uint32_t dropped = 0;
     for (int32_t row = g->start_row - k; row <= g->start_row + k; row++)
         for (int32_t col = g->start_col - k; col <= g->start_col + k; col++) {
-            if (!in_grid(g, col, row))
+            if (!hl_walk_in_grid(g, col, row))
                 continue;
             uint8_t *v = &cm->cells[(size_t)row * (size_t)g->cols + (size_t)col];
             if (*v == HL_PLAN_CELL_OBSTACLE && point_to_cell2(g, X, Y, col, row) < r2) {
@@ -485,7 +377,7 @@ static void edt_row(hl_costmap_t *cm, int32_t j)
         }
         /* The first x where parabola u is below parabola s[q]. */
         int64_t i = s[q];
-        int64_t sep = floor_div((int64_t)u * u - i * i + G2(u) - G2(i), 2 * (u - i)) + 1;
+        int64_t sep = hl_walk_floor_div((int64_t)u * u - i * i + G2(u) - G2(i), 2 * (u - i)) + 1;
         if (sep < w) {
             q++;
             s[q] = u;
@@ -548,7 +440,7 @@ static int32_t goal_clearance(const hl_costmap_t *cm, hl_mm_t gx, hl_mm_t gy,
             for (int32_t col = g->goal_col - k; col <= g->goal_col + k;
                  col += edge || k == 0 ? 1 : 2 * k) {
                 size_t i = (size_t)row * (size_t)g->cols + (size_t)col;
-                if (!in_grid(g, col, row) || cm->cells[i] != HL_PLAN_CELL_OBSTACLE)
+                if (!hl_walk_in_grid(g, col, row) || cm->cells[i] != HL_PLAN_CELL_OBSTACLE)
                     continue;
                 int64_t d2 = point_to_cell2(g, X, Y, col, row);
                 if (d2 < best)
@@ -576,7 +468,7 @@ static void mark_start_region(hl_costmap_t *cm, hl_mm_t sx, hl_mm_t sy)
         for (int32_t dr = -1; dr <= 1; dr++)
             for (int32_t dc = -1; dc <= 1; dc++) {
                 int32_t nc = col + dc, nr = row + dr, n = nr * w + nc;
-                if (!in_grid(g, nc, nr) || cm->region[n] ||
+                if (!hl_walk_in_grid(g, nc, nr) || cm->region[n] ||
                     (cm->cells[n] != HL_PLAN_CELL_LETHAL && cm->cells[n] != HL_PLAN_CELL_FENCE))
                     continue;
                 int64_t dx = g->x0_mm + (int64_t)nc * g->cell_mm - sx;
