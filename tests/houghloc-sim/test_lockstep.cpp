@@ -307,6 +307,50 @@ static void test_no_sip_without_credit(void **state)
     assert_int_equal(r.robot.utime(), 5 * SimRobot::kSipPeriodUs);
 }
 
+// Injected faults do not stop the lockstep clock: a SIP sent with a wrong checksum, which
+// the client drops and so never answers, grants the next period itself; garbage before a
+// SIP never holds a sync byte, so it cannot swallow the SIP after it.
+static void test_faults_keep_the_clock(void **state)
+{
+    (void)state;
+    Faults f;
+    f.corrupt_every = 2;   // SIP 2 and SIP 4 are corrupt
+    f.garbage_every = 1;   // garbage before every SIP
+    Rig r(six_metre_room(), bonnie(), Pose{}, f);
+    int fd = r.connect_client();
+    Received rx;
+    send_all(fd, cat({handshake(), none(HL_ARCOS_OPEN)}));
+    for (int k = 0; k < 200 && !r.server.may_step(); k++)
+        r.serve(10);
+    uint64_t seq = 0;
+    auto run_all = [&r, &seq]() {   // every period granted, until none is
+        for (int k = 0; k < 30; k++) {
+            if (!r.server.step(&seq))
+                r.serve(1);
+        }
+    };
+    run_all();
+    assert_int_equal(r.server.counts().sips, 1);   // OPEN's period: a good SIP, answered
+    send_all(fd, none(HL_ARCOS_STEP));
+    for (int k = 0; k < 200 && r.server.counts().sips < 2; k++) {
+        if (!r.server.step(&seq))
+            r.serve(5);
+    }
+    run_all();
+    // The STEP's period sent SIP 2, corrupt: SIP 3 ran with no STEP, and then the clock
+    // waits again.
+    assert_int_equal(r.server.counts().sips, 3);
+    assert_int_equal(r.server.counts().corrupt, 1);
+    assert_false(r.server.may_step());
+    for (int k = 0; k < 100 && rx.sips < 2; k++) {
+        r.serve(5);
+        rx.drain(fd);
+    }
+    assert_int_equal(rx.sips, 2);   // SIPs 1 and 3, each found behind its garbage
+    assert_int_equal(r.server.counts().garbage, 3);
+    close(fd);
+}
+
 namespace {
 
 // A client's script: the handshake and OPEN, then one segment per period, each the
@@ -468,6 +512,7 @@ int main(void)
         cmocka_unit_test(test_grants_and_order),
         cmocka_unit_test(test_step_on_live_clock),
         cmocka_unit_test(test_no_sip_without_credit),
+        cmocka_unit_test(test_faults_keep_the_clock),
         cmocka_unit_test(test_reproducible),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -62,6 +62,10 @@ public:
      * @p out. Does nothing unless a period was granted.
      */
     void period_done(std::vector<uint8_t> *out);
+    /** Lockstep: the SIP just sent can never be answered (the fault injector broke its
+     *  checksum, so the client drops it): the next period is granted as the client's STEP
+     *  would have granted it, and the clock goes on one grant at a time. */
+    void grant_unanswerable() { granted_ = lockstep_ && state_ == State::Open; }
     /** Whether the connection takes client bytes now: always without lockstep; with it,
      *  only while no granted period waits to run (the server leaves the rest in the
      *  socket meanwhile). */

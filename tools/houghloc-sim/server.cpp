@@ -240,8 +240,11 @@ bool Server::queue_sip(const hl_arcos_sip_t &sip)
     uint64_t k = counts_.sips + 1;   // this SIP's place in the stream, from 1
     if (faults_.garbage_every > 0 && k % faults_.garbage_every == 0) {
         int64_t n = rng_.uniform_int(1, 64);
+        // Lockstep, no sync byte: garbage that looked like a header could swallow the SIP
+        // after it, which the client would then never answer, and the clock would stop.
+        const int64_t top = connection_.lockstep() ? HL_ARCOS_HDR0 - 1 : 0xFF;
         for (int64_t i = 0; i < n; i++)
-            out_.push_back(static_cast<uint8_t>(rng_.uniform_int(0, 255)));
+            out_.push_back(static_cast<uint8_t>(rng_.uniform_int(0, top)));
         counts_.garbage++;
         log_.line("fault: %lld garbage bytes before SIP %llu", static_cast<long long>(n),
                   static_cast<unsigned long long>(k - 1));
@@ -252,7 +255,8 @@ bool Server::queue_sip(const hl_arcos_sip_t &sip)
         log_.once("encode-sip", "a SIP failed to encode: not sent (a bug)");
         return false;
     }
-    if (faults_.corrupt_every > 0 && k % faults_.corrupt_every == 0) {
+    corrupted_ = faults_.corrupt_every > 0 && k % faults_.corrupt_every == 0;
+    if (corrupted_) {
         buf[len - 1] ^= 0x5A;   // the checksum's low byte
         counts_.corrupt++;
         log_.line("fault: SIP %llu sent with a wrong checksum",
@@ -307,6 +311,8 @@ bool Server::step(uint64_t *seq)
     period_muted_ = muted_;
     if (lockstep) {
         connection_.period_done(&out_);   // what the client sent after this grant
+        if (queued && corrupted_)
+            connection_.grant_unanswerable();
         after_input();
     }
     flush();

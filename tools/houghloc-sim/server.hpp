@@ -126,6 +126,7 @@ private:
     uint16_t port_ = 0;
     std::vector<uint8_t> out_;
     bool dropped_ = false, stalled_ = false, muted_ = false, period_muted_ = false;
+    bool corrupted_ = false;         // the last SIP queued was sent with a wrong checksum
     int64_t accepted_utime_ = 0;    // robot time the client connected (--drop-every)
     FILE *capture_ = nullptr;       // --capture, while the first client is connected
     std::string capture_path_;
