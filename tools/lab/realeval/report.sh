@@ -140,7 +140,7 @@ EOF
                         k = b SUBSEP inp SUBSEP modes[mi] SUBSEP sels[si]
                         if (!(k in row)) continue
                         split(row[k], v, "\t")
-                        rej = v[12] == "-" ? "–" : v[12] " / " odonly(b "_" inp "_" modes[mi] "_" sels[si])
+                        rej = v[12] == "-" ? "–" : v[12] " / " odonly(b "_" inp "_" modes[mi] "_" sels[si] "_origin")
                         printf "| %s | %s, %s | %s | %s | %s / %s | %s | %s / %s | %s |\n", b,
                             label[modes[mi]], sels[si], v[5], m3(v[6]), m3(v[7]), m3(v[8]),
                             m3(v[9]), ms2(v[10]), ms2(v[11]), rej
