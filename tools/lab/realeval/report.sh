@@ -65,8 +65,8 @@ houghloc-eval against \`raw/<building>-groundtruth.tum\` as evo scores (ATE: RMS
 position after rigid alignment; RPE: translation error over 1 m segments). The tables
 of methods are the runs from the robot's own start frame (*origin*: no start pose given,
 the daemon's default 0, 0, 0; no ground truth reaches the run); the last tables give
-every start beside it. The peers'
-figures are those of \`$(basename "$3")\`$( [ "$base" = /dev/null ] && printf ' (not found: none shown)')
+every start beside it.
+The peers' figures are those of \`$(basename "$3")\`$( [ "$base" = /dev/null ] && printf ' (not found: none shown)')
 (CSM, BreezySLAM, and odometry alone as it scored it); they used every scan.
 
 - *every*: every laser scan; *moved*: a scan when the odometry moved 0.5 m or turned 15
