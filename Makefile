@@ -181,8 +181,9 @@ $(BUILD)/asan/src/core/%.o: src/core/%.c
 	@echo "  CC-SAN  $<"
 	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(HIDDEN) $(SAN) -c -o $@ $<
 # The core's tests also read its private modules: houghloc-internal/ and src/core's own
-# headers (peak.h, blur.h).
-$(BUILD)/asan/tests/core/%.o: CPPFLAGS += $(INTERNAL_INC) -Isrc/core
+# headers (peak.h, blur.h); and the tests' support (tests/support: synthetic rooms, the
+# reference localizer).
+$(BUILD)/asan/tests/core/%.o: CPPFLAGS += $(INTERNAL_INC) -Isrc/core $(TEST_SUPPORT_INC)
 $(BUILD)/asan/%.o: %.c | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
@@ -198,7 +199,7 @@ $(CORE_ASAN_LIB): $(CORE_ASAN_OBJS)
 $(LCM_LIB): $(LCM_OBJS)
 
 # ---- unit tests -----------------------------------------------------------------------
-$(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TESTKIT_ASAN_LIB) $(CORE_ASAN_LIB)
+$(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TEST_SUPPORT_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(SYS_LIBS)

@@ -14,9 +14,8 @@
 #   make trials              tools/lab/trials         (docs/results/reliability.md)
 # (make fuzz and make crash-trials are the tests' own: tests/fuzz/fuzz.mk, src/daemon.)
 #
-# Each folder's fragment adds its programs to LAB_BINS. The test kit comes first: the
-# benchmarks name its library in their prerequisites, and the top Makefile's unit tests
-# link it.
+# Each folder's fragment adds its programs to LAB_BINS. The benchmarks link the tests'
+# support library (tests/support/support.mk, read with the product's fragments).
 
 # The research tools may read the core's private modules (the pose graph, loop closure's
 # matcher) through houghloc-internal/, the internal headers; the product's tools may not.
@@ -27,8 +26,7 @@ $(BUILD)/obj/tools/lab/experiments/%.o $(BUILD)/asan/tools/lab/experiments/%.o \
 $(BUILD)/obj/tools/lab/kidnap/%.o $(BUILD)/asan/tools/lab/kidnap/%.o: \
     CPPFLAGS += -Itools/sim -Itools/lab/experiments
 
-include tools/lab/testkit/testkit.mk
-include $(sort $(filter-out tools/lab/testkit/testkit.mk,$(wildcard tools/lab/*/*.mk)))
+include $(sort $(wildcard tools/lab/*/*.mk))
 
 .PHONY: lab
 lab: $(LAB_BINS)

@@ -42,7 +42,7 @@
 #include "houghloc-internal/solve.h"
 #include "timing.h"
 
-#include "../testkit/corridor.h"
+#include "corridor.h"
 extern "C" {
 #include "houghloc-internal/closure.h"
 }
@@ -59,7 +59,7 @@ struct Graph {
     std::vector<hl_pg_edge_t> edges;
 };
 
-/* hl-bench-posegraph's corridor tour, edge for edge (tools/lab/testkit/corridor.h). */
+/* hl-bench-posegraph's corridor tour, edge for edge (corridor.h). */
 Graph corridor(uint32_t n)
 {
     Graph g;
