@@ -2,21 +2,25 @@
 #
 #   make            build the product into build/: the daemon, its clients and tools, the
 #                   libraries and the bindings (BINS)
-#   make test       install missing packages, build the product, the unit tests and the
-#                   lab programs the tests exercise, run all tests (unit tests under
-#                   AddressSanitizer + UndefinedBehaviorSanitizer)
+#   make test       install missing packages, build the product and its unit tests, run
+#                   the product's tests (unit tests under AddressSanitizer +
+#                   UndefinedBehaviorSanitizer, then the integration tests and the
+#                   goldens); nothing of the laboratory is built
 #   make demo       houghlocd drives the built-in simulated robot through the lab
 #                   (WORLD=corridor: the second building)
 #   make lab        build the laboratory's programs (LAB_BINS, tools/lab/lab.mk); its
 #                   targets build what they need and run it: bench, logs, experiments,
 #                   experiments-seeds, kidnap, eval-real, trials
+#   make lab-test   the laboratory's own tests (tools/lab/tests): its programs, make
+#                   kidnap and make eval-real on small inputs; CI runs it after make test
 #   make fuzz       the fuzz targets under libFuzzer (tests/fuzz/fuzz.mk)
 #   make crash-trials  kill -9 of houghlocd during a replay, 100 times (src/daemon)
 #   make clean
 #
 # The product's fragments (src/*/*.mk, tools/*/*.mk, tests/*/*.mk, packaging/*.mk) add
 # their programs to BINS and their tests to TEST_BINS and INTEGRATION_TESTS; the lab's
-# (tools/lab/lab.mk and tools/lab/*/*.mk) add theirs to LAB_BINS.
+# (tools/lab/lab.mk and tools/lab/*/*.mk) add theirs to LAB_BINS, LAB_TEST_BINS and
+# LAB_INTEGRATION_TESTS.
 
 BUILD    ?= build
 CC       ?= cc
@@ -104,7 +108,9 @@ CORE_TESTS := $(patsubst tests/core/%.c,$(BUILD)/tests/core/%,$(wildcard tests/c
 TEST_BINS  := $(CORE_TESTS)
 BINS       :=
 LAB_BINS   :=
-INTEGRATION_TESTS := tests/integration/test_tools.sh
+# Every product program's usage (test_usage.sh) and the layering the include paths
+# cannot enforce (test_layers.sh).
+INTEGRATION_TESTS := tests/integration/test_usage.sh tests/integration/test_layers.sh
 
 .PHONY: all deps test unit-test demo clean lcmtypes
 .DEFAULT_GOAL := all
@@ -207,10 +213,10 @@ $(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TEST_SUPPORT_ASAN_LIB) $(C
 unit-test: $(TEST_BINS)
 	$(Q)sh tests/run-unit.sh $(TEST_BINS)
 
-# The integration tests run the product and the lab's programs (test_tools.sh, kidnap,
-# eval-real), so both are built first.
+# The product's tests: they run the programs `make` builds, nothing of the laboratory
+# (its tests are make lab-test's, tools/lab/lab.mk).
 test: deps
-	$(Q)$(MAKE) --no-print-directory all lab
+	$(Q)$(MAKE) --no-print-directory all
 	$(Q)$(MAKE) --no-print-directory unit-test
 	$(Q)sh tests/run-integration.sh $(INTEGRATION_TESTS)
 

@@ -42,16 +42,6 @@ check "slam.mode applies before other keys wherever it is written" \
     sh -c "$BIN/houghlocd --config $tmp/order.conf --print-config | grep -q '^map_capacity = 800'"
 
 # ---- sensor and robot profiles ------------------------------------------------------------
-# The real-data evaluation runs the product's profiles: its improved-mode files name them.
-check "make eval-real's laser and pseudo-sonar rows run slam.profile = laser / sonar-continuous" \
-    sh -c "grep -qx 'profile = laser' tools/lab/realeval/laser.conf &&
-           grep -qx 'profile = sonar-continuous' tools/lab/realeval/sonar.conf"
-for pair in laser:laser sonar-continuous:sonar; do
-    $D --set slam.profile=${pair%%:*} --print-config=all >"$tmp/prof.a"
-    $BIN/houghlocd --config "tools/lab/realeval/${pair#*:}.conf" --print-config=all >"$tmp/prof.b"
-    check "tools/lab/realeval/${pair#*:}.conf is slam.profile=${pair%%:*}, nothing else changed" \
-        cmp -s "$tmp/prof.a" "$tmp/prof.b"
-done
 for p in sonar-stops sonar-continuous laser; do
     $BIN/houghlocd --print-profile $p >"$tmp/$p.frag"
     $D --set slam.profile=$p --print-config=all >"$tmp/$p.key"
