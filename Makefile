@@ -43,15 +43,19 @@ SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fra
 # Layers are enforced here: each compiles with the public headers of its own layer and of
 # those it builds on, and nothing else. include/core/houghloc is the core's API (and
 # libhoughloc's installed headers); include/robot, include/bus and include/store those of
-# the robot link, the bus and the map and key files; include/internal holds the core's
-# private modules that its own tests and the laboratory's research tools read
-# (houghloc-internal/...). Only src/bus and the tools see the generated LCM headers
-# (LCMGEN_CPPFLAGS); only src/daemon sees its own folder.
+# the robot link, the bus and the map and key files. include/internal holds what is not
+# API, one folder per layer that implements it, each spelt houghloc-internal/NAME.h:
+# include/internal/core the core's private modules (the pose graph, loop closure's
+# matcher, the solve layer's interface) that the core's and the solve layer's tests and
+# the laboratory's research tools read; include/internal/daemon the daemon's configuration
+# loader for the laboratory's tools. Only src/bus and the tools see the generated LCM
+# headers (LCMGEN_CPPFLAGS); only src/daemon sees its own folder.
 HL_DEFS      := -D_POSIX_C_SOURCE=200809L -MMD -MP
 CORE_INC     := -Iinclude/core
-INTERNAL_INC := -Iinclude/internal
+CORE_INTERNAL_INC   := -Iinclude/internal/core
+DAEMON_INTERNAL_INC := -Iinclude/internal/daemon
 PUBLIC_INC   := $(CORE_INC) -Iinclude/robot -Iinclude/bus -Iinclude/store
-CORE_CPPFLAGS  := $(CORE_INC) $(INTERNAL_INC) $(HL_DEFS)
+CORE_CPPFLAGS  := $(CORE_INC) $(CORE_INTERNAL_INC) $(HL_DEFS)
 ROBOT_CPPFLAGS := $(CORE_INC) -Iinclude/robot $(HL_DEFS)
 LCMGEN_CPPFLAGS := -I$(BUILD)/lcmtypes
 BUS_CPPFLAGS   := $(CORE_INC) -Iinclude/bus $(LCMGEN_CPPFLAGS) $(HL_DEFS)
@@ -91,7 +95,8 @@ obj     = $(patsubst %.c,$(BUILD)/obj/%.o,$(patsubst %.cpp,$(BUILD)/obj/%.o,$(1)
 asanobj = $(patsubst %.c,$(BUILD)/asan/%.o,$(1))
 
 # The core's library carries the solve layer (src/solve/solve.mk): C++ on Eigen, compiled
-# with Eigen's include path alone, called by the core through include/internal/houghloc-internal/solve.h.
+# with Eigen's include path alone, called by the core through houghloc-internal/solve.h
+# (include/internal/core).
 SOLVE_SRCS := $(sort $(wildcard src/solve/*.cpp))
 CORE_OBJS      := $(call obj,$(CORE_SRCS) $(SOLVE_SRCS)) $(BUILD)/obj/gen/trig_table.o
 CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(patsubst %.cpp,$(BUILD)/asan/%.o,$(SOLVE_SRCS)) \
@@ -189,7 +194,7 @@ $(BUILD)/asan/src/core/%.o: src/core/%.c
 # The core's tests also read its private modules: houghloc-internal/ and src/core's own
 # headers (peak.h, blur.h); and the tests' support (tests/support: synthetic rooms, the
 # reference localizer).
-$(BUILD)/asan/tests/core/%.o: CPPFLAGS += $(INTERNAL_INC) -Isrc/core $(TEST_SUPPORT_INC)
+$(BUILD)/asan/tests/core/%.o: CPPFLAGS += $(CORE_INTERNAL_INC) -Isrc/core $(TEST_SUPPORT_INC)
 $(BUILD)/asan/%.o: %.c | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"

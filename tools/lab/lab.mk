@@ -23,7 +23,8 @@
 
 # The research tools may read the core's private modules (the pose graph, loop closure's
 # matcher) through houghloc-internal/, the internal headers; the product's tools may not.
-$(BUILD)/obj/tools/lab/%.o $(BUILD)/asan/tools/lab/%.o: CPPFLAGS += $(INTERNAL_INC)
+# Of the daemon's, only the tools that read its configuration (kidnap.mk) add theirs.
+$(BUILD)/obj/tools/lab/%.o $(BUILD)/asan/tools/lab/%.o: CPPFLAGS += $(CORE_INTERNAL_INC)
 # The simulator's headers and the experiments' dataset reader by their include paths
 # (tools/sim/sim.mk compiles the simulator the same way), never by relative paths.
 $(BUILD)/obj/tools/lab/experiments/%.o $(BUILD)/asan/tools/lab/experiments/%.o \

@@ -1,6 +1,6 @@
 /*
  * bench_solve - what one Gauss-Newton step's solve of loop closure's normal equations costs
- * on Eigen's sparse Cholesky (include/internal/houghloc-internal/solve.h) against Eigen's preconditioned
+ * on Eigen's sparse Cholesky (include/internal/core/houghloc-internal/solve.h) against Eigen's preconditioned
  * conjugate gradients, on the synthetic corridor graph of bench_posegraph.c
  * (docs/results/pose-graph-solver.md).
  *
