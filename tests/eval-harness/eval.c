@@ -1,5 +1,7 @@
 /*
- * hl-eval - scores and compares houghlocd's recorded output.
+ * hl-eval - scores and compares houghlocd's recorded output: the harness of the tests
+ * (the goldens, the integration tests), of make demo and of the laboratory's scripts. Not
+ * installed; houghloc-eval (tools/eval) is the installed scorer.
  *
  *   hl-eval start IN.lcmlog             the first scan's true pose: "X_M Y_M HEADING_DEG"
  *   hl-eval score IN.lcmlog OUT.lcmlog  error of every POSE against GROUND_TRUTH, the
@@ -25,8 +27,8 @@
  *                                       scans and messages of the wrong type, on every
  *                                       input channel
  *
- * Every log is checked with hl_log_check before liblcm reads it (runlog.h, shared with
- * houghloc-eval and houghloc-map).
+ * Every log is checked with hl_log_check before liblcm reads it (tools/eval/runlog.h,
+ * shared with houghloc-eval and houghloc-map).
  */
 #include <errno.h>
 #include <inttypes.h>
