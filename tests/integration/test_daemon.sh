@@ -122,7 +122,9 @@ for ch in POSE MAP; do
     "$BIN/hl-eval" extract "$tmp/run2.lcmlog" $ch "$tmp/run2.$ch"
     check "two batch replays give byte-identical $ch" cmp -s "$tmp/run1.$ch" "$tmp/run2.$ch"
 done
-check "the POSE stream equals the golden one (tests/golden/tour.sonar-stops.POSE; make golden)" cmp -s "$tmp/run1.POSE" tests/golden/tour.sonar-stops.POSE
+"$BIN/hl-eval" text "$tmp/run1.lcmlog" POSE "$tmp/run1.POSE.txt"
+check "the POSE stream equals the golden one (tests/golden/tour.sonar-stops.POSE.txt; make golden)" \
+    cmp -s "$tmp/run1.POSE.txt" tests/golden/tour.sonar-stops.POSE.txt
 check "the replay answers every scan with one POSE" sh -c "$BIN/hl-eval score --quiet $TOUR $tmp/run1.lcmlog | grep -q '^demo stops=128 '"
 check "the replay writes STATUS too" sh -c "$BIN/hl-eval extract $tmp/run1.lcmlog STATUS $tmp/st && test -s $tmp/st"
 check "the map file is saved at the end" sh -c "$D --map $tmp/run1.map --check-map | grep -q 'map version'"
