@@ -41,7 +41,7 @@ REALEVAL_PNGS := $(patsubst %,$(EVAL_OUT)/%.png,$(BUILDINGS))
 REALEVAL_ENV = BUILD='$(BUILD)' DATA='$(DATA)' EVAL_OUT='$(EVAL_OUT)' \
                REALEVAL_TOTAL=$(words $(REALEVAL_ROWS))
 
-INTEGRATION_TESTS += tests/integration/test_realeval.sh
+LAB_INTEGRATION_TESTS += tools/lab/tests/test_realeval.sh
 
 .PHONY: eval-real eval-real-outputs
 

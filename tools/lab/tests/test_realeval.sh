@@ -15,7 +15,7 @@ BIN=$BUILD/bin
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 . tests/integration/lib.sh
-# A make inside make test: not the outer make's jobserver.
+# A make inside make lab-test: not the outer make's jobserver.
 unset MAKEFLAGS MFLAGS MAKELEVEL
 
 # room NAME HALF_X HALF_Y LOOPS: DATA/raw/NAME-raw.log.gz and NAME-groundtruth.tum.
@@ -263,5 +263,16 @@ check "laser.conf in improved mode: echo bearings off, fitted normals keeping th
 "$BIN/houghlocd" --config tools/lab/realeval/sonar.conf --print-config=all >"$tmp/sonar.improved" 2>&1
 check "sonar.conf in improved mode: echo bearings on" sh -c '
     grep -q "^mode = improved$" "$1" && grep -q "^echo_bearings = true$" "$1"' - "$tmp/sonar.improved"
+
+# The real-data evaluation runs the product's profiles: its improved-mode files name them.
+check "make eval-real's laser and pseudo-sonar rows run slam.profile = laser / sonar-continuous" \
+    sh -c "grep -qx 'profile = laser' tools/lab/realeval/laser.conf &&
+           grep -qx 'profile = sonar-continuous' tools/lab/realeval/sonar.conf"
+for pair in laser:laser sonar-continuous:sonar; do
+    "$BIN/houghlocd" --config /dev/null --set slam.profile=${pair%%:*} --print-config=all >"$tmp/prof.a"
+    "$BIN/houghlocd" --config "tools/lab/realeval/${pair#*:}.conf" --print-config=all >"$tmp/prof.b"
+    check "tools/lab/realeval/${pair#*:}.conf is slam.profile=${pair%%:*}, nothing else changed" \
+        cmp -s "$tmp/prof.a" "$tmp/prof.b"
+done
 
 exit $fail
