@@ -1,6 +1,6 @@
 /* rng.c - PCG32 (XSH RR variant), after O'Neill, "PCG: A Family of Simple Fast
  * Space-Efficient Statistically Good Algorithms for Random Number Generation" (2014). */
-#include "houghloc/rng.h"
+#include "houghloc-internal/rng.h"
 
 void hl_rng_seed(hl_rng_t *rng, uint64_t seed)
 {

@@ -2,7 +2,7 @@
  * cycle_lost.c - the daemon's side of the LOST state: the tracker (hl_slam_update,
  * src/core/slam_lost.c) decides when the robot is lost and when it is found again; the
  * daemon logs each change, shows it in STATUS, and lets an operator (RELOCALIZE) or the
- * robot (robot.lost_soundings) start or end it.
+ * robot (its soundings while lost, HL_CONFIG_LOST_SOUNDINGS) start or end it.
  */
 #include <stdio.h>
 

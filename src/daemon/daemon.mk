@@ -4,7 +4,7 @@
 # headers (messages go through src/bus); of the internal ones only
 # houghloc-internal/daemon_config.h, which it implements for the laboratory's tools.
 
-DAEMON_CPPFLAGS := $(PUBLIC_INC) -Iinclude/internal -Isrc/daemon $(HL_DEFS)
+DAEMON_CPPFLAGS := $(PUBLIC_INC) -Isrc/daemon $(HL_DEFS)
 DAEMON_PKGS     := inih libsystemd zlib libserialport
 DAEMON_CFLAGS   := $(shell pkg-config --cflags $(DAEMON_PKGS) 2>/dev/null) $(PKG_CFLAGS)
 DAEMON_LIBS     := $(shell pkg-config --libs $(DAEMON_PKGS) 2>/dev/null)

@@ -24,9 +24,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "houghloc/localize.h"
-#include "houghloc/map.h"
-#include "houghloc/rng.h"
+#include "houghloc-internal/localize.h"
+#include "houghloc-internal/map.h"
+#include "houghloc-internal/rng.h"
 #include "houghloc/scan.h"
 
 /* Which stops are matched, and when a match counts. */
