@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "houghloc-internal/rng.h"
+#include "houghloc/rng.h"
 #include "houghloc-internal/posegraph.h"
 
 #define PI 3.14159265358979323846

@@ -7,7 +7,7 @@
 
 #include "cellhash.h"
 #include "houghloc-internal/fixed.h"
-#include "houghloc-internal/rng.h"
+#include "houghloc/rng.h"
 #include "houghloc-internal/slam_params.h"
 #include "houghloc/count.h"
 #include "mapsq.h"

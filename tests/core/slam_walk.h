@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "houghloc/slam.h"
+#include "houghloc-internal/slam_params.h"
 #include "../../tools/lab/testkit/synthroom.h"
 
 #define STEPS 40

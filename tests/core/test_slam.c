@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "houghloc-internal/slam_search.h"
-#include "houghloc/slam.h"
+#include "houghloc-internal/slam_params.h"
 #include "../../tools/lab/testkit/synthroom.h"
 
 #include "slam_walk.h"

@@ -13,7 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "houghloc/slam.h"
+#include "houghloc-internal/slam_params.h"
 #include "slam_walk.h"
 
 /* Steps of the walk that make the map before anything happens. */

@@ -26,7 +26,7 @@
 
 #include "houghloc-internal/localize.h"
 #include "houghloc-internal/map.h"
-#include "houghloc-internal/rng.h"
+#include "houghloc/rng.h"
 #include "houghloc/scan.h"
 
 /* Which stops are matched, and when a match counts. */

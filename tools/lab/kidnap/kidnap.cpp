@@ -176,7 +176,7 @@ bool run_sim_map(const hl_slam_params_t &p, const std::string &what, const std::
                  hlkid::Scorer *scorer)
 {
     std::string err;
-    std::unique_ptr<hl_slam_t, hlkid::SlamDeleter> slam(hl_slam_create(&p));
+    std::unique_ptr<hl_slam_t, hlkid::SlamDeleter> slam(hl_slam_create_with(&p));
     if (!slam) {
         std::fprintf(stderr, "hl-kidnap: %s: cannot create the slam\n", what.c_str());
         return false;
@@ -212,12 +212,12 @@ bool run_sim_map(const hl_slam_params_t &p, const std::string &what, const std::
 int run(const Options &o)
 {
     std::string why;
-    std::unique_ptr<hl_slam_params_t> cfg = hlkid::load_config(o.config, o.sets, &why);
+    std::unique_ptr<hl_params_t> cfg = hlkid::load_config(o.config, o.sets, &why);
     if (!cfg) {
         std::fprintf(stderr, "hl-kidnap: %s\n", why.c_str());
         return 1;
     }
-    const hl_slam_params_t &p = *cfg;
+    const hl_slam_params_t &p = *hl_params_slam(cfg.get());
     const std::string what = o.world + " " + o.input;
     hlkid::Scorer scorer(o.world, o.input, p.reloc, o.alone_first);
     std::string err;
