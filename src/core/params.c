@@ -29,32 +29,6 @@ static const hl_params_body_t *cbody(const hl_params_t *p)
 
 /* ---- values as text ------------------------------------------------------------------ */
 
-static bool parse_double(const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    while (*end == ' ' || *end == '\t')
-        end++;
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v))
-        return false;
-    *out = v;
-    return true;
-}
-
-static bool parse_bool(const char *s, bool *out)
-{
-    static const char *const yes[] = { "true", "yes", "on", "1" };
-    static const char *const no[] = { "false", "no", "off", "0" };
-    for (int i = 0; i < 4; i++) {
-        if (strcmp(s, yes[i]) == 0)
-            return *out = true, true;
-        if (strcmp(s, no[i]) == 0)
-            return *out = false, true;
-    }
-    return false;
-}
-
 /* Degrees to BAM; 180 is 32768, which a gate may use to mean "any direction". */
 static hl_bam_t bam_of(double deg)
 {
@@ -68,7 +42,7 @@ static hl_bam_t bam_of(double deg)
 static hl_status_t number_for(const hl_param_entry_t *e, const char *text, double *d, char *why)
 {
     const char *key = e->info.key;
-    if (!parse_double(text, d))
+    if (!hl_params_parse_number(text, d))
         return WHY(why, "key '%s': '%.40s' is not a number", key, text), HL_ERR_PARSE;
     if (e->info.type == HL_PARAM_INT && *d != floor(*d))
         return WHY(why, "key '%s': %.40s is not a whole number", key, text), HL_ERR_PARSE;
@@ -85,7 +59,7 @@ static hl_status_t store(const hl_param_entry_t *e, void *field, const char *tex
 {
     if (e->store == HL_PARAM_STORE_BOOL) {
         bool b;
-        if (!parse_bool(text, &b))
+        if (!hl_params_parse_bool(text, &b))
             return WHY(why, "key '%s': '%.40s' is not true or false", e->info.key, text),
                    HL_ERR_PARSE;
         *(bool *)field = b;
@@ -206,16 +180,16 @@ static hl_status_t check_fixed(const hl_param_entry_t *e, const char *text, char
         same = strcmp(text, e->info.value) == 0;
     } else if (e->info.type == HL_PARAM_BOOL) {
         bool a, b;
-        if (!parse_bool(text, &a))
+        if (!hl_params_parse_bool(text, &a))
             return WHY(why, "key '%s': '%.40s' is not true or false", e->info.key, text),
                    HL_ERR_PARSE;
-        same = parse_bool(e->info.value, &b) && a == b;
+        same = hl_params_parse_bool(e->info.value, &b) && a == b;
     } else {
-        double a, b;
+        double a, b = 0;
         hl_status_t st = number_for(e, text, &a, why);
         if (st != HL_OK)
             return st;
-        parse_double(e->info.value, &b);
+        hl_params_parse_number(e->info.value, &b);
         same = e->info.type == HL_PARAM_DEG ? bam_of(a) == bam_of(b) : a == b;
     }
     if (same)

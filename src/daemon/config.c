@@ -64,32 +64,6 @@ uint32_t hl_config_map_capacity(const hl_config_t *c)
 
 /* ---- values ------------------------------------------------------------------------ */
 
-static bool parse_double(const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    while (*end == ' ' || *end == '\t')
-        end++;
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v))
-        return false;
-    *out = v;
-    return true;
-}
-
-static bool parse_bool(const char *s, bool *out)
-{
-    static const char *const yes[] = { "true", "yes", "on", "1" };
-    static const char *const no[] = { "false", "no", "off", "0" };
-    for (int i = 0; i < 4; i++) {
-        if (strcmp(s, yes[i]) == 0)
-            return *out = true, true;
-        if (strcmp(s, no[i]) == 0)
-            return *out = false, true;
-    }
-    return false;
-}
-
 /* "X,Y X,Y ..." in metres -> vertices in mm. @return the count, or -1. */
 static int parse_points(const char *s, hl_mm_t *x, hl_mm_t *y, int max)
 {
@@ -202,7 +176,7 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
         memcpy(field, v, strlen(v) + 1);
         return true;
     case HL_KEY_BOOL:
-        if (!parse_bool(v, &b))
+        if (!hl_params_parse_bool(v, &b))
             return REASON("'%s' is not true or false", v), false;
         *(bool *)field = b;
         return true;
@@ -219,7 +193,7 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
     default:
         break;
     }
-    if (!parse_double(v, &d))
+    if (!hl_params_parse_number(v, &d))
         return REASON("'%s' is not a number", v), false;
     if (d < k->min || d > k->max)
         return REASON("%s is outside %.16g..%.16g", v, k->min, k->max), false;

@@ -48,7 +48,7 @@ check "a retired key at its fixed value: a warning naming it, then the configura
     sh -c "$BIN/houghlocd --config $tmp/old.conf --print-config 2>&1 >/dev/null |
            grep -q \"old.conf:2: key 'slam.mode' is no longer a setting (fixed at improved): ignored\""
 rejects "a retired key at another value: refused, naming its fixed value" 1 \
-    "key 'slam.mode': no longer a setting, fixed at improved (the paper's method is slam.profile = paper)" \
+    "slam.mode=paper: no longer a setting, fixed at improved (the paper's method is slam.profile = paper)" \
     $D --set slam.mode=paper --print-config
 rejects "a key of the laboratory's studies: not houghlocd's" 1 \
     "--set reloc.max_ratio=0.4: a setting of the laboratory's studies" $D --set reloc.max_ratio=0.4

@@ -36,8 +36,13 @@
 #ifndef HOUGHLOC_PARAMS_H
 #define HOUGHLOC_PARAMS_H
 
+#include <errno.h>
+#include <math.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "houghloc/export.h"
 #include "houghloc/status.h"
@@ -147,6 +152,39 @@ HL_API const hl_param_info_t *hl_params_info(size_t i);
 
 /** Profile @p i (sonar-stops first, the default), or NULL past the last. */
 HL_API const hl_param_preset_t *hl_params_preset(size_t i);
+
+/* The forms hl_params_set reads, for a program's own settings to read alike
+ * (houghlocd's keys). */
+
+/** @p s as a finite number (blanks after it allowed). @return false, *out unchanged,
+ *  for anything else. */
+static inline bool hl_params_parse_number(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    while (*end == ' ' || *end == '\t')
+        end++;
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v))
+        return false;
+    *out = v;
+    return true;
+}
+
+/** true, yes, on, 1 / false, no, off, 0. @return false, *out unchanged, for anything
+ *  else. */
+static inline bool hl_params_parse_bool(const char *s, bool *out)
+{
+    static const char *const yes[] = { "true", "yes", "on", "1" };
+    static const char *const no[] = { "false", "no", "off", "0" };
+    for (int i = 0; i < 4; i++) {
+        if (strcmp(s, yes[i]) == 0)
+            return *out = true, true;
+        if (strcmp(s, no[i]) == 0)
+            return *out = false, true;
+    }
+    return false;
+}
 
 #ifdef __cplusplus
 }
