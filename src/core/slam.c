@@ -15,8 +15,9 @@ hl_slam_t *hl_slam_create(const hl_params_t *p)
     if (!p)
         return NULL;
     hl_params_t checked = *p;   /* hl_params_check writes its error line */
-    return hl_params_check(&checked) == HL_OK ? hl_slam_create_with(hl_params_slam_const(p))
-                                              : NULL;
+    if (hl_params_check(&checked) != HL_OK)
+        return NULL;
+    return hl_slam_create_with(hl_params_slam_const(p));
 }
 
 hl_slam_t *hl_slam_create_with(const hl_slam_params_t *p)
@@ -99,7 +100,8 @@ static bool plausible(const hl_slam_t *s, hl_pose_t pose, hl_pose_t predicted,
 {
     bool high_enough = s->peak_avg == 0 || r->peak >= HL_SLAM_MIN_PEAK_RATIO * s->peak_avg;
     return hl_slam_dist2(pose, predicted) <= (int64_t)HL_SLAM_WILD_MM * HL_SLAM_WILD_MM &&
-           hl_loc_confidence(r) >= HL_SLAM_MIN_CONFIDENCE && r->votes >= HL_SLAM_MIN_VOTES &&
+           hl_loc_confidence(r) >= HL_SLAM_MIN_CONFIDENCE &&
+           r->votes >= HL_SLAM_MIN_VOTES &&
            high_enough;
 }
 
@@ -189,9 +191,9 @@ static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predi
 
 /* Long drives (slam.h): after a drive of long_drive_mm or more since the last scan, the
  * scan is localized again with the drive turned about where it started, by each multiple
- * of HL_SLAM_DRIVE_TURN_DEG up to HL_SLAM_DRIVE_TURNS each way (odometry's heading error swings the
- * whole drive, so the position moves with the heading), and the judge picks. When a
- * turned drive wins, *found and *loc become its. @return whether one did. */
+ * of HL_SLAM_DRIVE_TURN_DEG up to HL_SLAM_DRIVE_TURNS each way (odometry's heading error
+ * swings the whole drive, so the position moves with the heading), and the judge picks.
+ * When a turned drive wins, *found and *loc become its. @return whether one did. */
 static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
                        hl_loc_result_t *loc, hl_pose_t *found)
 {

@@ -17,7 +17,8 @@
  *       generated at build time; error <= 2^-31). The public hl_sin / hl_cos round it
  *       to int16_t Q14 (HL_TRIG_ONE = 16384 means 1.0), error <= 0.5 / 16384.
  *
- *   polar -> cartesian    hl_polar_to_xy (houghloc-internal/fixed.h): x = (r * cos_q14 + 2^13) >> 14, in mm.
+ *   polar -> cartesian    hl_polar_to_xy (the core's, houghloc-internal/fixed.h):
+ *       x = (r * cos_q14 + 2^13) >> 14, in mm.
  *       |r * cos| <= 32767 * 16384 < 2^29.  Error <= 0.5 mm + r * 0.5/16384 <= 1.5 mm.
  *       hl_polar_to_xy_q8 (the vote loop): x = (r * cos_q30 + 2^21) >> 22, in 1/256 mm.
  *       |r * cos_q30| <= 2^15 * 2^30 = 2^45, computed in int64; the result is below

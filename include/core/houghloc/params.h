@@ -130,7 +130,8 @@ HL_API hl_status_t hl_params_set(hl_params_t *p, const char *key, const char *va
  * key's value is its fixed one.
  * @return HL_OK; HL_ERR_ARG for NULL or an unknown key (@p buf then empty).
  */
-HL_API hl_status_t hl_params_get(const hl_params_t *p, const char *key, char *buf, size_t cap);
+HL_API hl_status_t hl_params_get(const hl_params_t *p, const char *key, char *buf,
+                                 size_t cap);
 
 /**
  * The rules over several keys (a blur wider than ten cells, a search window larger than
