@@ -2,8 +2,10 @@
 // often hl_slam_relocalize finds a robot set down anywhere in a known map, heading
 // unknown, from one scan, and how long it takes.
 //
-// The parameters are the daemon's: its configuration loader reads --config (and --set),
-// so the experiment measures exactly what houghlocd would do with that file.
+// The parameters are the core's table (houghloc/params.h), read from --config (and --set)
+// in houghlocd's form: a file of the daemon's tracker keys gives what houghlocd would do
+// with it, and the global search's study keys (the table's level "study", which
+// houghlocd does not offer) are set here too.
 #include <getopt.h>
 
 #include <cerrno>
@@ -32,8 +34,9 @@ void usage(FILE *to)
         "  %s\n"
         "(a success is found, not ambiguous, within %.1f m and %.0f degrees of the truth;\n"
         "times are the call alone). Progress on stderr.\n"
-        "  --config FILE     houghlocd's configuration (/dev/null: the defaults)\n"
-        "  --set K=V         a configuration key, after the file (repeatable)\n"
+        "  --config FILE     the tracker's keys in houghlocd's form, the studies' too\n"
+        "                    (/dev/null: the defaults)\n"
+        "  --set K=V         a key, after the file (repeatable)\n"
         "  --world, --input  the row's first two cells\n"
         "A simulated world: the map is the daemon's map file MAP of its tour of the world\n"
         "FILE ('lab': the built-in lab); N soundings at random free poses, drawn with seed S\n"

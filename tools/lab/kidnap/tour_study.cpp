@@ -5,7 +5,8 @@
 // and then its stops fitted to every match between two of them (loop closure, outside
 // the paper's method).
 //
-// The parameters are the daemon's: its configuration loader reads --config and --set.
+// The parameters are the core's table (houghloc/params.h), read from --config and --set
+// in houghlocd's form (inputs.hpp).
 #include <getopt.h>
 
 #include <algorithm>
@@ -66,8 +67,9 @@ void usage(FILE *to)
         "Prints a line per stop (stop, heading error in degrees, position error in mm), then\n"
         "  tour_study mode=MODE stops=N rmse_mm=X heading_rms_deg=X heading_mean_deg=X far=K\n"
         "(far: stops more than 0.5 m off). --quiet prints the last line alone.\n"
-        "  --config FILE     houghlocd's configuration (/dev/null: the defaults)\n"
-        "  --set K=V         a configuration key, after the file (repeatable)\n"
+        "  --config FILE     the tracker's keys in houghlocd's form, the studies' too\n"
+        "                    (/dev/null: the defaults)\n"
+        "  --set K=V         a key, after the file (repeatable)\n"
         "  --write-map MAP   (track, exact, graph) the tour's map as a houghlocd map file\n"
         "                    (hl-kidnap --map reads it): the slam's own; with graph, the\n"
         "                    scans the tour mapped drawn again at the fitted poses\n"
