@@ -113,8 +113,8 @@ uint32_t hl_config_map_capacity(const hl_config_t *c);
 void hl_config_defaults(hl_config_t *c);
 
 /**
- * Builds the effective configuration: defaults, the presets named by slam.mode,
- * slam.profile and robot.profile (in the file or the overrides, the overrides winning),
+ * Builds the effective configuration: defaults, the presets named by slam.profile and
+ * robot.profile (in the file or the overrides, the overrides winning),
  * the file's other keys, then @p overrides ("section.key=value", in order).
  * @param path      the INI file (a regular file of at most 1 MiB holding no NUL byte, or
  *                  /dev/null: config_file.h); NULL for none.

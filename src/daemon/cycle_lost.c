@@ -76,7 +76,7 @@ void hl_cycle_report_recovery(hl_cycle_t *c, const hl_bus_scan_t *in,
         report_entered(c, false, what, now_us);
         break;
     case HL_SLAM_LOST_DOUBTFUL:
-        snprintf(what, sizeof what, "%d doubtful scans in a row (daemon.lost_after)",
+        snprintf(what, sizeof what, "%d doubtful scans in a row (slam.lost_after)",
                  step->doubtful_run);
         report_entered(c, false, what, now_us);
         break;
