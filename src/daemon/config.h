@@ -122,7 +122,9 @@ void hl_config_defaults(hl_config_t *c);
  * @return true, or false with one line in @p why ("FILE: reason" for the file itself,
  *         "FILE:LINE: key 'x.y': reason" for its lines, "--set x.y=v: reason" for an
  *         override, "config: x.y (v) must ... z.w (u)" for a combination of values,
- *         naming each key with its value: config_check.h).
+ *         naming each key with its value: config_check.h). A load that succeeds leaves
+ *         its warnings (a key no longer a setting, at its fixed value; a renamed key) in
+ *         @p c->notes, for the caller to log.
  */
 bool hl_config_load(hl_config_t *c, const char *path, bool optional,
                     const char *const *overrides, int n_overrides, char *why);
