@@ -1,8 +1,8 @@
 # src/daemon/daemon.mk - houghlocd: the daemon (config, poll loop, cycle, publishing, map
 # persistence, authentication keys). The only code that owns fds, timers and signals.
 # It sees every layer's public headers and its own folder, never the generated LCM
-# headers (messages go through src/bus); of the internal ones only
-# houghloc-internal/daemon_config.h, which it implements for the laboratory's tools.
+# headers (messages go through src/bus) nor the core's internal ones: the tracker's keys
+# go to the core's table through houghloc/params.h.
 
 DAEMON_CPPFLAGS := $(PUBLIC_INC) -Isrc/daemon $(HL_DEFS)
 DAEMON_PKGS     := inih libsystemd zlib libserialport
