@@ -47,13 +47,11 @@ SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fra
 # API, one folder per layer that implements it, each spelt houghloc-internal/NAME.h:
 # include/internal/core the core's private modules (the pose graph, loop closure's
 # matcher, the solve layer's interface) that the core's and the solve layer's tests and
-# the laboratory's research tools read; include/internal/daemon the daemon's configuration
-# loader for the laboratory's tools. Only src/bus and the tools see the generated LCM
+# the laboratory's research tools read. Only src/bus and the tools see the generated LCM
 # headers (LCMGEN_CPPFLAGS); only src/daemon sees its own folder.
 HL_DEFS      := -D_POSIX_C_SOURCE=200809L -MMD -MP
 CORE_INC     := -Iinclude/core
 CORE_INTERNAL_INC   := -Iinclude/internal/core
-DAEMON_INTERNAL_INC := -Iinclude/internal/daemon
 PUBLIC_INC   := $(CORE_INC) -Iinclude/robot -Iinclude/bus -Iinclude/store
 CORE_CPPFLAGS  := $(CORE_INC) $(CORE_INTERNAL_INC) $(HL_DEFS)
 ROBOT_CPPFLAGS := $(CORE_INC) -Iinclude/robot $(HL_DEFS)

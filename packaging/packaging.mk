@@ -53,7 +53,7 @@ INSTALL_PROGS := $(addprefix $(BUILD)/bin/,$(INSTALL_NAMES))
 UNIT_IN       := packaging/houghlocd.service.in
 CONF_SRC      := packaging/houghlocd.conf
 MAN_PAGES     := $(sort $(wildcard man/*.[158]))
-SENSOR_PROFILES := sonar-stops sonar-continuous laser
+SENSOR_PROFILES := sonar-stops sonar-continuous laser paper
 
 # ---- LCM bindings -----------------------------------------------------------------------
 PY_DIR    := $(BUILD)/python

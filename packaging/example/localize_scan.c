@@ -5,16 +5,18 @@
  * The map is the four walls of a 4 m x 4 m room centred on the origin, as tangent
  * vectors (a surface point every 100 mm, its normal pointing into the room). The scan is
  * a ring of 128 readings taken at the true pose given on the command line (x and y in
- * mm, heading in degrees; default 400 -250 12). The localizer searches +-500 mm and
- * +-8.8 degrees around a guess 150 mm and 4 degrees off, as odometry would give it, and
- * the program prints the pose it finds. Build it against an installed houghloc:
+ * mm, heading in degrees; default 400 -250 12). A tracker (slam.h) is given the walls as
+ * its map and a guess 150 mm and 4 degrees off as its estimate, as odometry would give
+ * it; it searches +-500 mm (slam.window_mm) and +-8.8 degrees around the guess, and the
+ * program prints the pose it finds. Build it against an installed houghloc:
  *
  *     cc localize_scan.c $(pkg-config --cflags --libs houghloc) -o localize_scan
  */
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "houghloc/localize.h"
+#include "houghloc/params.h"
+#include "houghloc/slam.h"
 
 #define HALF_MM 2000 /* the walls stand at x = +-HALF_MM and y = +-HALF_MM */
 
@@ -72,22 +74,41 @@ int main(int argc, char **argv)
                     (int8_t)i, true);
     }
 
-    hl_loc_params_t params;
-    hl_loc_params_default(&params);
-    hl_localizer_t *loc = hl_loc_create(&params);
-    hl_loc_query_t query = {
-        .predicted = { at.x_mm + 150, at.y_mm - 100, (hl_bam_t)(at.theta + hl_bam_from_deg(4)) },
-        .window_mm = 500,
-        .search_theta = true,
+    /* The tracker's settings by name (params.h): the window, no echo bearings (the scan's
+     * rays are thin), no global search (the guess is good). */
+    static const char *const settings[][2] = {
+        { "slam.window_mm", "500" }, { "slam.echo_bearings", "false" },
+        { "slam.search_every", "0" }, { "slam.lost_after", "0" },
     };
-    hl_loc_result_t result;
-    hl_status_t status = loc ? hl_loc_run(loc, walls, n, &scan, &query, &result) : HL_ERR_NOMEM;
-    hl_loc_destroy(loc);
-    if (status != HL_OK) {
-        fprintf(stderr, "localize_scan: %s\n", hl_status_str(status));
+    hl_params_t params;
+    hl_params_default(&params);
+    for (size_t i = 0; i < sizeof settings / sizeof settings[0]; i++)
+        if (hl_params_set(&params, settings[i][0], settings[i][1]) != HL_OK) {
+            fprintf(stderr, "localize_scan: %s\n", hl_params_error(&params));
+            return 1;
+        }
+    hl_slam_t *slam = hl_slam_create(&params);
+    if (!slam) {
+        fprintf(stderr, "localize_scan: %s\n", hl_status_str(HL_ERR_NOMEM));
         return 1;
     }
-    printf("pose x_mm=%d y_mm=%d heading_deg=%.2f confidence=%.2f\n", (int)result.pose.x_mm,
-           (int)result.pose.y_mm, hl_bam_to_sdeg(result.pose.theta), hl_loc_confidence(&result));
+    /* The walls as the tracker's map, the guess as its estimate and odometry. */
+    hl_pose_t guess = { at.x_mm + 150, at.y_mm - 100, (hl_bam_t)(at.theta + hl_bam_from_deg(4)) };
+    hl_slam_state_t st;
+    hl_slam_get_state(slam, &st);
+    st.started = true;
+    st.pose = st.odom = guess;
+    hl_slam_step_t step;
+    hl_status_t status = hl_slam_restore(slam, &st, walls, n);
+    if (status == HL_OK)
+        status = hl_slam_update(slam, &scan, guess, &step);
+    hl_slam_destroy(slam);
+    if (status != HL_OK || step.status != HL_SLAM_ACCEPTED) {
+        fprintf(stderr, "localize_scan: %s\n",
+                status != HL_OK ? hl_status_str(status) : "the localization was not accepted");
+        return 1;
+    }
+    printf("pose x_mm=%d y_mm=%d heading_deg=%.2f confidence=%.2f\n", (int)step.pose.x_mm,
+           (int)step.pose.y_mm, hl_bam_to_sdeg(step.pose.theta), hl_loc_confidence(&step.loc));
     return 0;
 }

@@ -17,7 +17,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "houghloc/map.h"
+#include "houghloc-internal/map.h"
 
 typedef struct hl_cellhash {
     int32_t cell_mm;

@@ -1,19 +1,20 @@
 /* echo.c - estimating each reading's echo bearing within its beam (see echo.h). */
-#include "houghloc/echo.h"
+#include "houghloc-internal/echo.h"
 
+#include <stddef.h>
 #include <stdlib.h>
+
+#include "houghloc-internal/params.h"
 
 void hl_echo_params_default(hl_echo_params_t *p)
 {
-    /* Not the 22-degree cone's 11: an echo must clear the receiver's threshold, and off
-     * the axis the beam loses it; 7 degrees is about where a Polaroid-type piston's
-     * two-way response is 12 dB down (docs/manual/houghloc-sim.md, "Echo model"). */
-    p->half_beam = hl_bam_from_deg(7.0);
-    p->step = hl_bam_from_deg(0.5);
-    p->noise_mm = 10;
-    p->noise_permille = 10;
-    p->cap_q8 = 8 * 256;
-    p->tie_q8 = 128;
+    p->step = hl_bam_from_deg(HL_ECHO_STEP_DEG);
+    p->noise_mm = HL_ECHO_NOISE_MM;
+    p->noise_permille = HL_ECHO_NOISE_PERMILLE;
+    p->cap_q8 = (uint16_t)(HL_ECHO_CAP * 256);
+    p->tie_q8 = (uint16_t)(HL_ECHO_TIE * 256);
+    /* the half beam: echo.half_beam_deg (params_table.c) */
+    hl_params_fill_defaults(p, offsetof(hl_slam_params_t, echo), sizeof *p);
 }
 
 static uint32_t candidates(const hl_echo_params_t *p)

@@ -1,5 +1,5 @@
 /* fixed.c - binary-angle trigonometry and conversions (formats: houghloc/fixed.h). */
-#include "houghloc/fixed.h"
+#include "houghloc-internal/fixed.h"
 
 #include <math.h>
 

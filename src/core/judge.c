@@ -1,6 +1,8 @@
 /* judge.c - how well a scan placed at a pose agrees with the map (see judge.h). */
 #include "judge.h"
 
+#include "houghloc-internal/fixed.h"
+
 bool hl_judge_init(hl_judge_t *j, const hl_reloc_params_t *p, uint32_t capacity)
 {
     j->p = *p;

@@ -19,7 +19,7 @@
 #include <stdint.h>
 
 #include "cellhash.h"
-#include "houghloc/reloc.h"
+#include "houghloc-internal/reloc.h"
 
 typedef struct hl_judge {
     hl_reloc_params_t p;    /* verify_mm, verify_along_mm, judge_gate, short_mm */

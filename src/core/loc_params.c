@@ -1,29 +1,24 @@
 /* loc_params.c - the localizer's parameters: defaults, validation, and the raster sizes
  * they imply (localize.h). */
+#include <stddef.h>
 #include <string.h>
 
-#include "houghloc/localize.h"
+#include "houghloc-internal/localize.h"
+#include "houghloc-internal/params.h"
 #include "loc_params.h"
 
 void hl_loc_params_default(hl_loc_params_t *p)
 {
     memset(p, 0, sizeof *p);
-    p->cell_mm = 24;
-    p->theta_step = hl_bam_from_deg(1.1);
-    p->theta_half_steps = 8;
-    p->normal_gate = hl_bam_from_deg(30.0);
-    p->blur_sigma_mm = 60;
-    p->blur_sigma_theta = hl_bam_from_deg(0.75);
-    p->peak_separation_mm = 500;
-    p->prior_sigma_mm = 300;
-    /* Loose on purpose: odometry drifts in heading, and a tight prior pins the estimate
-     * to that drift, which the map then inherits (docs/results/experiments.md). */
-    p->prior_sigma_theta = hl_bam_from_deg(15.0);
-    p->max_cells = 1u << 20;
-    p->group_mm = 0;   /* a sparse map gains nothing, and 48 mm cost 20 % on the tours */
-    p->vote_once = false;
-    p->reading_stride = 1;
-    p->max_map_vectors = 16384;
+    p->theta_step = hl_bam_from_deg(HL_LOC_THETA_STEP_DEG);
+    p->theta_half_steps = HL_LOC_THETA_HALF_STEPS;
+    p->normal_gate = hl_bam_from_deg(HL_LOC_NORMAL_GATE_DEG);
+    p->blur_sigma_theta = hl_bam_from_deg(HL_LOC_BLUR_SIGMA_THETA_DEG);
+    p->peak_separation_mm = HL_LOC_PEAK_SEPARATION_MM;
+    p->vote_once = false;   /* the global search's coarse stage asks for it (reloc.h) */
+    p->max_map_vectors = HL_LOC_MAX_MAP_VECTORS;
+    /* cell, blur, prior, raster, stride, groups: localize.* (params_table.c) */
+    hl_params_fill_defaults(p, offsetof(hl_slam_params_t, loc), sizeof *p);
 }
 
 const char *hl_loc_params_error(const hl_loc_params_t *p)

@@ -6,7 +6,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "houghloc/localize.h"
+#include "houghloc-internal/localize.h"
 
 #define HL_LOC_MAX_HALF_STEPS 256
 #define HL_LOC_MAX_SIDE_MM (1 << 21)    /* keeps the reciprocal cell division exact */

@@ -3,7 +3,8 @@
  * whose normals agree vote for the robot position map point - R(theta) * reading, into
  * an (x, y, theta) raster; blur; peak. Formats: houghloc/fixed.h. Allocation: create only.
  */
-#include "houghloc/localize.h"
+#include "houghloc-internal/localize.h"
+#include "houghloc-internal/fixed.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,13 +1,15 @@
 /* map.c - the fixed-capacity map of tangent vectors with random culling, optionally bounded
  * in density and culled by evidence. */
-#include "houghloc/map.h"
+#include "houghloc-internal/map.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "cellhash.h"
-#include "houghloc/count.h"
+#include "houghloc-internal/fixed.h"
 #include "houghloc/rng.h"
+#include "houghloc-internal/slam_params.h"
+#include "houghloc/count.h"
 #include "mapsq.h"
 
 /* A new vector confirms an old one within confirm_mm whose normal agrees within this:
@@ -38,9 +40,9 @@ struct hl_map {
 
 void hl_map_params_default(hl_map_params_t *p)
 {
-    *p = (hl_map_params_t){ .capacity = HL_MAP_DEFAULT_CAPACITY, .seed = 1, .per_place = 0,
-                            .square_mm = 50, .cull_choices = 1, .confirm_mm = 100,
-                            .cull_crowded = false, .crowd_square_mm = 0 };
+    hl_slam_params_t s;     /* a tracker's map at the defaults (params_table.c's slam.*) */
+    hl_slam_params_default(&s);
+    hl_slam_map_params(&s, p);
 }
 
 static bool square_ok(int32_t mm)

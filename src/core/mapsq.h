@@ -16,7 +16,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "houghloc/map.h"
+#include "houghloc-internal/map.h"
 
 typedef struct hl_mapsq {
     int32_t square_mm;

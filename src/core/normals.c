@@ -1,21 +1,18 @@
 /* normals.c - each reading's surface normal from the line through its neighbours (see
  * normals.h). */
-#include "houghloc/normals.h"
+#include "houghloc-internal/normals.h"
 
 #include <math.h>
 #include <stddef.h>
 
+#include "houghloc-internal/params.h"
+
 void hl_normals_params_default(hl_normals_params_t *p)
 {
-    /* At 1 degree between beams, 4 neighbours each side span 0.6 m of a wall 4 m away;
-     * 250 mm of reach keeps the line on one surface near the robot and lets a far wall's
-     * sparser points still make one from their nearest neighbours. */
-    p->half_window = 4;
-    p->reach_mm = 250;
-    p->min_points = 4;
-    p->max_residual_mm = 20;
-    p->max_tilt = hl_bam_from_deg(75.0);
-    p->keep_unfitted = false;
+    p->half_window = HL_NORMALS_HALF_WINDOW;
+    p->reach_mm = HL_NORMALS_REACH_MM;
+    /* min_points, max_residual_mm, max_tilt, keep_unfitted: normals.* (params_table.c) */
+    hl_params_fill_defaults(p, offsetof(hl_slam_params_t, normals), sizeof *p);
 }
 
 const char *hl_normals_params_error(const hl_normals_params_t *p)

@@ -1,5 +1,5 @@
 /* refine.c - point-to-line polishing of a Hough pose (see refine.h). */
-#include "houghloc/refine.h"
+#include "houghloc-internal/refine.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -36,13 +36,13 @@ struct hl_refiner {
 
 void hl_refine_params_default(hl_refine_params_t *p)
 {
-    p->normal_radius_mm = 400;
-    p->match_mm = 150;
-    p->huber_mm = 60;
-    p->max_shift_mm = 250;
-    p->max_turn = hl_bam_from_deg(3.0);
-    p->iterations = 20;
-    p->min_matches = 12;
+    p->normal_radius_mm = HL_REFINE_NORMAL_RADIUS_MM;
+    p->match_mm = HL_REFINE_MATCH_MM;
+    p->huber_mm = HL_REFINE_HUBER_MM;
+    p->max_shift_mm = HL_REFINE_MAX_SHIFT_MM;
+    p->max_turn = hl_bam_from_deg(HL_REFINE_MAX_TURN_DEG);
+    p->iterations = HL_REFINE_ITERATIONS;
+    p->min_matches = HL_REFINE_MIN_MATCHES;
 }
 
 const char *hl_refine_params_error(const hl_refine_params_t *p)

@@ -3,11 +3,13 @@
  * correlation of normal histograms, a coarse Hough vote over the whole map for each, and
  * a fine local search of the best hypotheses. Allocation: create only.
  */
-#include "houghloc/reloc.h"
+#include "houghloc-internal/reloc.h"
 
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "houghloc-internal/params.h"
 #include "judge.h"
 #include "loc_params.h"
 #include "reloc_headings.h"
@@ -46,28 +48,17 @@ struct hl_reloc {
 void hl_reloc_params_default(hl_reloc_params_t *p)
 {
     memset(p, 0, sizeof *p);
-    /* A sonar's normals agree with the map's almost as well at any heading (the lab: the
-     * best window's correlation within 5 % of the worst's), so the true heading's window
-     * ranks anywhere in the first 9 of 18: 12 windows found 5 points more than 8 on the
-     * lab's held-out soundings at 1.3 times the time (docs/results/relocalization.md). */
-    p->headings = 12;
-    p->heading_smooth = hl_bam_from_deg(4.0);
-    p->coarse_cell_mm = 100;
-    p->coarse_theta_step = hl_bam_from_deg(2.0);
-    p->coarse_half_steps = 5;
-    p->coarse_blur_mm = 100;
-    p->peaks_per_heading = 8;
-    p->coarse_max_cells = 1u << 18;
-    p->hypotheses = 8;
-    p->fine_window_mm = 300;
-    p->distinct_mm = 1000;
-    p->distinct_theta = hl_bam_from_deg(20.0);
-    p->verify_mm = 60;
-    p->verify_along_mm = 60;
-    p->judge_gate = hl_bam_from_deg(90.0);
-    p->max_ratio = 0.7;
-    p->min_explained_pct = 35.0;
-    p->scans = 3;
+    p->heading_smooth = hl_bam_from_deg(HL_RELOC_HEADING_SMOOTH_DEG);
+    p->coarse_theta_step = hl_bam_from_deg(HL_RELOC_COARSE_THETA_STEP_DEG);
+    p->coarse_half_steps = HL_RELOC_COARSE_HALF_STEPS;
+    p->coarse_blur_mm = HL_RELOC_COARSE_BLUR_MM;
+    p->peaks_per_heading = HL_RELOC_PEAKS_PER_HEADING;
+    p->fine_window_mm = HL_RELOC_FINE_WINDOW_MM;
+    p->distinct_mm = HL_RELOC_DISTINCT_MM;
+    p->distinct_theta = hl_bam_from_deg(HL_RELOC_DISTINCT_DEG);
+    p->short_mm = HL_RELOC_SHORT_MM;
+    /* the rest: reloc.* (params_table.c) */
+    hl_params_fill_defaults(p, offsetof(hl_slam_params_t, reloc), sizeof *p);
 }
 
 const char *hl_reloc_params_error(const hl_reloc_params_t *p)

@@ -7,7 +7,7 @@
 
 #include <stdint.h>
 
-#include "houghloc/reloc.h"
+#include "houghloc-internal/reloc.h"
 
 /**
  * Fills @p out with the centres of the @p max heading windows most worth a coarse search

@@ -7,10 +7,20 @@
 #include <string.h>
 
 #include "houghloc-internal/closure.h"
+#include "houghloc-internal/params.h"
 #include "slam_internal.h"
 
+hl_slam_t *hl_slam_create(const hl_params_t *p)
+{
+    if (!p)
+        return NULL;
+    hl_params_t checked = *p;   /* hl_params_check writes its error line */
+    if (hl_params_check(&checked) != HL_OK)
+        return NULL;
+    return hl_slam_create_with(hl_params_slam_const(p));
+}
 
-hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
+hl_slam_t *hl_slam_create_with(const hl_slam_params_t *p)
 {
     if (hl_slam_params_error(p))
         return NULL;
@@ -47,7 +57,8 @@ hl_slam_t *hl_slam_create(const hl_slam_params_t *p)
         return NULL;
     }
     if (p->square_walls)
-        hl_closure_square_walls(s->closure, hl_bam_to_rad(p->wall_axis));
+        hl_closure_square_walls(s->closure,
+                                hl_bam_to_rad(hl_bam_from_deg(HL_SLAM_WALL_AXIS_DEG)));
     if (s->closure)     /* cannot fail: the params were checked */
         hl_closure_weigh_matches(s->closure, p->closure_match_weight);
     if (s->closure && s->shadow)
@@ -87,9 +98,10 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start)
 static bool plausible(const hl_slam_t *s, hl_pose_t pose, hl_pose_t predicted,
                       const hl_loc_result_t *r)
 {
-    bool high_enough = s->peak_avg == 0 || r->peak >= s->p.min_peak_ratio * s->peak_avg;
-    return hl_slam_dist2(pose, predicted) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
-           hl_loc_confidence(r) >= s->p.min_confidence && r->votes >= s->p.min_votes &&
+    bool high_enough = s->peak_avg == 0 || r->peak >= HL_SLAM_MIN_PEAK_RATIO * s->peak_avg;
+    return hl_slam_dist2(pose, predicted) <= (int64_t)HL_SLAM_WILD_MM * HL_SLAM_WILD_MM &&
+           hl_loc_confidence(r) >= HL_SLAM_MIN_CONFIDENCE &&
+           r->votes >= HL_SLAM_MIN_VOTES &&
            high_enough;
 }
 
@@ -154,7 +166,7 @@ hl_status_t hl_slam_localize_in(hl_slam_t *s, const hl_map_t *map, const hl_scan
                                 hl_pose_t predicted, hl_loc_result_t *loc, hl_pose_t *pose)
 {
     hl_loc_query_t q = { .predicted = predicted, .window_mm = s->p.window_mm,
-                         .search_theta = s->p.search_theta, .use_prior = s->p.use_prior };
+                         .search_theta = true, .use_prior = s->p.use_prior };
     hl_status_t st = hl_loc_run(s->loc, hl_map_vectors(map), hl_map_count(map), scan, &q, loc);
     if (st != HL_OK)
         return st;
@@ -179,9 +191,9 @@ static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predi
 
 /* Long drives (slam.h): after a drive of long_drive_mm or more since the last scan, the
  * scan is localized again with the drive turned about where it started, by each multiple
- * of long_drive_turn up to long_drive_turns each way (odometry's heading error swings the
- * whole drive, so the position moves with the heading), and the judge picks. When a
- * turned drive wins, *found and *loc become its. @return whether one did. */
+ * of HL_SLAM_DRIVE_TURN_DEG up to HL_SLAM_DRIVE_TURNS each way (odometry's heading error
+ * swings the whole drive, so the position moves with the heading), and the judge picks.
+ * When a turned drive wins, *found and *loc become its. @return whether one did. */
 static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
                        hl_loc_result_t *loc, hl_pose_t *found)
 {
@@ -189,14 +201,15 @@ static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
     if (s->p.long_drive_mm == 0 || !s->started ||
         hl_slam_dist2(drive, origin) < (int64_t)s->p.long_drive_mm * s->p.long_drive_mm)
         return false;
-    enum { MAX = 1 + 2 * HL_SLAM_MAX_DRIVE_TURNS };
+    enum { MAX = 1 + 2 * HL_SLAM_DRIVE_TURNS };
+    const int32_t turn = hl_bam_from_deg(HL_SLAM_DRIVE_TURN_DEG);
     hl_pose_t pose[MAX] = { *found };
     hl_loc_result_t res[MAX];
     uint32_t score[MAX], n = 1;
     res[0] = *loc;
-    for (int k = -(int)s->p.long_drive_turns; k <= (int)s->p.long_drive_turns; k++) {
+    for (int k = -HL_SLAM_DRIVE_TURNS; k <= HL_SLAM_DRIVE_TURNS; k++) {
         hl_pose_t from = s->pose;
-        from.theta = (hl_bam_t)(from.theta + k * (int32_t)s->p.long_drive_turn);
+        from.theta = (hl_bam_t)(from.theta + k * turn);
         hl_pose_t pred = hl_pose_compose(from, drive);
         if (k != 0 && hl_pose_in_range(pred) &&
             localize(s, scan, pred, &res[n], &pose[n]) == HL_OK)

@@ -32,7 +32,7 @@ static bool match(hl_slam_t *s, uint32_t stamp, uint32_t query)
     hl_loc_result_t loc;
     hl_pose_t found;
     return sub && scan && hl_slam_localize_in(s, sub, scan, at, &loc, &found) == HL_OK &&
-           hl_closure_counts(&loc, found, at, s->p.min_votes, s->p.wild_mm) &&
+           hl_closure_counts(&loc, found, at, HL_SLAM_MIN_VOTES, HL_SLAM_WILD_MM) &&
            hl_closure_match(s->closure, stamp, query, found);
 }
 

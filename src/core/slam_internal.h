@@ -7,6 +7,7 @@
 #define HOUGHLOC_CORE_SLAM_INTERNAL_H
 
 #include "houghloc-internal/closure.h"
+#include "houghloc-internal/slam_params.h"
 #include "houghloc-internal/slam_search.h"
 #include "houghloc/slam.h"
 

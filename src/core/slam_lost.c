@@ -94,7 +94,7 @@ void hl_slam_stop_searching(hl_slam_t *s)
 static bool agree(const hl_slam_t *s, hl_pose_t a, hl_pose_t b)
 {
     int32_t dt = hl_bam_diff(a.theta, b.theta);
-    return hl_slam_dist2(a, b) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
+    return hl_slam_dist2(a, b) <= (int64_t)HL_SLAM_WILD_MM * HL_SLAM_WILD_MM &&
            (dt < 0 ? -dt : dt) < s->p.reloc.distinct_theta;
 }
 
@@ -123,7 +123,7 @@ static bool track(cycle_t *c)
     /* A robot carried away matches the map far worse at its predicted pose; the guard
      * rejects the first such scans, but its recent-peak average falls with each (slam.h,
      * so that the map can follow a robot into unmapped space), and it soon accepts them */
-    bool low = peak_avg > 0 && c->step.loc.peak < s->p.lost_peak_ratio * (double)peak_avg;
+    bool low = peak_avg > 0 && c->step.loc.peak < HL_SLAM_LOST_PEAK_RATIO * (double)peak_avg;
     return c->step.status == HL_SLAM_REJECTED_WILD ||
            (c->step.status == HL_SLAM_ACCEPTED && low);
 }
@@ -206,8 +206,8 @@ static bool confirms(cycle_t *c, hl_pose_t *predicted)
     hl_pose_t pose;
     if (hl_slam_localize(c->s, c->scan, *predicted, &loc, &pose) != HL_OK)
         return false;
-    return hl_slam_dist2(pose, *predicted) <= (int64_t)s->p.wild_mm * s->p.wild_mm &&
-           hl_loc_confidence(&loc) >= s->p.min_confidence && loc.votes >= s->p.min_votes;
+    return hl_slam_dist2(pose, *predicted) <= (int64_t)HL_SLAM_WILD_MM * HL_SLAM_WILD_MM &&
+           hl_loc_confidence(&loc) >= HL_SLAM_MIN_CONFIDENCE && loc.votes >= HL_SLAM_MIN_VOTES;
 }
 
 /* The global search while lost: true with a candidate. */

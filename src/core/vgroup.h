@@ -29,7 +29,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "houghloc/map.h"
+#include "houghloc-internal/map.h"
 
 /* Groups never mix normals from different eighths of a turn, so that a reading visits
  * only the sectors its normal gate can reach (3 of 8 with the defaults). */

@@ -15,7 +15,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "houghloc/localize.h"
+#include "houghloc-internal/localize.h"
 
 typedef struct hl_votesum {
     uint32_t *cells;        /* [it][iy][ix], the sum; capacity max_cells */

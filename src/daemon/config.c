@@ -12,7 +12,6 @@
 #include "config_check.h"
 #include "config_file.h"
 #include "config_keys.h"
-#include "houghloc-internal/daemon_config.h"
 #include "houghloc/sounder.h"
 #include "link.h"
 #include "log.h"
@@ -23,74 +22,11 @@
 #define REASON(...) snprintf(why, REASON_LEN, __VA_ARGS__)
 #define KEY_MSG_LEN 320   /* "key 'x.y': " + a reason */
 
-/* The paper's method (tools/experiments/modes.cpp's paper mode): every localization
- * extends the map, global search, best cell, readings on their beam axes. */
-static void paper_preset(hl_slam_params_t *p)
+void hl_config_apply_robot_profile(hl_config_t *c)
 {
-    hl_slam_params_default(p);
-    p->loc.cell_mm = 47;
-    p->loc.blur_sigma_mm = 50;
-    p->loc.max_cells = 1u << 22;
-    p->loc.group_mm = 0;         /* every pair votes, as in the paper */
-    p->guarded = false;
-    p->use_prior = false;
-    p->interpolate = false;
-    p->window_mm = 0;
-    p->echo_bearings = false;
-    p->refine = false;
-}
-
-/* The daemon's LOST state is on (docs/design/relocalization.md): the global search
- * answers wrong on at most 1 % of the kidnap trials of every row
- * (docs/results/relocalization.md), so that a robot moved while the daemon was down, or
- * carried while it ran, is found rather than driven from where it was. Every scan is
- * searched besides tracking (a sonar sounded at stops: about 30 ms a sounding; the
- * continuous profiles turn it off, profiles.c), and two doubtful scans in a row make it
- * lost.
- * The library's tracker leaves it to its caller (hl_slam_params_default); the paper's
- * method had none. */
-static void daemon_preset(hl_slam_params_t *p)
-{
-    hl_slam_params_default(p);
-    p->lost_after = 2;
-    p->search_every = 1;
-}
-
-static void apply_mode(hl_config_t *c)
-{
-    if (strcmp(c->mode, "paper") == 0)
-        paper_preset(&c->slam);
-    else
-        daemon_preset(&c->slam);
-}
-
-static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, char *why);
-
-/* The presets, in order: slam.mode sets the method's parameters afresh, slam.profile's
- * keys go over them (so that its fragment, --print-profile, read as a file means the
- * same), robot.profile gives the calibration. The other keys come after all three.
- * @return false with "config: ..." in why (a profile key the table cannot set). */
-bool hl_config_apply_presets(hl_config_t *c, char *why)
-{
-    apply_mode(c);
-    const hl_sensor_profile_t *sp = hl_sensor_profile_find(c->profile);
-    for (size_t i = 0; sp && i < sp->n_keys; i++) {
-        const hl_config_key_t *k = hl_config_key_find(sp->keys[i].key);
-        char reason[200];
-        if (!k || !set_value(c, k, sp->keys[i].value, reason))
-            return snprintf(why, HL_CONFIG_WHY_LEN, "config: slam.profile %s: cannot set %s",
-                            sp->name, sp->keys[i].key), false;
-    }
     hl_robot_profile_t rp;
     if (hl_robot_profile_find(c->robot_profile, &rp) == HL_OK)
         c->sounder.calib = rp.calib;
-    return true;
-}
-
-bool hl_config_key_is_preset(const hl_config_key_t *k)
-{
-    return k->type == HL_KEY_MODE || k->type == HL_KEY_SENSOR_PROFILE ||
-           k->type == HL_KEY_ROBOT_PROFILE;
 }
 
 void hl_config_defaults(hl_config_t *c)
@@ -98,56 +34,35 @@ void hl_config_defaults(hl_config_t *c)
     memset(c, 0, sizeof *c);
     c->queue = 1000;
     c->save_every = 50;
-    c->map_period_ms = 1000;
+    c->map_period_ms = HL_CONFIG_MAP_PERIOD_MS;
     c->map_input_ratio = 4;
     c->status_period_ms = 1000;
-    c->idle_after_ms = 5000;
+    c->idle_after_ms = HL_CONFIG_IDLE_AFTER_MS;
     c->compute_window = 100;
     c->log_level = HL_LOG_INFO;
     c->max_ahead_s = 300;
     snprintf(c->robot_profile, sizeof c->robot_profile, "bonnie");
     c->robot_sound_on_connect = true;
-    c->robot_lost_soundings = 3;
-    c->robot_reconnect_max_ms = 5000;
+    c->robot_lost_soundings = HL_CONFIG_LOST_SOUNDINGS;
+    c->robot_reconnect_max_ms = HL_CONFIG_RECONNECT_MAX_MS;
     c->robot_radius_mm = 250;       /* a Pioneer 3's, and houghloc-sim's */
     hl_sounder_params_default(&c->sounder);
     hl_drive_params_default(&c->drive);
     hl_rlink_params_default(&c->rlink);
     hl_fence_rect(&c->fence, -10000, -10000, 10000, 10000);
     snprintf(c->fence_text, sizeof c->fence_text, "-10,-10 10,-10 10,10 -10,10");
-    snprintf(c->mode, sizeof c->mode, "improved");
-    snprintf(c->profile, sizeof c->profile, HL_SENSOR_PROFILE_DEFAULT);
-    char why[HL_CONFIG_WHY_LEN];
-    hl_config_apply_presets(c, why);  /* the defaults' presets set nothing a table could refuse */
+    hl_params_default(&c->params);
+    hl_config_apply_robot_profile(c);
+}
+
+uint32_t hl_config_map_capacity(const hl_config_t *c)
+{
+    char v[32];
+    hl_params_get(&c->params, "slam.map_capacity", v, sizeof v);
+    return (uint32_t)strtoul(v, NULL, 10);
 }
 
 /* ---- values ------------------------------------------------------------------------ */
-
-static bool parse_double(const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    while (*end == ' ' || *end == '\t')
-        end++;
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v))
-        return false;
-    *out = v;
-    return true;
-}
-
-static bool parse_bool(const char *s, bool *out)
-{
-    static const char *const yes[] = { "true", "yes", "on", "1" };
-    static const char *const no[] = { "false", "no", "off", "0" };
-    for (int i = 0; i < 4; i++) {
-        if (strcmp(s, yes[i]) == 0)
-            return *out = true, true;
-        if (strcmp(s, no[i]) == 0)
-            return *out = false, true;
-    }
-    return false;
-}
 
 /* "X,Y X,Y ..." in metres -> vertices in mm. @return the count, or -1. */
 static int parse_points(const char *s, hl_mm_t *x, hl_mm_t *y, int max)
@@ -261,7 +176,7 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
         memcpy(field, v, strlen(v) + 1);
         return true;
     case HL_KEY_BOOL:
-        if (!parse_bool(v, &b))
+        if (!hl_params_parse_bool(v, &b))
             return REASON("'%s' is not true or false", v), false;
         *(bool *)field = b;
         return true;
@@ -272,39 +187,23 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
         *(int32_t *)field = level;
         return true;
     }
-    case HL_KEY_MODE:
-        if (strcmp(v, "improved") != 0 && strcmp(v, "paper") != 0)
-            return REASON("'%s' is not improved or paper", v), false;
-        snprintf(c->mode, sizeof c->mode, "%s", v);
-        return true;   /* applied as a preset by hl_config_load */
-    case HL_KEY_SENSOR_PROFILE:
-        if (!hl_sensor_profile_find(v))
-            return REASON("'%.60s' is not a sensor profile (" HL_SENSOR_PROFILE_NAMES ")", v),
-                   false;
-        snprintf(c->profile, sizeof c->profile, "%s", v);
-        return true;   /* applied as a preset by hl_config_load */
     case HL_KEY_FENCE_RECT:
     case HL_KEY_FENCE_POLYGON:
         return set_fence(c, k, v, why);
     default:
         break;
     }
-    if (!parse_double(v, &d))
+    if (!hl_params_parse_number(v, &d))
         return REASON("'%s' is not a number", v), false;
     if (d < k->min || d > k->max)
         return REASON("%s is outside %.16g..%.16g", v, k->min, k->max), false;
-    bool integral = k->type == HL_KEY_I32 || k->type == HL_KEY_U16 || k->type == HL_KEY_U32 ||
-                    k->type == HL_KEY_U64;
+    bool integral = k->type == HL_KEY_I32 || k->type == HL_KEY_U16;
     if (integral && d != floor(d))
         return REASON("%s is not a whole number", v), false;
     switch (k->type) {
     case HL_KEY_I32: *(int32_t *)field = (int32_t)d; break;
     case HL_KEY_U16: *(uint16_t *)field = (uint16_t)d; break;
-    case HL_KEY_U32: *(uint32_t *)field = (uint32_t)d; break;
-    case HL_KEY_U64: *(uint64_t *)field = (uint64_t)d; break;
-    case HL_KEY_DOUBLE: *(double *)field = d; break;
     case HL_KEY_METRES: *(hl_mm_t *)field = (hl_mm_t)lround(d * 1000.0); break;
-    case HL_KEY_Q8: *(uint16_t *)field = (uint16_t)lround(d * 256.0); break;
     case HL_KEY_DEG:
         /* 180 degrees is 32768 BAM, which a gate may use to mean "any direction" */
         *(hl_bam_t *)field = fabs(d) == 180.0 && k->min >= 0 ? 32768 : hl_bam_from_deg(d);
@@ -314,22 +213,98 @@ static bool set_value(hl_config_t *c, const hl_config_key_t *k, const char *v, c
     return true;
 }
 
-static const hl_config_key_t *find_key(const char *section, const char *name)
+/* ---- one key, the daemon's or the core's ------------------------------------------ */
+
+/* Keys renamed when the tracker's table took them over from [daemon]. */
+static const char *const renamed[][2] = {
+    { "daemon.lost_after", "slam.lost_after" },
+    { "daemon.search_every", "slam.search_every" },
+    { "daemon.lost_peak_ratio", "slam.lost_peak_ratio" },
+};
+
+/* A warning of this load, "WHERE: key 'KEY' WHAT" (main.c logs them). */
+static void note(hl_config_t *c, const char *where, const char *key, const char *what,
+                 const char *value)
 {
-    size_t slen = strlen(section);
-    for (size_t i = 0; i < hl_config_nkeys; i++) {
-        const char *full = hl_config_keys[i].name;
-        if (strncmp(full, section, slen) == 0 && full[slen] == '.' &&
-            strcmp(full + slen + 1, name) == 0)
-            return &hl_config_keys[i];
+    if (c->n_notes < HL_CONFIG_MAX_NOTES)
+        snprintf(c->notes[c->n_notes++], HL_CONFIG_NOTE_LEN, "%.150s: key '%.60s' %s%.60s%s",
+                 where, key, what, value, *value ? "): ignored" : "");
+}
+
+/* A retired daemon key @p k given @p v: its fixed value (a warning), or refused. */
+static bool set_retired(hl_config_t *c, const hl_config_key_t *k, const char *v,
+                        const char *where, char *why)
+{
+    hl_config_t *t = malloc(2 * sizeof *t);     /* [0] the defaults, [1] with v */
+    if (!t)
+        return REASON("out of memory"), false;
+    hl_config_defaults(&t[0]);
+    t[1] = t[0];
+    char fixed[HL_CONFIG_VALUE_LEN], given[HL_CONFIG_VALUE_LEN];
+    hl_config_format_value(&t[0], k->name, fixed, sizeof fixed);
+    bool ok = set_value(&t[1], k, v, why);
+    if (ok) {
+        hl_config_format_value(&t[1], k->name, given, sizeof given);
+        if (strcmp(given, fixed) == 0)
+            note(c, where, k->name, "is no longer a setting (fixed at ", fixed);
+        else
+            ok = false, REASON("no longer a setting, fixed at %.60s", fixed);
     }
-    return NULL;
+    free(t);
+    return ok;
+}
+
+/* Sets the core's key @p name (its table decides: params.h). */
+static bool set_core(hl_config_t *c, const hl_param_info_t *info, const char *v,
+                     const char *where, char *why)
+{
+    if (info->level == HL_PARAM_STUDY)
+        return REASON("a setting of the laboratory's studies (hl_params_set), not of "
+                      "houghlocd"), false;
+    if (hl_params_set(&c->params, info->key, v) != HL_OK) {
+        const char *e = hl_params_error(&c->params);
+        const char *tail = strstr(e, "': ");     /* the core says "key 'x.y': reason" */
+        return REASON("%s", tail ? tail + 3 : e), false;
+    }
+    if (info->level == HL_PARAM_FIXED)
+        note(c, where, info->key, "is no longer a setting (fixed at ", info->value);
+    return true;
+}
+
+/* Sets @p name ("section.key") from @p v in the pass that takes it (@p presets_only: the
+ * presets, slam.profile and robot.profile; else every other key). @return false with the
+ * reason, or with *unknown set for a key neither the daemon nor the core has. */
+static bool set_key(hl_config_t *c, const char *name, const char *v, bool presets_only,
+                    const char *where, bool *unknown, char *why)
+{
+    *unknown = false;
+    for (size_t i = 0; i < sizeof renamed / sizeof renamed[0]; i++)
+        if (strcmp(name, renamed[i][0]) == 0) {
+            char what[80];
+            snprintf(what, sizeof what, "is now %s", renamed[i][1]);
+            if (!presets_only)
+                note(c, where, name, what, "");
+            name = renamed[i][1];
+        }
+    const hl_config_key_t *k = hl_config_key_find(name);
+    const hl_param_info_t *info = NULL;
+    for (size_t i = 0; !k && (info = hl_params_info(i)) && strcmp(info->key, name) != 0; i++)
+        ;
+    if (!k && !info)
+        return *unknown = true, false;
+    bool preset = k ? k->type == HL_KEY_ROBOT_PROFILE : info->type == HL_PARAM_PRESET;
+    if (presets_only != preset)
+        return true;
+    if (info)
+        return set_core(c, info, v, where, why);
+    return k->help ? set_value(c, k, v, why) : set_retired(c, k, v, where, why);
 }
 
 /* ---- the file and the overrides ------------------------------------------------------ */
 
 typedef struct parse_ctx {
     hl_config_t *c;
+    const char *path;
     bool presets_only;  /* first pass: only the presets (slam.mode, slam.profile,
                            robot.profile); second pass: all other keys */
     bool failed;
@@ -372,17 +347,16 @@ static int on_key(void *user, const char *section, const char *name, const char 
     parse_ctx_t *p = user;
     if (p->failed)
         return 0;
-    const hl_config_key_t *k = find_key(section, name);
-    char reason[REASON_LEN];
-    if (!k) {
+    char full[130], where[340], reason[REASON_LEN];
+    snprintf(full, sizeof full, "%.63s.%.63s", section, name);
+    snprintf(where, sizeof where, "%.300s:%d", p->path, p->line);
+    bool unknown;
+    if (set_key(p->c, full, value, p->presets_only, where, &unknown, reason))
+        return 1;
+    if (unknown)
         snprintf(p->why, KEY_MSG_LEN, "unknown key '%s' in section [%s]", name, section);
-    } else if (p->presets_only != hl_config_key_is_preset(k)) {
-        return 1;
-    } else if (set_value(p->c, k, value, reason)) {
-        return 1;
-    } else {
-        snprintf(p->why, KEY_MSG_LEN, "key '%s': %s", k->name, reason);
-    }
+    else
+        snprintf(p->why, KEY_MSG_LEN, "key '%.100s': %s", full, reason);
     p->failed = true;
     p->fail_line = p->line;
     return 0;
@@ -393,8 +367,8 @@ static bool parse_text(hl_config_t *c, const char *path, const char *text, bool 
                        char *why)
 {
     char reason[KEY_MSG_LEN];
-    parse_ctx_t p = { .c = c, .presets_only = presets_only, .why = reason, .next = text,
-                      .at_line_start = true };
+    parse_ctx_t p = { .c = c, .path = path, .presets_only = presets_only, .why = reason,
+                      .next = text, .at_line_start = true };
     int rc = ini_parse_stream(read_line, &p, on_key, &p);
     if (rc == -2)
         return WHY("%s: out of memory while reading", path), false;
@@ -417,23 +391,19 @@ static bool apply_override(hl_config_t *c, const char *o, bool presets_only, cha
     const char *dot = strchr(o, '.');
     if (!eq || !dot || dot > eq)
         return WHY("--set %s: expected SECTION.KEY=VALUE", o), false;
-    char section[64], name[64];
-    size_t slen = (size_t)(dot - o), nlen = (size_t)(eq - dot - 1);
-    if (slen >= sizeof section || nlen >= sizeof name)
-        return WHY("--set %s: unknown key", o), false;
-    memcpy(section, o, slen);
-    section[slen] = '\0';
-    memcpy(name, dot + 1, nlen);
-    name[nlen] = '\0';
-    const hl_config_key_t *k = find_key(section, name);
-    if (!k)
-        return WHY("--set %s: unknown key '%s.%s'", o, section, name), false;
-    if (presets_only != hl_config_key_is_preset(k))
+    char name[130], where[220], reason[REASON_LEN];
+    size_t len = (size_t)(eq - o);
+    if (len >= sizeof name)
+        return WHY("--set %.200s: unknown key", o), false;
+    memcpy(name, o, len);
+    name[len] = '\0';
+    snprintf(where, sizeof where, "--set %.200s", o);
+    bool unknown;
+    if (set_key(c, name, eq + 1, presets_only, where, &unknown, reason))
         return true;
-    char reason[REASON_LEN];
-    if (!set_value(c, k, eq + 1, reason))
-        return WHY("--set %.200s: %s", o, reason), false;
-    return true;
+    if (unknown)
+        return WHY("--set %.200s: unknown key '%s'", o, name), false;
+    return WHY("--set %.200s: %s", o, reason), false;
 }
 
 /* The file's text (NULL for none), then the overrides, in the two passes. */
@@ -448,8 +418,8 @@ static bool load_text(hl_config_t *c, const char *path, const char *text,
         for (int i = 0; i < n_overrides; i++)
             if (!apply_override(c, overrides[i], presets_only, why))
                 return false;
-        if (presets_only && !hl_config_apply_presets(c, why))
-            return false;
+        if (presets_only)
+            hl_config_apply_robot_profile(c);
     }
     return hl_config_check(c, why);
 }
@@ -469,22 +439,5 @@ bool hl_config_load(hl_config_t *c, const char *path, bool optional,
     }
     bool ok = load_text(c, path, text, overrides, n_overrides, why);
     free(text);
-    return ok;
-}
-
-_Static_assert(HL_DAEMON_CONFIG_WHY_LEN == HL_CONFIG_WHY_LEN, "the research tools' why buffer");
-
-bool hl_daemon_config_slam(const char *path, const char *const *overrides, int n_overrides,
-                           hl_slam_params_t *out, char why[HL_DAEMON_CONFIG_WHY_LEN])
-{
-    hl_config_t *c = malloc(sizeof *c);
-    if (!c) {
-        snprintf(why, HL_CONFIG_WHY_LEN, "config: out of memory");
-        return false;
-    }
-    bool ok = hl_config_load(c, path, false, overrides, n_overrides, why);
-    if (ok)
-        *out = c->slam;
-    free(c);
     return ok;
 }

@@ -34,9 +34,9 @@ hl_cycle_t *hl_cycle_create(const hl_cycle_params_t *p, const hl_cycle_io_t *io)
         return NULL;
     c->p = *p;
     c->io = *io;
-    c->slam = hl_slam_create(&p->slam);
-    c->map_buf_len = hl_bus_map_bytes(p->slam.map_capacity);
-    c->map_buf = malloc(c->map_buf_len);
+    c->slam = hl_slam_create(&p->params);
+    c->map_buf_len = c->slam ? hl_bus_map_bytes(hl_map_capacity(hl_slam_map(c->slam))) : 0;
+    c->map_buf = c->slam ? malloc(c->map_buf_len) : NULL;
     c->compute_us = calloc((size_t)p->compute_window, sizeof *c->compute_us);
     c->compute_sorted = calloc((size_t)p->compute_window, sizeof *c->compute_sorted);
     if (!c->slam || !c->map_buf || !c->compute_us || !c->compute_sorted) {

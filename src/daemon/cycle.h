@@ -66,7 +66,7 @@ typedef struct hl_cycle_io {
 #define HL_CYCLE_MAP_RATIO_MAX 1000
 
 typedef struct hl_cycle_params {
-    hl_slam_params_t slam;
+    hl_params_t params;         /* the tracker's (houghloc/params.h) */
     hl_pose_t start;            /* where the first scan is placed */
     hl_fence_t fence;           /* destinations must lie inside */
     bool authenticate;          /* requests must carry a MAC made with key, and every

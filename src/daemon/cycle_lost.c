@@ -2,7 +2,7 @@
  * cycle_lost.c - the daemon's side of the LOST state: the tracker (hl_slam_update,
  * src/core/slam_lost.c) decides when the robot is lost and when it is found again; the
  * daemon logs each change, shows it in STATUS, and lets an operator (RELOCALIZE) or the
- * robot (robot.lost_soundings) start or end it.
+ * robot (its soundings while lost, HL_CONFIG_LOST_SOUNDINGS) start or end it.
  */
 #include <stdio.h>
 
@@ -76,7 +76,7 @@ void hl_cycle_report_recovery(hl_cycle_t *c, const hl_bus_scan_t *in,
         report_entered(c, false, what, now_us);
         break;
     case HL_SLAM_LOST_DOUBTFUL:
-        snprintf(what, sizeof what, "%d doubtful scans in a row (daemon.lost_after)",
+        snprintf(what, sizeof what, "%d doubtful scans in a row (slam.lost_after)",
                  step->doubtful_run);
         report_entered(c, false, what, now_us);
         break;

@@ -135,10 +135,10 @@ static int parse_args(int argc, char **argv, options_t *o)
             o->print_all = optarg != NULL;
             break;
         case OPT_PROFILE: {
-            const hl_sensor_profile_t *p = hl_sensor_profile_find(optarg);
+            const hl_param_preset_t *p = hl_sensor_profile_find(optarg);
             if (!p) {
-                fprintf(stderr, "houghlocd: unknown sensor profile '%s' (" HL_SENSOR_PROFILE_NAMES
-                        ")\n", optarg);
+                fprintf(stderr, "houghlocd: unknown sensor profile '%s' (%s)\n", optarg,
+                        hl_sensor_profile_names());
                 return 2;
             }
             hl_sensor_profile_print(p, stdout);
@@ -280,7 +280,7 @@ static int check_map(const hl_config_t *cfg)
 static bool cycle_params(const hl_config_t *cfg, hl_cycle_params_t *p)
 {
     *p = (hl_cycle_params_t){
-        .slam = cfg->slam, .start = cfg->start, .fence = cfg->fence,
+        .params = cfg->params, .start = cfg->start, .fence = cfg->fence,
         .save_every = cfg->save_every, .map_period_ms = cfg->map_period_ms,
         .map_input_ratio = cfg->map_input_ratio,
         .idle_after_ms = cfg->idle_after_ms, .compute_window = cfg->compute_window,
@@ -380,8 +380,8 @@ static int run_locked(const hl_config_t *cfg, const options_t *o, const char *pa
     int rc = 1;
     if (!cycle || (live_robot && !robot))
         fprintf(stderr, "houghlocd: out of memory for a map of %u vectors\n",
-                cfg->slam.map_capacity);
-    else if (!load_map(cycle, path, o->fresh_map, cfg->slam.map_capacity))
+                hl_config_map_capacity(cfg));
+    else if (!load_map(cycle, path, o->fresh_map, hl_config_map_capacity(cfg)))
         ;   /* said why */
     else if (cp.authenticate && !hl_request_state_open(cycle, state_path, swhy))
         fprintf(stderr, "houghlocd: %s\n", swhy);
@@ -392,9 +392,11 @@ static int run_locked(const hl_config_t *cfg, const options_t *o, const char *pa
                    "calibration mm = raw x %d / 65536 %+d", cfg->robot_link, rp.profile.name,
                    rp.profile.transducers, rp.sounder.steps, rp.sounder.calib.gain_q16,
                    rp.sounder.calib.offset_mm);
-        hl_log(HL_LOG_INFO, "houghlocd %s ready: in %s, out %s, channel prefix '%s', %s mode, "
-               "sensor profile %s, map %s, requests %s", HL_VERSION, in_url, out_url,
-               cfg->prefix, cfg->mode, cfg->profile, path,
+        char profile[64];
+        hl_params_get(&cfg->params, "slam.profile", profile, sizeof profile);
+        hl_log(HL_LOG_INFO, "houghlocd %s ready: in %s, out %s, channel prefix '%s', "
+               "profile %s, map %s, requests %s", HL_VERSION, in_url, out_url,
+               cfg->prefix, profile, path,
                cp.authenticate ? "authenticated" : "NOT authenticated");
         sd_notify(0, "READY=1");
         hl_cycle_set_state(cycle, HL_BUS_STATE_IDLE, 0);
@@ -451,6 +453,8 @@ int main(int argc, char **argv)
         return 1;
     }
     hl_log_set_level(cfg->log_level);
+    for (int i = 0; i < cfg->n_notes; i++)
+        hl_log(HL_LOG_WARNING, "config: %s", cfg->notes[i]);
     if (o.print_config) {
         if (o.print_all)
             hl_config_print(cfg, stdout);

@@ -319,7 +319,7 @@ static bool lost_sound(hl_robot_t *r, int64_t now_ms)
          * scans; go on from there. */
         char why[HL_BUS_TEXT_MAX];
         snprintf(why, sizeof why, "still lost after %d soundings standing still "
-                 "(robot.lost_soundings)", r->lost_soundings);
+                 "(the global search's scans)", r->lost_soundings);
         hl_cycle_give_up_lost(r->cycle, why, now_ms * 1000);
         return false;
     }

@@ -9,6 +9,9 @@ void hl_calib_default(hl_calib_t *c)
 {
     c->gain_q16 = 65536;
     c->offset_mm = 0;
+    /* Fixed for houghlocd (docs/design/expert-keys.md): raw values below 200 are the
+     * board's own cable echoes, 16384 and up its no-echo value, and nothing a sonar
+     * reports past 10 m is a wall (the paper's filter, section 4). */
     c->min_raw = 200;
     c->sentinel_raw = 16384;
     c->max_range_mm = 10000;

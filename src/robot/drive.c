@@ -21,10 +21,12 @@ void hl_drive_params_default(hl_drive_params_t *p)
 {
     p->arrive_mm = 150;
     p->max_leg_mm = 1500;
-    p->max_legs = 20;
+    p->max_legs = 20;       /* a way round furniture takes several legs; 20 x 1.5 m crosses
+                               any building the map holds (fixed for houghlocd) */
     p->speed_mm_s = 300;
     p->turn_deg_s = 45;
-    p->slack_ms = 5000;
+    p->slack_ms = 5000;     /* a motion's timeout past its expected duration: a base that
+                               stalls for 5 s has stopped (fixed for houghlocd) */
     /* The robot's radius (250 mm for houghloc-sim and a Pioneer 3) and 100 mm more: what
      * the robot crawls (at most 40 mm at the slow speed) between two readings of its front
      * transducers, what it takes to brake from there (about 10 mm) and the calibration's

@@ -6,6 +6,10 @@
 
 void hl_rlink_params_default(hl_rlink_params_t *p)
 {
+    /* ARCOS answers a SYNC within a few of its 100 ms packet periods: six tries of 0.5 s
+     * before the connection is dropped and retried; a keep-alive every 0.5 s stays well
+     * inside the server's 2 s watchdog, and 2 s without a packet is a lost link (the
+     * sync and pulse values are fixed for houghlocd: docs/design/expert-keys.md). */
     p->sync_timeout_ms = 500;
     p->sync_tries = 6;
     p->silence_ms = 2000;

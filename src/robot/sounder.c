@@ -13,6 +13,10 @@
 
 void hl_sounder_params_default(hl_sounder_params_t *p)
 {
+    /* Fixed for houghlocd (not keys: docs/design/expert-keys.md): the paper's sounding, 8
+     * positions 2.8125 degrees apart filling the 22.5-degree gaps of a 16-transducer ring;
+     * a base still for 0.3 s has stopped rocking; 8 s holds a turn, the settling and a
+     * reading of every transducer with time to spare. */
     p->steps = 8;
     p->step = 512;                  /* 2.8125 deg: 22.5 / 8 */
     p->settle_ms = 300;

@@ -2,7 +2,7 @@
 #ifndef TESTS_CORE_RELOC_RING_H
 #define TESTS_CORE_RELOC_RING_H
 
-#include "houghloc/reloc.h"
+#include "houghloc-internal/reloc.h"
 
 /* The default search but for its heading stage: an ideal ring's normals are its beams'
  * directions, which tell nothing of heading, so every heading window is searched. */

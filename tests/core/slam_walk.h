@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "houghloc/slam.h"
+#include "houghloc-internal/slam_params.h"
 #include "synthroom.h"
 
 #define STEPS 40
@@ -39,11 +39,14 @@ static inline walk_t *make_walk(uint64_t seed)
 }
 
 /* The defaults, for the synthetic room's sensor: a thin ray, not a sonar cone, so its
- * readings already lie where they echoed and echo-bearing estimation stays off. */
+ * readings already lie where they echoed and echo-bearing estimation stays off; and the
+ * tracker alone, without the LOST state (whose tests turn it on). */
 static inline void ray_sensor_defaults(hl_slam_params_t *p)
 {
     hl_slam_params_default(p);
     p->echo_bearings = false;
+    p->lost_after = 0;
+    p->search_every = 0;
 }
 
 static inline double dist(hl_pose_t a, hl_pose_t b)

@@ -516,7 +516,7 @@ static void test_the_slam_closes_loops_and_starts_afresh_when_placed(void **stat
     assert_non_null(hl_slam_params_error(&p));
     p.closure_stops = 256;
     p.close_loops = true;
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     assert_non_null(s);
     hl_slam_reset(s, w->truth[0]);
     uint32_t loops = 0;
@@ -544,7 +544,7 @@ static void test_the_slam_closes_loops_and_starts_afresh_when_placed(void **stat
     /* Off (the default): never a loop. */
     ray_sensor_defaults(&p);
     assert_false(p.close_loops);
-    s = hl_slam_create(&p);
+    s = hl_slam_create_with(&p);
     hl_slam_reset(s, w->truth[0]);
     for (int i = 0; i < STEPS; i++) {
         sr_sound(&w->room, w->truth[i], 128, 8000, 15, scan);
@@ -569,7 +569,7 @@ static void test_the_slam_spreads_its_matches_and_redraws_over_scans(void **stat
     p.close_loops = true;
     p.closure_matches_per_scan = 2;
     p.closure_redraw_readings = 2000;   /* 15 stops of 128 readings a scan */
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     assert_non_null(s);
     hl_slam_reset(s, w->truth[0]);
     uint32_t loops = 0, most = 0;

@@ -10,7 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "houghloc/echo.h"
+#include "houghloc-internal/echo.h"
 #include "houghloc/rng.h"
 
 #define RING 128

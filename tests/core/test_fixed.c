@@ -9,7 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "houghloc/fixed.h"
+#include "houghloc-internal/fixed.h"
 
 static const double PI = 3.14159265358979323846;
 

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "houghloc/localize.h"
+#include "houghloc-internal/localize.h"
 #include "synthroom.h"
 
 typedef struct fixture {

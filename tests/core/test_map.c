@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "houghloc/map.h"
+#include "houghloc-internal/map.h"
 
 static hl_vector_t vec(int32_t x, int32_t y)
 {

@@ -11,8 +11,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "houghloc/map.h"
-#include "houghloc/normals.h"
+#include "houghloc-internal/map.h"
+#include "houghloc-internal/normals.h"
 
 #define PI 3.14159265358979323846
 

@@ -20,7 +20,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "houghloc/localize.h"
+#include "houghloc-internal/localize.h"
 #include "ref_localize.h"
 #include "synthroom.h"
 

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "houghloc/refine.h"
+#include "houghloc-internal/refine.h"
 #include "synthroom.h"
 
 typedef struct fixture {

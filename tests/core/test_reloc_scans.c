@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "houghloc/reloc.h"
+#include "houghloc-internal/reloc.h"
 #include "synthroom.h"
 #include "reloc_ring.h"
 

@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "houghloc-internal/slam_search.h"
-#include "houghloc/slam.h"
+#include "houghloc-internal/slam_params.h"
 #include "synthroom.h"
 
 #include "slam_walk.h"
@@ -23,7 +23,7 @@
 /* Runs the walk; returns the largest position error and counts statuses. */
 static double run_walk(const hl_slam_params_t *p, walk_t *w, int *accepted, int *rejected)
 {
-    hl_slam_t *s = hl_slam_create(p);
+    hl_slam_t *s = hl_slam_create_with(p);
     assert_non_null(s);
     hl_slam_reset(s, w->truth[0]);
     hl_scan_t *scan = malloc(sizeof *scan);
@@ -78,7 +78,7 @@ static void test_heading_gain_blends_the_correction(void **state)
         hl_slam_params_t p;
         ray_sensor_defaults(&p);
         p.heading_gain = gains[g];
-        hl_slam_t *s = hl_slam_create(&p);
+        hl_slam_t *s = hl_slam_create_with(&p);
         assert_non_null(s);
         hl_slam_reset(s, w->truth[0]);
         sr_sound(&w->room, w->truth[0], 128, 8000, 15, scan);
@@ -148,7 +148,7 @@ static void test_wild_jump_is_rejected(void **state)
     walk_t *w = make_walk(7);
     hl_slam_params_t p;
     ray_sensor_defaults(&p);
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     hl_slam_reset(s, w->truth[0]);
     hl_scan_t *scan = malloc(sizeof *scan);
     hl_slam_step_t out;
@@ -194,7 +194,7 @@ static void test_localize_changes_nothing(void **state)
         hl_slam_params_t p;
         ray_sensor_defaults(&p);
         p.refine = refine;
-        hl_slam_t *s = hl_slam_create(&p);
+        hl_slam_t *s = hl_slam_create_with(&p);
         hl_slam_reset(s, w->truth[0]);
         hl_scan_t *scan = malloc(sizeof *scan);
         hl_slam_step_t out;
@@ -234,7 +234,7 @@ static void test_localize_changes_nothing(void **state)
 static hl_slam_step_t drive_back(const hl_slam_params_t *p, hl_pose_t *truth)
 {
     walk_t *w = make_walk(5);   /* afresh: the room's generator also draws the noise */
-    hl_slam_t *s = hl_slam_create(p);
+    hl_slam_t *s = hl_slam_create_with(p);
     assert_non_null(s);
     hl_slam_reset(s, w->truth[0]);
     hl_scan_t *scan = malloc(sizeof *scan);
@@ -291,7 +291,7 @@ static void test_params_and_inputs_validated(void **state)
     assert_null(hl_slam_params_error(&p));
     p.map_capacity = 0;
     assert_non_null(hl_slam_params_error(&p));
-    assert_null(hl_slam_create(&p));
+    assert_null(hl_slam_create_with(&p));
     p.map_capacity = HL_MAP_MAX_CAPACITY + 1;
     assert_string_equal(hl_slam_params_error(&p), "map_capacity must be in 1..1048576");
     /* map_capacity alone bounds the map: the localizer's own bound is not read */
@@ -304,7 +304,7 @@ static void test_params_and_inputs_validated(void **state)
     assert_string_equal(hl_slam_params_error(&p),
                         "the search window needs more raster cells than max_cells");
     hl_slam_params_default(&p);
-    p.min_confidence = 2;
+    p.heading_gain = 2;
     assert_non_null(hl_slam_params_error(&p));
     hl_slam_params_default(&p);
     p.echo.half_beam = 0;
@@ -314,7 +314,7 @@ static void test_params_and_inputs_validated(void **state)
     hl_slam_params_default(&p);
     p.refine_params.match_mm = 0;
     assert_non_null(hl_slam_params_error(&p));
-    assert_null(hl_slam_create(&p));
+    assert_null(hl_slam_create_with(&p));
     hl_slam_params_default(&p);
     p.crowd_square_mm = 300;        /* the crowding cull's, which is off */
     assert_string_equal(hl_slam_params_error(&p),
@@ -324,26 +324,16 @@ static void test_params_and_inputs_validated(void **state)
     p.cull_crowded = true;
     assert_null(hl_slam_params_error(&p));
     p.crowd_square_mm = 5;
-    assert_string_equal(hl_slam_params_error(&p), "crowd_square_mm must be 0 or in 10..1000");
+    assert_string_equal(hl_slam_params_error(&p),
+                        "the crowding cull's square must be 0 or in 10..1000 mm");
     hl_slam_params_default(&p);
-    p.long_drive_turns = 0;         /* long drives are off: not checked */
-    assert_null(hl_slam_params_error(&p));
     p.long_drive_mm = 2000;
-    assert_non_null(hl_slam_params_error(&p));
-    p.long_drive_turns = HL_SLAM_MAX_DRIVE_TURNS + 1;
-    assert_non_null(hl_slam_params_error(&p));
-    p.long_drive_turns = HL_SLAM_MAX_DRIVE_TURNS;
     assert_null(hl_slam_params_error(&p));
-    p.long_drive_turn = hl_bam_from_deg(30.0);  /* 4 x 30 degrees: more than a quarter turn */
-    assert_non_null(hl_slam_params_error(&p));
-    p.long_drive_turn = 0;
-    assert_non_null(hl_slam_params_error(&p));
-    p.long_drive_turn = hl_bam_from_deg(6.0);
     p.long_drive_mm = -1;
     assert_string_equal(hl_slam_params_error(&p), "long_drive_mm must be in 0..1000000");
 
     hl_slam_params_default(&p);
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     hl_scan_t *scan = calloc(1, sizeof *scan);
     hl_slam_step_t out;
     hl_pose_t far = { HL_COORD_MAX_MM + 5, 0, 0 };

@@ -99,7 +99,7 @@ static void test_map_follows_robot_into_unmapped_corridor(void **state)
     assert_int_equal(first, 20);
     hl_slam_params_t p;
     ray_sensor_defaults(&p);
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     hl_slam_reset(s, truth[0]);
     hl_scan_t *scan = malloc(sizeof *scan);
     int in_row = 0, longest = 0, rejected = 0, accepted_late = 0, unvotable = 0;
@@ -148,7 +148,7 @@ static void test_unvotable_scan_extends_map_at_prediction(void **state)
         hl_slam_params_t p;
         ray_sensor_defaults(&p);
         p.guarded = guarded;
-        hl_slam_t *s = hl_slam_create(&p);
+        hl_slam_t *s = hl_slam_create_with(&p);
         hl_vector_t far[2] = { { 100000, 100000, 0, 1000 }, { 100000, 101000, 16384, 1000 } };
         hl_slam_state_t st = { .started = true, .pose = w->truth[2], .odom = w->odom[2],
                                .peak_avg = 5000, .map_version = 4, .cull_rng = { 3, 5 } };
@@ -200,7 +200,7 @@ static void test_map_capacity_is_the_one_bound(void **state)
     ray_sensor_defaults(&p);
     p.map_capacity = N;
     assert_true(p.loc.max_map_vectors < N);
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     assert_non_null(s);
     hl_pose_t truth = sr_free_pose(room, 800);
     hl_pose_t start = truth;

@@ -13,7 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "houghloc/slam.h"
+#include "houghloc-internal/slam_params.h"
 #include "slam_walk.h"
 
 /* Steps of the walk that make the map before anything happens. */
@@ -32,7 +32,7 @@ static run_t start(uint64_t seed, int32_t lost_after, int32_t search_every)
     ray_sensor_defaults(&p);
     p.lost_after = lost_after;
     p.search_every = search_every;
-    r.s = hl_slam_create(&p);
+    r.s = hl_slam_create_with(&p);
     assert_non_null(r.s);
     hl_slam_reset(r.s, r.w->truth[0]);
     return r;
@@ -181,7 +181,7 @@ static void test_lost_scans_kept_apart(void **state)
     p.reloc.min_explained_pct = 100.0;
     p.reloc.max_ratio = 0.01;
     assert_int_equal(p.reloc.scans, 3);
-    r.s = hl_slam_create(&p);
+    r.s = hl_slam_create_with(&p);
     assert_non_null(r.s);
     hl_slam_reset(r.s, r.w->truth[0]);
     map_the_walk(&r);
@@ -214,17 +214,14 @@ static void test_params_checked(void **state)
     hl_slam_params_t p;
     hl_slam_params_default(&p);
     assert_null(hl_slam_params_error(&p));
-    assert_int_equal(p.lost_after, 0);      /* off until the search is safe to trust */
-    assert_int_equal(p.search_every, 0);
+    assert_int_equal(p.lost_after, 2);      /* on: the search answers wrong on <= 1 % */
+    assert_int_equal(p.search_every, 1);
     p.lost_after = -1;
-    assert_non_null(hl_slam_params_error(&p));
-    hl_slam_params_default(&p);
-    p.lost_peak_ratio = 1.5;
     assert_non_null(hl_slam_params_error(&p));
     hl_slam_params_default(&p);
     p.search_every = 1000001;
     assert_non_null(hl_slam_params_error(&p));
-    assert_null(hl_slam_create(&p));
+    assert_null(hl_slam_create_with(&p));
     /* NULL is safe */
     assert_false(hl_slam_lost(NULL));
     assert_int_equal(hl_slam_lost_epoch(NULL), 0);

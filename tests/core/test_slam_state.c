@@ -98,9 +98,9 @@ static void test_restore_continues_identically(void **state)
         ray_sensor_defaults(&p);
         p.guarded = guarded;
         p.map_capacity = 400;
-        hl_slam_t *a = hl_slam_create(&p);
+        hl_slam_t *a = hl_slam_create_with(&p);
         p.seed = 12345;
-        hl_slam_t *b = hl_slam_create(&p);
+        hl_slam_t *b = hl_slam_create_with(&p);
         assert_non_null(a);
         assert_non_null(b);
         hl_slam_reset(a, w->truth[0]);
@@ -154,7 +154,7 @@ static void test_restore_refuses_bad_input(void **state)
     hl_slam_params_t p;
     ray_sensor_defaults(&p);
     p.map_capacity = 300;
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     hl_slam_reset(s, w->truth[0]);
     hl_scan_t *scan = malloc(sizeof *scan);
     hl_slam_step_t out;
@@ -207,7 +207,7 @@ static void test_set_pose(void **state)
     walk_t *w = make_walk(11);
     hl_slam_params_t p;
     ray_sensor_defaults(&p);
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     hl_scan_t *scan = malloc(sizeof *scan);
     hl_slam_step_t out;
     hl_pose_t odd = { 777, -888, 999 };
@@ -268,7 +268,7 @@ static void test_failed_update_changes_nothing(void **state)
     hl_slam_params_t p;
     ray_sensor_defaults(&p);
     p.window_mm = 0;    /* global: the raster covers the map's bounding box */
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     hl_scan_t *scan = malloc(sizeof *scan);
     sr_sound(&w->room, w->truth[0], 128, 8000, 15, scan);
     hl_vector_t far[3] = { { 0, 0, 0, 1000 }, { 200000, 200000, 16384, 1000 },
@@ -288,7 +288,7 @@ static void test_failed_update_changes_nothing(void **state)
                                       : st.pose;
         assert_int_equal(out.status, HL_SLAM_ODOMETRY_ONLY);
         assert_int_equal(out.added, 0);
-        assert_memory_equal(&out.pose, &predicted, sizeof predicted);
+        assert_pose_equal(out.pose, predicted);
         assert_unchanged(s, &snap);
         assert_int_equal(hl_map_version(hl_slam_map(s)), 9);
     }
@@ -321,7 +321,7 @@ static void test_update_beyond_the_edge_changes_nothing(void **state)
     ray_sensor_defaults(&p);
     p.guarded = false;
     p.use_prior = false;
-    hl_slam_t *s = hl_slam_create(&p);
+    hl_slam_t *s = hl_slam_create_with(&p);
     hl_slam_state_t st = { .started = true, .pose = { HL_COORD_MAX_MM - 100, 0, 0 },
                            .odom = { 0, 0, 0 }, .map_version = 21, .cull_rng = { 1, 1 } };
     assert_int_equal(hl_slam_restore(s, &st, pool, kept), HL_OK);

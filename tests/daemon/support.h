@@ -116,7 +116,10 @@ static inline hl_cycle_params_t test_params(void)
 {
     hl_cycle_params_t p = { .save_every = 0, .map_period_ms = 0, .idle_after_ms = 5000,
                             .compute_window = 100 };
-    hl_slam_params_default(&p.slam);
+    /* the tracker alone: the LOST state's tests turn it on (test_cycle_lost.c) */
+    hl_params_default(&p.params);
+    assert_int_equal(hl_params_set(&p.params, "slam.lost_after", "0"), HL_OK);
+    assert_int_equal(hl_params_set(&p.params, "slam.search_every", "0"), HL_OK);
     hl_fence_rect(&p.fence, -10000, -10000, 10000, 10000);
     return p;
 }

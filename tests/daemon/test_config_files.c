@@ -206,82 +206,27 @@ static const rule_case_t rules[] = {
     { { "drive.slow_mm=350", "drive.stop_mm=350" },
       { "drive.slow_mm=351", "drive.stop_mm=350" },
       "config: drive.slow_mm (350) must be 0 (never slow) or above drive.stop_mm (350)" },
-    { { "calibration.min_raw=500", "calibration.sentinel_raw=500" },
-      { "calibration.min_raw=499", "calibration.sentinel_raw=500" },
-      "config: calibration.min_raw (500) must be below calibration.sentinel_raw (500)" },
-    { { "slam.crowd_square_mm=50" },
-      { "slam.crowd_square_mm=50", "slam.cull_crowded=true", "slam.cull_choices=2",
-        "slam.map_per_place=1" },
-      "config: slam.crowd_square_mm (50) is the crowding cull's: it needs slam.cull_crowded "
-      "(false) set to true" },
-    { { "slam.cull_crowded=true", "slam.map_per_place=1" },
-      { "slam.cull_crowded=true", "slam.map_per_place=1", "slam.cull_choices=2" },
-      "config: slam.cull_crowded (true) needs slam.cull_choices (1) of at least 2" },
-    { { "slam.cull_crowded=true", "slam.cull_choices=2" },
-      { "slam.cull_crowded=true", "slam.cull_choices=2", "slam.map_per_place=1" },
-      "config: slam.cull_crowded (true) needs slam.map_per_place (0) above 0 (a bound per "
-      "place)" },
-    { { "localize.theta_step_deg=10", "localize.theta_half_steps=9" },
-      { "localize.theta_step_deg=10", "localize.theta_half_steps=8" },
-      "config: localize.theta_step_deg (10) x (2 x localize.theta_half_steps (9) + 1) must "
-      "span at most 180 degrees (it spans 190)" },
+    /* the tracker's rules are the core's (hl_params_check), in the same form */
     { { "localize.blur_sigma_mm=501", "localize.cell_mm=50" },
       { "localize.blur_sigma_mm=500", "localize.cell_mm=50" },
       "config: localize.blur_sigma_mm (501) must be at most 10 x localize.cell_mm (50)" },
     { { "localize.max_cells=1000" },
       { "localize.max_cells=1000", "slam.window_mm=0" },
       "config: slam.window_mm (1000) needs 119952 raster cells of localize.cell_mm (24) "
-      "over 2 x localize.theta_half_steps (8) + 1 headings (slam.search_theta), more than "
-      "localize.max_cells (1000)" },
-    { { "localize.max_cells=1000", "slam.search_theta=false" },
-      { "localize.max_cells=7056", "slam.search_theta=false" },
-      "config: slam.window_mm (1000) needs 7056 raster cells of localize.cell_mm (24), more "
-      "than localize.max_cells (1000)" },
-    { { "reloc.fine_window_mm=5000", "localize.cell_mm=6", "localize.theta_half_steps=80",
-        "slam.window_mm=0" },
-      { "reloc.fine_window_mm=1900", "localize.cell_mm=6", "localize.theta_half_steps=80",
-        "slam.window_mm=0" },
-      "config: reloc.fine_window_mm (5000) needs 447401129 raster cells of localize.cell_mm "
-      "(6) over 2 x localize.theta_half_steps (80) + 1 headings, more than the 67108864 a "
-      "search may have" },
-    { { "echo.half_beam_deg=45", "echo.step_deg=0.34" },
-      { "echo.half_beam_deg=45", "echo.step_deg=0.36" },
-      "config: echo.half_beam_deg (45) and echo.step_deg (0.34) give 265 candidate bearings "
-      "(2 x half beam / step + 1), more than 257, with slam.echo_bearings (true)" },
-    { { "echo.noise_mm=0" },
-      { "echo.noise_mm=0", "slam.echo_bearings=false" },
-      "config: echo.noise_mm (0) must be at least 1 with slam.echo_bearings (true)" },
-    { { "slam.fit_normals=true", "normals.half_window=3", "normals.min_points=8" },
-      { "slam.fit_normals=true", "normals.half_window=3", "normals.min_points=7" },
-      "config: normals.min_points (8) must be at most 2 x normals.half_window (3) + 1 (the "
-      "points of a window), with slam.fit_normals (true)" },
+      "over 17 headings, more than localize.max_cells (1000)" },
     { { "slam.square_walls=true" },
       { "slam.square_walls=true", "slam.close_loops=true" },
       "config: slam.square_walls (true) needs slam.close_loops (false) set to true" },
-    { { "slam.long_drive_mm=1000", "slam.long_drive_turn_deg=30", "slam.long_drive_turns=4" },
-      { "slam.long_drive_mm=1000", "slam.long_drive_turn_deg=30", "slam.long_drive_turns=3" },
-      "config: slam.long_drive_turn_deg (30) x slam.long_drive_turns (4) must turn at most 90 "
-      "degrees in all (it turns 120), with slam.long_drive_mm (1000)" },
-    { { "reloc.coarse_theta_step_deg=0.01", "reloc.coarse_half_steps=15" },
-      { "reloc.coarse_theta_step_deg=0.01", "reloc.coarse_half_steps=16" },
-      "config: reloc.coarse_theta_step_deg (0.01) x 2 x reloc.coarse_half_steps (15) must "
-      "span at least 0.35 degrees" },
-    { { "reloc.coarse_theta_step_deg=45", "reloc.coarse_half_steps=2" },
-      { "reloc.coarse_theta_step_deg=45", "reloc.coarse_half_steps=1" },
-      "config: reloc.coarse_theta_step_deg (45) x (2 x reloc.coarse_half_steps (2) + 1) must "
-      "span at most 180 degrees (it spans 225)" },
-    { { "reloc.coarse_blur_mm=1001", "reloc.coarse_cell_mm=100" },
-      { "reloc.coarse_blur_mm=1000", "reloc.coarse_cell_mm=100" },
-      "config: reloc.coarse_blur_mm (1001) must be at most 10 x reloc.coarse_cell_mm (100)" },
-    /* single keys whose range is not one min..max: named with their section too */
-    { { "slam.crowd_square_mm=9" }, { "slam.crowd_square_mm=0" },
-      "config: slam.crowd_square_mm (9) must be 0 or in 10..1000" },
+};
+
+/* Single keys whose range is not one min..max: refused as they are read, by the table. */
+static const rule_case_t ranges[] = {
     { { "localize.group_mm=7" }, { "localize.group_mm=8" },
-      "config: localize.group_mm (7) must be 0 or in 8..1000" },
-    { { "reloc.coarse_group_mm=7" }, { "reloc.coarse_group_mm=8" },
-      "config: reloc.coarse_group_mm (7) must be 0 or in 8..1000" },
-    { { "reloc.short_mm=300" }, { "reloc.short_mm=301" },
-      "config: reloc.short_mm (300) must be 0 or in 301..10000" },
+      "--set localize.group_mm=7: 7 is outside 0 or 8..1000" },
+    { { "localize.group_mm=1001" }, { "localize.group_mm=0" },
+      "--set localize.group_mm=1001: 1001 is outside 0 or 8..1000" },
+    { { "slam.keyframe_deg=181" }, { "slam.keyframe_deg=180" },
+      "--set slam.keyframe_deg=181: 181 is outside 0..180" },
 };
 
 static int count(const char *const *sets)
@@ -306,7 +251,7 @@ static int named_keys(const char *msg)
         snprintf(name, sizeof name, "%.*s", (int)(s - start), start);
         if (!strchr(name, '.'))
             continue;   /* "(2 x half beam ...)" */
-        if (!hl_config_key_find(name))
+        if (!hl_config_key_find(name) && !hl_config_core_key(name))
             fail_msg("\"%s\" names %s, which is no key", msg, name);
         n++;
     }
@@ -331,6 +276,18 @@ static void test_rules_name_their_keys(void **state)
         assert_true(named_keys(f->why) >= 1);
         if (!hl_config_load(&f->c, NULL, false, r->ok, count(r->ok), f->why))
             fail_msg("rule %zu: just inside, refused: %s", i, f->why);
+    }
+}
+
+static void test_ranges_refused_as_read(void **state)
+{
+    fixture_t *f = *state;
+    for (size_t i = 0; i < sizeof ranges / sizeof ranges[0]; i++) {
+        const rule_case_t *r = &ranges[i];
+        assert_false(hl_config_load(&f->c, NULL, false, r->sets, count(r->sets), f->why));
+        assert_string_equal(f->why, r->why);
+        if (!hl_config_load(&f->c, NULL, false, r->ok, count(r->ok), f->why))
+            fail_msg("range %zu: inside, refused: %s", i, f->why);
     }
 }
 
@@ -425,6 +382,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_nul_byte_named_by_line, setup, teardown),
         cmocka_unit_test_setup_teardown(test_lines_counted_from_memory, setup, teardown),
         cmocka_unit_test_setup_teardown(test_rules_name_their_keys, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_ranges_refused_as_read, setup, teardown),
         cmocka_unit_test_setup_teardown(test_rule_from_a_file, setup, teardown),
         cmocka_unit_test_setup_teardown(test_host_name_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_numeric_hosts, setup, teardown),

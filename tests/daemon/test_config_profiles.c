@@ -1,8 +1,9 @@
 /* Tests for the configuration's presets and printouts (config.c, profiles.c, the robot
- * profiles of src/robot/profile.c): the sensor profiles' keys and their order against
- * slam.mode and single keys, refusals naming the choices, robot.profile's calibration
- * under calibration.*, the operator's printout and its read-back, the fragment of
- * --print-profile, and the advice for a map larger than the configuration. */
+ * profiles of src/robot/profile.c): the sensor profiles' keys (the core's presets) and
+ * their order against single keys, refusals naming the choices, robot.profile's
+ * calibration under calibration.*, the operator's printout and its read-back, the
+ * fragment of --print-profile, the advice for a map larger than the configuration, and
+ * the daemon's defaults of the core's keys (the library's own). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -64,6 +65,14 @@ static char *printed(const hl_config_t *c, void (*print)(const hl_config_t *, FI
     return buf;
 }
 
+/* The value of the core's @p key in @p c, as text (a static buffer). */
+static const char *get(const hl_config_t *c, const char *key)
+{
+    static char v[64];
+    assert_int_equal(hl_params_get(&c->params, key, v, sizeof v), HL_OK);
+    return v;
+}
+
 static void load_ok(fixture_t *f, hl_config_t *c, const char *path, const char *set1,
                     const char *set2)
 {
@@ -79,13 +88,36 @@ static void test_sonar_stops_is_the_defaults(void **state)
 {
     fixture_t *f = *state;
     hl_config_defaults(&f->a);
-    assert_string_equal(f->a.profile, "sonar-stops");
+    assert_string_equal(get(&f->a, "slam.profile"), "sonar-stops");
     load_ok(f, &f->b, NULL, "slam.profile=sonar-stops", NULL);
     char *x = printed(&f->a, hl_config_print), *y = printed(&f->b, hl_config_print);
     assert_string_equal(x, y);
     free(x);
     free(y);
-    assert_int_equal(hl_sensor_profile_find("sonar-stops")->n_keys, 0);
+    assert_int_equal(hl_sensor_profile_find("sonar-stops")->count, 0);
+}
+
+/* The daemon's defaults of the core's keys are the library's: a configuration without a
+ * key holds what hl_params_default does, key for key. */
+static void test_defaults_are_the_librarys(void **state)
+{
+    fixture_t *f = *state;
+    load_ok(f, &f->a, NULL, NULL, NULL);
+    hl_params_t lib;
+    hl_params_default(&lib);
+    const hl_param_info_t *k;
+    size_t n = 0;
+    for (size_t i = 0; (k = hl_params_info(i)); i++) {
+        char mine[64], theirs[64];
+        assert_int_equal(hl_params_get(&f->a.params, k->key, mine, sizeof mine), HL_OK);
+        assert_int_equal(hl_params_get(&lib, k->key, theirs, sizeof theirs), HL_OK);
+        assert_string_equal(mine, theirs);
+        assert_string_equal(mine, k->value);    /* and the table's default, as it writes it */
+        n++;
+    }
+    assert_true(n > 40);
+    assert_string_equal(get(&f->a, "slam.lost_after"), "2");     /* the LOST state on */
+    assert_string_equal(get(&f->a, "slam.search_every"), "1");
 }
 
 /* laser: its keys, the realeval settings. */
@@ -93,41 +125,72 @@ static void test_laser_keys(void **state)
 {
     fixture_t *f = *state;
     load_ok(f, &f->a, NULL, "slam.profile=laser", NULL);
-    const hl_slam_params_t *p = &f->a.slam;
-    assert_int_equal(p->map_capacity, 15000);
-    assert_int_equal(p->map_per_place, 2);
-    assert_int_equal(p->window_mm, 500);
-    assert_false(p->echo_bearings);
-    assert_true(p->fit_normals);
-    assert_true(p->normals.keep_unfitted);
-    assert_int_equal(p->loc.reading_stride, 2);
-    assert_int_equal(p->loc.group_mm, 48);
-    assert_int_equal(p->reloc.coarse_cell_mm, 200);
-    assert_int_equal(p->reloc.coarse_max_cells, 2097152);
-    assert_true(p->refine);          /* the improved mode's, untouched */
+    const hl_config_t *c = &f->a;
+    assert_string_equal(get(c, "slam.map_capacity"), "15000");
+    assert_string_equal(get(c, "slam.map_per_place"), "2");
+    assert_string_equal(get(c, "slam.window_mm"), "500");
+    assert_string_equal(get(c, "slam.echo_bearings"), "false");
+    assert_string_equal(get(c, "slam.fit_normals"), "true");
+    assert_string_equal(get(c, "normals.keep_unfitted"), "true");
+    assert_string_equal(get(c, "localize.reading_stride"), "2");
+    assert_string_equal(get(c, "localize.group_mm"), "48");
+    assert_string_equal(get(c, "reloc.coarse_cell_mm"), "200");
+    assert_string_equal(get(c, "reloc.coarse_max_cells"), "2097152");
+    assert_string_equal(get(c, "slam.refine"), "true");     /* the defaults', untouched */
+    assert_string_equal(get(c, "slam.lost_after"), "0");    /* LOST off */
     assert_int_equal(hl_sensor_profile_capacity(hl_sensor_profile_find("laser")), 15000);
 }
 
-/* Presets first wherever written: mode, then the profile over it, then single keys. */
-static void test_order_mode_profile_keys(void **state)
+/* The profile first wherever written, then single keys over it. */
+static void test_order_profile_keys(void **state)
 {
     fixture_t *f = *state;
-    write_file(f->path, "[slam]\nmap_capacity = 800\nwindow_mm = 700\nprofile = laser\n"
-                        "mode = paper\n");
+    write_file(f->path, "[slam]\nmap_capacity = 800\nwindow_mm = 700\nprofile = laser\n");
     load_ok(f, &f->a, f->path, NULL, NULL);
-    assert_string_equal(f->a.mode, "paper");
-    assert_string_equal(f->a.profile, "laser");
-    assert_int_equal(f->a.slam.map_capacity, 800);   /* the key over the profile */
-    assert_int_equal(f->a.slam.window_mm, 700);
-    assert_int_equal(f->a.slam.loc.cell_mm, 47);     /* paper's: laser leaves it */
-    assert_false(f->a.slam.guarded);                 /* paper's */
-    assert_int_equal(f->a.slam.loc.group_mm, 48);    /* the profile's over paper's 0 */
+    assert_string_equal(get(&f->a, "slam.profile"), "laser");
+    assert_string_equal(get(&f->a, "slam.map_capacity"), "800");   /* the key over it */
+    assert_string_equal(get(&f->a, "slam.window_mm"), "700");
+    assert_string_equal(get(&f->a, "localize.group_mm"), "48");    /* the profile's */
     /* an override of the profile wins over the file's */
     load_ok(f, &f->b, f->path, "slam.profile=sonar-continuous", NULL);
-    assert_string_equal(f->b.profile, "sonar-continuous");
-    assert_true(f->b.slam.heading_gain == 0.3);
-    assert_int_equal(f->b.slam.loc.group_mm, 0);
-    assert_int_equal(f->b.slam.map_capacity, 800);
+    assert_string_equal(get(&f->b, "slam.profile"), "sonar-continuous");
+    assert_string_equal(get(&f->b, "slam.heading_gain"), "0.3");
+    assert_string_equal(get(&f->b, "localize.group_mm"), "0");
+    assert_string_equal(get(&f->b, "slam.map_capacity"), "800");
+    /* the paper's method is a profile too */
+    load_ok(f, &f->b, NULL, "slam.profile=paper", "slam.window_mm=300");
+    assert_string_equal(get(&f->b, "localize.cell_mm"), "47");
+    assert_string_equal(get(&f->b, "slam.guarded"), "false");
+    assert_string_equal(get(&f->b, "slam.window_mm"), "300");
+}
+
+/* Keys that are settings no more: their fixed value read with a warning, another refused
+ * naming it; the [daemon] keys the tracker's table took over read under their new names. */
+static void test_retired_keys(void **state)
+{
+    fixture_t *f = *state;
+    write_file(f->path, "[slam]\nmode = improved\nwild_mm = 500\n[echo]\ntie = 0.50\n"
+                        "[link]\npulse_ms = 500\n[daemon]\nlost_after = 0\n");
+    load_ok(f, &f->a, f->path, NULL, NULL);
+    assert_int_equal(f->a.n_notes, 5);
+    assert_non_null(strstr(f->a.notes[0], ":2: key 'slam.mode' is no longer a setting "
+                                          "(fixed at improved): ignored"));
+    assert_non_null(strstr(f->a.notes[4], ":9: key 'daemon.lost_after' is now slam.lost_after"));
+    assert_string_equal(get(&f->a, "slam.lost_after"), "0");
+    write_file(f->path, "[echo]\ntie = 0.8\n");
+    assert_false(hl_config_load(&f->a, f->path, false, NULL, 0, f->why));
+    assert_non_null(strstr(f->why, ":2: key 'echo.tie': no longer a setting, fixed at 0.5"));
+    const char *paper[1] = { "slam.mode=paper" };
+    assert_false(hl_config_load(&f->a, NULL, false, paper, 1, f->why));
+    assert_string_equal(f->why, "--set slam.mode=paper: no longer a setting, fixed at improved "
+                                "(the paper's method is slam.profile = paper)");
+    const char *link[1] = { "link.sync_tries=3" };
+    assert_false(hl_config_load(&f->a, NULL, false, link, 1, f->why));
+    assert_string_equal(f->why, "--set link.sync_tries=3: no longer a setting, fixed at 6");
+    /* a study's key is the library's, not houghlocd's */
+    const char *study[1] = { "reloc.max_ratio=0.4" };
+    assert_false(hl_config_load(&f->a, NULL, false, study, 1, f->why));
+    assert_non_null(strstr(f->why, "not of houghlocd"));
 }
 
 static void test_unknown_profile_refused(void **state)
@@ -135,12 +198,12 @@ static void test_unknown_profile_refused(void **state)
     fixture_t *f = *state;
     const char *sets[1] = { "slam.profile=sonar" };
     assert_false(hl_config_load(&f->a, NULL, false, sets, 1, f->why));
-    assert_string_equal(f->why, "--set slam.profile=sonar: 'sonar' is not a sensor profile "
-                                "(sonar-stops, sonar-continuous or laser)");
+    assert_string_equal(f->why, "--set slam.profile=sonar: 'sonar' is not one of "
+                                "sonar-stops, sonar-continuous, laser or paper");
     write_file(f->path, "[slam]\n\nprofile = lidar\n");
     assert_false(hl_config_load(&f->a, f->path, false, NULL, 0, f->why));
-    assert_non_null(strstr(f->why, ":3: key 'slam.profile': 'lidar' is not a sensor profile "
-                                   "(sonar-stops, sonar-continuous or laser)"));
+    assert_non_null(strstr(f->why, ":3: key 'slam.profile': 'lidar' is not one of "
+                                   "sonar-stops, sonar-continuous, laser or paper"));
 }
 
 /* robot.profile carries a calibration; calibration.* wins wherever it is written. */
@@ -178,12 +241,21 @@ static void test_operator_printout_of_the_defaults(void **state)
         const hl_config_key_t *k = &hl_config_keys[i];
         char line[80];
         snprintf(line, sizeof line, "\n%s = ", strchr(k->name, '.') + 1);
-        if (hl_config_key_for_operator(k))
+        if (k->type != HL_KEY_CORE && hl_config_key_for_operator(k))
             assert_non_null(strstr(text, line));
     }
-    assert_int_equal(keys, 22);
-    assert_true(lines < 80);
-    assert_null(strstr(text, "\nmap_capacity = "));
+    const hl_param_info_t *info;
+    for (size_t i = 0; (info = hl_params_info(i)); i++) {
+        char line[80];
+        snprintf(line, sizeof line, "\n%s = ", strchr(info->key, '.') + 1);
+        if (info->level == HL_PARAM_OPERATOR)
+            assert_non_null(strstr(text, line));
+        else if (info->level == HL_PARAM_EXPERT)
+            assert_null(strstr(text, line));
+    }
+    assert_int_equal(keys, 25);
+    assert_true(lines < 90);
+    assert_null(strstr(text, "\nwindow_mm = "));
     assert_null(strstr(text, "\nmode = "));
     free(text);
 }
@@ -197,7 +269,8 @@ static void test_operator_printout_reads_back(void **state)
     char *text = printed(&f->a, hl_config_print_operator);
     assert_non_null(strstr(text, "\nprofile = laser\n"));
     assert_non_null(strstr(text, "\necho_bearings = true\n"));  /* the profile's is false */
-    assert_null(strstr(text, "\nmap_capacity = "));             /* the profile's value */
+    assert_null(strstr(text, "\nwindow_mm = "));                /* the profile's value */
+    assert_non_null(strstr(text, "\nmap_capacity = 15000\n"));   /* an operator's key */
     write_file(f->path, text);
     load_ok(f, &f->b, f->path, NULL, NULL);
     char *x = printed(&f->a, hl_config_print), *y = printed(&f->b, hl_config_print);
@@ -205,9 +278,10 @@ static void test_operator_printout_reads_back(void **state)
     free(x);
     free(y);
     free(text);
-    load_ok(f, &f->a, NULL, "slam.mode=paper", NULL);
+    load_ok(f, &f->a, NULL, "slam.profile=paper", NULL);
     text = printed(&f->a, hl_config_print_operator);
-    assert_non_null(strstr(text, "\nmode = paper\n"));
+    assert_non_null(strstr(text, "\nprofile = paper\n"));
+    assert_null(strstr(text, "\nguarded = "));                 /* the profile's value */
     free(text);
 }
 
@@ -215,8 +289,9 @@ static void test_operator_printout_reads_back(void **state)
 static void test_fragments_read_back(void **state)
 {
     fixture_t *f = *state;
-    for (size_t i = 0; i < hl_sensor_profile_count(); i++) {
-        const hl_sensor_profile_t *p = hl_sensor_profile_at(i);
+    const hl_param_preset_t *p;
+    size_t n = 0;
+    for (size_t i = 0; (p = hl_params_preset(i)); i++, n++) {
         FILE *fp = fopen(f->path, "w");
         assert_non_null(fp);
         hl_sensor_profile_print(p, fp);
@@ -230,10 +305,17 @@ static void test_fragments_read_back(void **state)
         free(x);
         free(y);
         load_ok(f, &f->b, f->path, NULL, NULL);   /* the fragment alone */
-        assert_int_equal(f->a.slam.map_capacity, f->b.slam.map_capacity);
-        assert_int_equal(f->a.slam.loc.prior_sigma_mm, f->b.slam.loc.prior_sigma_mm);
+        const hl_param_info_t *k;
+        for (size_t j = 0; (k = hl_params_info(j)); j++) {
+            char x1[64], y1[64];
+            if (k->type == HL_PARAM_PRESET)
+                continue;
+            hl_params_get(&f->a.params, k->key, x1, sizeof x1);
+            hl_params_get(&f->b.params, k->key, y1, sizeof y1);
+            assert_string_equal(x1, y1);
+        }
     }
-    assert_null(hl_sensor_profile_at(hl_sensor_profile_count()));
+    assert_int_equal(n, 4);
     assert_null(hl_sensor_profile_find("nope"));
 }
 
@@ -255,7 +337,9 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_sonar_stops_is_the_defaults, setup, teardown),
         cmocka_unit_test_setup_teardown(test_laser_keys, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_order_mode_profile_keys, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_defaults_are_the_librarys, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_order_profile_keys, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_retired_keys, setup, teardown),
         cmocka_unit_test_setup_teardown(test_unknown_profile_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_robot_profile_calibration, setup, teardown),
         cmocka_unit_test_setup_teardown(test_operator_printout_of_the_defaults, setup, teardown),

@@ -460,7 +460,8 @@ static void test_bad_params(void **state)
     p.compute_window = 0;
     assert_null(capture_cycle(cap, &p));
     p = test_params();
-    p.slam.map_capacity = 0;
+    /* each key in range, together refused (a blur of more than ten cells) */
+    assert_int_equal(hl_params_set(&p.params, "localize.cell_mm", "1"), HL_OK);
     assert_null(capture_cycle(cap, &p));
     p = test_params();
     p.start.x_mm = HL_COORD_MAX_MM + 1;

@@ -22,8 +22,9 @@ static run_t *start(int32_t lost_after)
 {
     run_t *r = calloc(1, sizeof *r);
     hl_cycle_params_t p = test_params();
-    p.slam.lost_after = lost_after;
-    p.slam.lost_peak_ratio = 0.5;
+    char v[16];
+    snprintf(v, sizeof v, "%d", lost_after);
+    assert_int_equal(hl_params_set(&p.params, "slam.lost_after", v), HL_OK);
     r->c = capture_cycle(&r->cap, &p);
     assert_non_null(r->c);
     return r;

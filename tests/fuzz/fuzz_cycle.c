@@ -18,6 +18,7 @@
  * valid sequence.
  */
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cycle.h"
@@ -285,8 +286,11 @@ static hl_cycle_params_t params_from(uint8_t b)
     hl_cycle_params_t p = { .save_every = b & 1u ? 3 : 0, .map_period_ms = b & 2u ? 1000 : 0,
                             .map_input_ratio = b & 4u ? 2 : 0, .idle_after_ms = 500,
                             .compute_window = 1 + (b >> 4) };
-    hl_slam_params_default(&p.slam);
-    p.slam.map_capacity = 200;     /* culling reached within a few scans */
+    hl_params_default(&p.params);  /* the tracker alone, its capacity reached within a few scans */
+    if (hl_params_set(&p.params, "slam.lost_after", "0") != HL_OK ||
+        hl_params_set(&p.params, "slam.search_every", "0") != HL_OK ||
+        hl_params_set(&p.params, "slam.map_capacity", "200") != HL_OK)
+        abort();
     hl_fence_rect(&p.fence, -10000, -10000, 10000, 10000);
     p.authenticate = b & 8u;
     p.max_ahead_us = b & 32u ? 300 * 1000000LL : 0;

@@ -46,7 +46,7 @@ cp packaging/houghlocd.conf "$C/config/houghlocd.conf"
 for f in tools/lab/realeval/*.conf; do cp "$f" "$C/config/realeval-$(basename "$f")"; done
 for f in tools/lab/kidnap/*.conf; do cp "$f" "$C/config/kidnap-$(basename "$f")"; done
 "$B/bin/houghlocd" --config /dev/null --print-config > "$C/config/printed.conf"
-printf '[slam]\nmode = paper\n[daemon]\nsave_every = 0\n' > "$C/config/paper"
+printf '[slam]\nprofile = paper\n[daemon]\nsave_every = 0\n' > "$C/config/paper"
 printf '[fence]\npolygon = -5,-5 5,-5 5,5 -5,5\n[lcm]\nprefix = robot1/\n' > "$C/config/fence"
 printf '[robot]\nlink = tcp:127.0.0.1:8101\nprofile = pioneer3\n' > "$C/config/robot"
 printf '; comment\n# another\n\n[start]\nx_m = 1.5\ny_m = -2\nheading_deg = 90\n' > "$C/config/start"

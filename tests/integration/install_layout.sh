@@ -8,7 +8,7 @@ houghloc-import-carmen houghloc-eval"
 # The core's public headers: those of the robot link and the bus stay out (they need
 # libserialport, LCM, libsodium).
 PUBLIC_HEADERS=$(cd include/core/houghloc && echo *.h)
-SENSOR_PROFILES="sonar-stops sonar-continuous laser"
+SENSOR_PROFILES="sonar-stops sonar-continuous laser paper"
 LIB_VERSION=$(sed -n 's/^#define HL_VERSION "\([0-9][0-9.]*\)"$/\1/p' include/core/houghloc/version.h)
 LIB_MAJOR=${LIB_VERSION%%.*}
 # The python3 that make install asks for its version: Debian's, not a pyenv's first on PATH.

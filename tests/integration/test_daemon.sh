@@ -26,23 +26,35 @@ check "--print-config exits 0" test $? -eq 0
 $BIN/houghlocd --config "$tmp/a.conf" --print-config >"$tmp/b.conf"
 check "--print-config output reads back to the same values" cmp -s "$tmp/a.conf" "$tmp/b.conf"
 check "packaging/houghlocd.conf is the commented defaults" cmp -s "$tmp/a.conf" packaging/houghlocd.conf
-check "packaging/houghlocd.conf: the operator's 22 keys, under 80 lines" \
-    sh -c 'test "$(grep -c "^[a-z_0-9]* = " "$1")" -eq 22 && test "$(wc -l <"$1")" -lt 80' - packaging/houghlocd.conf
+check "packaging/houghlocd.conf: the operator's 25 keys, under 90 lines" \
+    sh -c 'test "$(grep -c "^[a-z_0-9]* = " "$1")" -eq 25 && test "$(wc -l <"$1")" -lt 90' - packaging/houghlocd.conf
 $D --print-config=all >"$tmp/all.conf"
 $BIN/houghlocd --config "$tmp/all.conf" --print-config=all >"$tmp/all2.conf"
 check "--print-config=all prints every key, and reads back the same" \
     sh -c "cmp -s $tmp/all.conf $tmp/all2.conf && grep -q '^coarse_max_cells = ' $tmp/all.conf"
-$D --set slam.map_capacity=3000 --print-config >"$tmp/changed.conf"
-check "--print-config shows a research key set away from its default" grep -q '^map_capacity = 3000$' "$tmp/changed.conf"
+check "--print-config=all: at most 70 keys, the tracker's included" \
+    sh -c 'test "$(grep -c "^[a-z_0-9]* = " "$1")" -le 70' - "$tmp/all.conf"
+$D --set slam.window_mm=700 --print-config >"$tmp/changed.conf"
+check "--print-config shows a research key set away from its default" grep -q '^window_mm = 700$' "$tmp/changed.conf"
 rejects "--print-config takes only =all" 2 "takes no value or '=all'" $D --print-config=some
-$D --set slam.mode=paper --print-config=all >"$tmp/paper.conf"
-check "slam.mode=paper turns echo bearings off" grep -q '^echo_bearings = false' "$tmp/paper.conf"
-printf '[slam]\nmap_capacity = 800\nmode = paper\n' >"$tmp/order.conf"
-check "slam.mode applies before other keys wherever it is written" \
+$D --set slam.profile=paper --print-config=all >"$tmp/paper.conf"
+check "slam.profile=paper turns echo bearings off" grep -q '^echo_bearings = false' "$tmp/paper.conf"
+printf '[slam]\nmap_capacity = 800\nprofile = paper\n' >"$tmp/order.conf"
+check "slam.profile applies before other keys wherever it is written" \
     sh -c "$BIN/houghlocd --config $tmp/order.conf --print-config | grep -q '^map_capacity = 800'"
+# Keys that are settings no more: their fixed value warns, another stops the start.
+printf '[slam]\nmode = improved\n[link]\npulse_ms = 500\n' >"$tmp/old.conf"
+check "a retired key at its fixed value: a warning naming it, then the configuration" \
+    sh -c "$BIN/houghlocd --config $tmp/old.conf --print-config 2>&1 >/dev/null |
+           grep -q \"old.conf:2: key 'slam.mode' is no longer a setting (fixed at improved): ignored\""
+rejects "a retired key at another value: refused, naming its fixed value" 1 \
+    "slam.mode=paper: no longer a setting, fixed at improved (the paper's method is slam.profile = paper)" \
+    $D --set slam.mode=paper --print-config
+rejects "a key of the laboratory's studies: not houghlocd's" 1 \
+    "--set reloc.max_ratio=0.4: a setting of the laboratory's studies" $D --set reloc.max_ratio=0.4
 
 # ---- sensor and robot profiles ------------------------------------------------------------
-for p in sonar-stops sonar-continuous laser; do
+for p in sonar-stops sonar-continuous laser paper; do
     $BIN/houghlocd --print-profile $p >"$tmp/$p.frag"
     $D --set slam.profile=$p --print-config=all >"$tmp/$p.key"
     $BIN/houghlocd --config "$tmp/$p.frag" --set slam.profile=$p --print-config=all >"$tmp/$p.file"
@@ -50,8 +62,8 @@ for p in sonar-stops sonar-continuous laser; do
 done
 check "--print-profile laser names its keys in their sections" \
     sh -c "grep -q '^\[slam\]$' $tmp/laser.frag && grep -q '^map_capacity = 15000$' $tmp/laser.frag"
-rejects "an unknown sensor profile: the three names" 1 "'sonar' is not a sensor profile (sonar-stops, sonar-continuous or laser)" $D --set slam.profile=sonar
-rejects "--print-profile of an unknown name: the three names" 2 "unknown sensor profile 'x' (sonar-stops, sonar-continuous or laser)" $BIN/houghlocd --print-profile x
+rejects "an unknown sensor profile: the four names" 1 "'sonar' is not one of sonar-stops, sonar-continuous, laser or paper" $D --set slam.profile=sonar
+rejects "--print-profile of an unknown name: the four names" 2 "unknown sensor profile 'x' (sonar-stops, sonar-continuous, laser or paper)" $BIN/houghlocd --print-profile x
 check "robot.profile=houghloc-sim carries the simulator's calibration" \
     sh -c "$D --set robot.profile=houghloc-sim --print-config | grep -q '^gain_q16 = 70124$'"
 printf '[calibration]\noffset_mm = -20\n[robot]\nprofile = houghloc-sim\n' >"$tmp/calib.conf"

@@ -56,11 +56,15 @@ check "the shared library's soname is libhoughloc.so.$LIB_MAJOR" \
     sh -c 'readelf -d "$1" | grep -q "(SONAME).*\[libhoughloc.so.$2\]"' - \
     "$libdir/libhoughloc.so.$LIB_VERSION" "$LIB_MAJOR"
 nm -D --defined-only "$libdir/libhoughloc.so.$LIB_VERSION" | awk '{ print $3 }' >"$tmp/exported"
-check "it exports the public API (hl_loc_run, hl_slam_update, hl_map_create)" \
-    sh -c 'grep -qx hl_loc_run "$1" && grep -qx hl_slam_update "$1" && grep -qx hl_map_create "$1"' \
+check "it exports the public API (hl_slam_update, hl_params_set, hl_map_vectors)" \
+    sh -c 'grep -qx hl_slam_update "$1" && grep -qx hl_params_set "$1" && grep -qx hl_map_vectors "$1"' \
     - "$tmp/exported"
-check "... and not the core's internal modules (closure, posegraph, vgroups)" \
-    sh -c '! grep -qE "^hl_(closure|posegraph|vgroups|judge|peak)_" "$1"' - "$tmp/exported"
+check "... and not the core's internal modules (stages, closure, posegraph, vgroups)" \
+    sh -c '! grep -qE "^hl_(closure|posegraph|vgroups|judge|peak|loc_run|reloc_run|map_create|echo|normals|refine)" "$1"' - "$tmp/exported"
+check "... at most 45 functions, each documented in docs/design/api.md" sh -c '
+    test "$(wc -l <"$1")" -le 45 || exit 1
+    while read -r f; do grep -q "\`$f\`" docs/design/api.md || { echo "  $f"; exit 1; }; done <"$1"' \
+    - "$tmp/exported"
 check "... nor anything but hl_ names" sh -c '! grep -qv "^hl_" "$1"' - "$tmp/exported"
 # Exactly the functions the public headers mark HL_API (houghloc/export.h): the core is
 # compiled with hidden visibility, so nothing else can leave the library.
@@ -124,10 +128,10 @@ for n in $SENSOR_PROFILES; do
 done
 check "the profiles are what houghlocd --print-profile NAME prints" test -z "$bad"
 bad=
-for n in sonar-continuous laser; do   # sonar-stops is the compiled-in defaults: no key
+for n in sonar-continuous laser paper; do   # sonar-stops is the compiled-in defaults: no key
     grep -qE '^[a-z_]+ *= *[^ ]' "$pre/share/houghloc/profiles/$n.conf" || bad="$bad $n"
 done
-check "sonar-continuous and laser set keys" test -z "$bad"
+check "sonar-continuous, laser and paper set keys" test -z "$bad"
 bad=
 for n in $SENSOR_PROFILES; do
     "$BUILD/bin/houghlocd" --config "$pre/share/houghloc/profiles/$n.conf" --print-config \

@@ -23,8 +23,9 @@ n=$(($$ % 500))
 PORT=$((22000 + n))
 URL="udpm://239.255.76.67:$((9300 + n))?ttl=0&recv_buf_size=4194304"
 write_robot_conf "$tmp/robot.conf"
-# the lost state is off by default (docs/design/relocalization.md): this robot watches for a kidnap
-printf '[daemon]\nsearch_every = 1\nlost_after = 2\n' >>"$tmp/robot.conf"
+# the lost state (docs/design/relocalization.md), the defaults', said here: this robot
+# watches for a kidnap
+printf '[slam]\nsearch_every = 1\nlost_after = 2\n' >>"$tmp/robot.conf"
 
 goto() {        # goto X Y: houghloc-goto's exit status; its output in $tmp/goto.out
     "$BIN/houghloc-goto" --lcm-url "$URL" --timeout 40 "$1" "$2" >"$tmp/goto.out" 2>&1

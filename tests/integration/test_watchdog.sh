@@ -125,7 +125,7 @@ drainer=$!; pids="$pids $drainer"
 sleep 0.3
 # the global search off: it would make the 128 scans take seconds, not the drain above
 errfile=$tmp/log.fifo start blocked 200000 self --set daemon.log_level=debug \
-    --set daemon.search_every=0 --set daemon.lost_after=0
+    --set slam.search_every=0 --set slam.lost_after=0
 sleep 0.5
 t=$(now)
 n=$(count blocked WATCHDOG=1 "$(add "$t" -0.5)" "$t")

@@ -10,7 +10,7 @@
 
 #include <stddef.h>
 
-#include "houghloc/localize.h"
+#include "houghloc-internal/localize.h"
 
 typedef struct ref_result {
     int ix, iy, it;             /* peak cell */

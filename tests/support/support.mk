@@ -13,3 +13,5 @@ TEST_SUPPORT_ASAN_LIB  := $(BUILD)/lib/libhoughloc_testsupport_asan.a
 
 $(TEST_SUPPORT_LIB): $(TEST_SUPPORT_OBJS)
 $(TEST_SUPPORT_ASAN_LIB): $(TEST_SUPPORT_ASAN_OBJS)
+# The synthetic rooms build maps with the core's stages (houghloc-internal/map.h).
+$(TEST_SUPPORT_OBJS) $(TEST_SUPPORT_ASAN_OBJS): CPPFLAGS += $(CORE_INTERNAL_INC)

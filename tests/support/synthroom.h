@@ -10,7 +10,7 @@
 
 #include <stdint.h>
 
-#include "houghloc/map.h"
+#include "houghloc-internal/map.h"
 #include "houghloc/rng.h"
 #include "houghloc/scan.h"
 

@@ -21,7 +21,7 @@ static const char usage_text[] =
     "  relocalize\n"
     "      forget the pose: the daemon is LOST, and its next scans search the whole\n"
     "      map until one finds the robot and the next confirms it (STATUS shows\n"
-    "      LOST until then; a robot stands still and sounds, robot.lost_soundings)\n"
+    "      LOST until then; a robot stands still and sounds three times)\n"
     "  stop\n"
     "      stop the robot at once and give up its destination (and a sounding); it\n"
     "      stays still until the next destination. Never refused: no --key needed\n"

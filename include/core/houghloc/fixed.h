@@ -17,7 +17,8 @@
  *       generated at build time; error <= 2^-31). The public hl_sin / hl_cos round it
  *       to int16_t Q14 (HL_TRIG_ONE = 16384 means 1.0), error <= 0.5 / 16384.
  *
- *   polar -> cartesian    hl_polar_to_xy: x = (r * cos_q14 + 2^13) >> 14, in mm.
+ *   polar -> cartesian    hl_polar_to_xy (the core's, houghloc-internal/fixed.h):
+ *       x = (r * cos_q14 + 2^13) >> 14, in mm.
  *       |r * cos| <= 32767 * 16384 < 2^29.  Error <= 0.5 mm + r * 0.5/16384 <= 1.5 mm.
  *       hl_polar_to_xy_q8 (the vote loop): x = (r * cos_q30 + 2^21) >> 22, in 1/256 mm.
  *       |r * cos_q30| <= 2^15 * 2^30 = 2^45, computed in int64; the result is below
@@ -59,20 +60,11 @@ HL_API int16_t hl_sin(hl_bam_t a);
 /** Cosine of a binary angle, Q14. */
 HL_API int16_t hl_cos(hl_bam_t a);
 
-/** As hl_polar_to_xy, in Q8 millimetres (1/256 mm), from the Q30 table. */
-HL_API void hl_polar_to_xy_q8(int32_t range_mm, hl_bam_t angle, int32_t *x_q8, int32_t *y_q8);
-
 /** Signed shortest difference a - b, in BAM: [-32768, 32767]. */
 static inline int32_t hl_bam_diff(hl_bam_t a, hl_bam_t b)
 {
     return (int16_t)(uint16_t)(a - b);
 }
-
-/**
- * Cartesian offset of a point at @p range_mm along @p angle, rounded to the millimetre.
- * @param[in] range_mm  0..HL_RANGE_MAX_MM (larger values are clamped).
- */
-HL_API void hl_polar_to_xy(int32_t range_mm, hl_bam_t angle, int32_t *x_mm, int32_t *y_mm);
 
 /** Conversions for configuration and tools (not the hot path). Rounds to nearest. */
 HL_API hl_bam_t hl_bam_from_deg(double deg);

@@ -9,9 +9,10 @@
  * Reads the SONAR events of FILE (default logs/tour.lcmlog; every other channel is
  * skipped, so a stale GROUND_TRUTH type does not matter), then runs the tour N times
  * (default 5), each with a new slam (hl_slam_create, hl_slam_reset) at the start pose
- * (default the origin) with hl_slam_params_default (improved mode; --paper: the
- * paper's cycle, unguarded, without echo bearings and refinement, the other parameters
- * as they are; --close-loops: with loop closure, slam.close_loops; --square-walls: and
+ * (default the origin) with the defaults but the LOST state off (slam.lost_after and
+ * slam.search_every 0: the tracker alone; --paper: the paper's cycle, unguarded, without
+ * echo bearings and refinement, the other parameters as they are; --close-loops: with
+ * loop closure, slam.close_loops; --square-walls: and
  * square walls along x and y, slam.square_walls; --long-drives: a drive of 2 m or more also
  * tried turned about its start, slam.long_drive_mm = 2000). Each hl_slam_update
  * is timed with CLOCK_MONOTONIC. Prints one line per repetition and a summary:
@@ -35,6 +36,7 @@
 
 #include "timing.h"
 #include "houghloc/bus.h"
+#include "houghloc/params.h"
 #include "houghloc/slam.h"
 
 #define MAX_SCANS 4096
@@ -234,17 +236,22 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    hl_slam_params_t p;
-    hl_slam_params_default(&p);
-    if (paper) {
-        p.guarded = false;
-        p.echo_bearings = false;
-        p.refine = false;
-    }
-    p.close_loops = close_loops;
-    p.square_walls = square_walls;
-    if (long_drives)
-        p.long_drive_mm = 2000;
+    hl_params_t p;
+    hl_params_default(&p);
+    const char *sets[][2] = {
+        { "slam.lost_after", "0" }, { "slam.search_every", "0" },
+        { "slam.guarded", paper ? "false" : "true" },
+        { "slam.echo_bearings", paper ? "false" : "true" },
+        { "slam.refine", paper ? "false" : "true" },
+        { "slam.close_loops", close_loops ? "true" : "false" },
+        { "slam.square_walls", square_walls ? "true" : "false" },
+        { "slam.long_drive_mm", long_drives ? "2000" : "0" },
+    };
+    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
+        if (hl_params_set(&p, sets[i][0], sets[i][1]) != HL_OK) {
+            fprintf(stderr, "hl-bench-cycle: %s\n", hl_params_error(&p));
+            return 1;
+        }
     double *t = malloc((size_t)n * sizeof *t), *meds = malloc((size_t)reps * sizeof *meds);
     double *all = malloc((size_t)n * reps * sizeof *all);
     if (!t || !meds || !all) {

@@ -5,7 +5,7 @@
 #         compute_p99_us=<n> peak_rss_kib=<n>
 # for the tracking cycle alone (the defaults, whose time budget
 # docs/results/performance.md gives), then the same line named daemon_replay_watch with
-# daemon.search_every=1, where every scan also runs the global search that notices a
+# slam.search_every=1, where every scan also runs the global search that notices a
 # kidnapped robot (docs/results/relocalization.md; off by default), then
 # daemon_replay_loops with slam.close_loops=true (loop closure, slam.h; off by default).
 # wall_ms is the whole process (start, replay, map save, exit); the compute figures are
@@ -39,5 +39,5 @@ replay() {  # replay NAME [ARGS...]: RUNS replays, one line
     echo "bench $name scans=$scans wall_ms=$((wall_us / 1000)) scans_per_s=$((scans * 1000000 / wall_us)) compute_median_us=$(field compute_median_us) compute_p99_us=$(field compute_p99_us) peak_rss_kib=$rss"
 }
 replay daemon_replay
-replay daemon_replay_watch --set daemon.search_every=1
+replay daemon_replay_watch --set slam.search_every=1
 replay daemon_replay_loops --set slam.close_loops=true

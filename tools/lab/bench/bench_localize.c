@@ -35,10 +35,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "houghloc/echo.h"
-#include "houghloc/localize.h"
-#include "houghloc/refine.h"
-#include "houghloc/reloc.h"
+#include "houghloc-internal/echo.h"
+#include "houghloc-internal/localize.h"
+#include "houghloc-internal/refine.h"
+#include "houghloc-internal/reloc.h"
 #include "ref_localize.h"
 #include "timing.h"
 #include "synthroom.h"

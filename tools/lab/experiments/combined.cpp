@@ -34,7 +34,7 @@ std::vector<CombinedRow> run_combined(const Soundings &tour, const Mode &m, cons
         progress("combined: the log needs SONAR soundings with ground truth");
         return rows;
     }
-    hl_slam_t *slam = hl_slam_create(&m.slam);
+    hl_slam_t *slam = hl_slam_create_with(&m.slam);
     if (!slam) {
         progress("combined: %s", hl_slam_params_error(&m.slam));
         return rows;

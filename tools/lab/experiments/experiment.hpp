@@ -7,14 +7,16 @@
 #include <vector>
 
 #include "dataset.hpp"
-#include "houghloc/slam.h"
+#include "houghloc-internal/params.h"
 
 namespace hlexp {
 
-// "paper": the paper's method and parameters; "improved": ours. Each field says which
-// experiment it affects.
+// "paper": the paper's method and parameters (slam.profile = paper); "improved": ours
+// (the defaults). Each field says which experiment it affects.
 struct Mode {
     std::string name;
+    hl_params_t params;         // the tracker's settings (houghloc/params.h); the fields
+                                // below but prior_sigma_mm follow from them (derive)
     hl_loc_params_t loc;        // all experiments (cell_mm is set per Table 1 row)
     bool interpolate;           // sub-cell interpolation of the peak
     double prior_sigma_mm;      // Table 1: 0 = global search with no prior (the paper);
@@ -28,6 +30,8 @@ struct Mode {
 
 Mode paper_mode();
 Mode improved_mode();
+// Sets loc, interpolate and slam from m->params (after a change to them).
+void derive(Mode *m);
 
 // The scan as the mode's localizer sees it: at the readings' echo bearings when the mode
 // estimates them (houghloc/echo.h), else unchanged.

@@ -37,10 +37,11 @@ void usage(FILE *to)
         "  -w, --world FILE    limits: the world the logs were simulated in (default: the\n"
         "                      built-in lab, as `make logs` uses)\n"
         "  -s, --set M.NAME=V  change one parameter of mode M (paper or improved); repeat\n"
-        "                      as needed. NAME is one of:\n%s\n"
+        "                      as needed. NAME is a key of houghlocd's [slam], [localize],\n"
+        "                      [echo], [normals] or [reloc] (houghlocd --print-config=all),\n"
+        "                      with or without its section, or table1_prior_sigma_mm\n"
         "      --no-figures    skip the PNG figures\n"
-        "  -h, --help          this text\n",
-        hlexp::override_names());
+        "  -h, --help          this text\n");
 }
 
 bool load(const std::string &path, hlexp::Soundings *s)

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "experiment.hpp"
-#include "houghloc/localize.h"
+#include "houghloc-internal/localize.h"
 #include "render.hpp"
 
 namespace hlexp {

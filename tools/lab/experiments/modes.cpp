@@ -1,43 +1,59 @@
-// modes.cpp - the parameters of the "paper" and "improved" modes.
+// modes.cpp - the parameters of the "paper" and "improved" modes: the core's presets.
 #include "experiment.hpp"
+
+#include <cstdio>
+#include <cstdlib>
 
 namespace hlexp {
 
-Mode paper_mode()
+namespace {
+
+// Sets @p key of @p m's parameters; the table's own values, which cannot fail.
+void set(Mode *m, const char *key, const char *value)
+{
+    if (hl_params_set(&m->params, key, value) != HL_OK) {
+        std::fprintf(stderr, "hl-experiments: %s\n", hl_params_error(&m->params));
+        std::abort();
+    }
+}
+
+Mode with(const char *name, const char *profile)
 {
     Mode m;
-    m.name = "paper";
-    hl_loc_params_default(&m.loc);
-    m.loc.cell_mm = 47;             // the coarser raster of Table 1
-    m.loc.blur_sigma_mm = 50;       // the paper gives no sigma; about one coarse cell
-    m.loc.normal_gate = hl_bam_from_deg(30.0);
-    m.loc.theta_step = hl_bam_from_deg(1.1);
-    m.loc.theta_half_steps = 8;
-    m.loc.max_cells = 1u << 22;     // global (x, y, theta) searches over the whole lab
-    m.loc.group_mm = 0;             // every pair votes alone
-    m.interpolate = false;
+    m.name = name;
+    hl_params_default(&m.params);
+    set(&m, "slam.profile", profile);
+    // The experiments measure the tracker alone: no LOST state, whose global searches
+    // would answer in the tracker's place (the paper's profile has none either).
+    set(&m, "slam.lost_after", "0");
+    set(&m, "slam.search_every", "0");
+    // Global (x, y, theta) searches over the whole lab: Table 1's, and the paper's tour.
+    set(&m, "localize.max_cells", "4194304");
+    return m;
+}
+
+}  // namespace
+
+void derive(Mode *m)
+{
+    m->slam = *hl_params_slam(&m->params);
+    m->loc = m->slam.loc;
+    m->interpolate = m->slam.interpolate;
+}
+
+Mode paper_mode()
+{
+    Mode m = with("paper", "paper");
     m.prior_sigma_mm = 0;
-    hl_slam_params_default(&m.slam);
-    m.slam.loc = m.loc;
-    m.slam.guarded = false;         // every localization extends the map
-    m.slam.use_prior = false;
-    m.slam.interpolate = false;
-    m.slam.window_mm = 0;           // global search over the map
-    m.slam.echo_bearings = false;   // readings on their beam axes
-    m.slam.refine = false;          // the best cell is the answer
+    derive(&m);
     return m;
 }
 
 Mode improved_mode()
 {
-    Mode m;
-    m.name = "improved";
-    hl_loc_params_default(&m.loc);
-    m.loc.max_cells = 1u << 22;
-    m.interpolate = true;
+    Mode m = with("improved", "sonar-stops");   // guarded, +-1 m window, prior, interpolation
     m.prior_sigma_mm = 150;
-    hl_slam_params_default(&m.slam);    // guarded, +-1 m window, prior, interpolation
-    m.slam.loc = m.loc;
+    derive(&m);
     return m;
 }
 

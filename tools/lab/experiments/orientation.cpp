@@ -22,7 +22,7 @@ OrientationRow run_orientation(const Soundings &log, const Mode &m, const Contex
         progress("orientation: the log needs SONAR baseline and SONAR_TEST soundings with truth");
         return row;
     }
-    hl_slam_t *slam = hl_slam_create(&m.slam);
+    hl_slam_t *slam = hl_slam_create_with(&m.slam);
     if (!slam) {
         progress("orientation: %s", hl_slam_params_error(&m.slam));
         return row;

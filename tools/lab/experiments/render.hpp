@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "houghloc/localize.h"
-#include "houghloc/map.h"
+#include "houghloc-internal/localize.h"
+#include "houghloc-internal/map.h"
 #include "houghloc/scan.h"
 
 namespace hlfig {

@@ -30,7 +30,7 @@ $(RENDER_ASAN_OBJS): $(BUILD)/asan/%.o: %.cpp | $(LCM_STAMP)
 $(BUILD)/asan/tools/lab/tests/test_render.o: $(BUILD)/asan/%.o: %.cpp | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CXX-SAN $<"
-	$(Q)$(CXX) $(CPPFLAGS) -Itools/lab/experiments $(CAIRO_CFLAGS) $(CXXFLAGS) $(SAN) -c -o $@ $<
+	$(Q)$(CXX) $(CPPFLAGS) $(INTERNAL_INC) -Itools/lab/experiments $(CAIRO_CFLAGS) $(CXXFLAGS) $(SAN) -c -o $@ $<
 
 $(BUILD)/tests/lab/test_render: $(BUILD)/asan/tools/lab/tests/test_render.o \
                                 $(RENDER_ASAN_LIB) $(CORE_ASAN_LIB)

@@ -8,7 +8,7 @@
 
 #include "experiment.hpp"
 #include "figures.hpp"
-#include "houghloc/localize.h"
+#include "houghloc-internal/localize.h"
 #include "houghloc/rng.h"
 #include "stats.hpp"
 

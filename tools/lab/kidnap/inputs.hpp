@@ -1,6 +1,6 @@
-// inputs.hpp - what the kidnap tools (hl-kidnap, hl-tour-study) read: the slam parameters
-// of houghlocd's configuration, through the daemon's own loader
-// (houghloc-internal/daemon_config.h), and the robot's scans of a log.
+// inputs.hpp - what the kidnap tools (hl-kidnap, hl-tour-study) read: the tracker's keys of
+// a configuration file in houghlocd's form, set through the core's table (houghloc/params.h:
+// every level, the studies' keys too), and the robot's scans of a log.
 #ifndef HLKID_INPUTS_HPP
 #define HLKID_INPUTS_HPP
 
@@ -9,9 +9,8 @@
 #include <vector>
 
 #include "dataset.hpp"
-#include "houghloc-internal/daemon_config.h"
-#include "houghloc/map.h"
-#include "houghloc/slam.h"
+#include "houghloc-internal/map.h"
+#include "houghloc-internal/params.h"
 
 namespace hlkid {
 
@@ -23,10 +22,11 @@ struct MapDeleter {
     void operator()(hl_map_t *m) const { hl_map_destroy(m); }
 };
 
-// The slam parameters of houghlocd's configuration from @p file, then the K=V keys of
-// @p sets in order (as `houghlocd --config FILE --set K=V`). nullptr with the loader's
-// one-line reason in @p why on any bad key, value or file.
-std::unique_ptr<hl_slam_params_t> load_config(const std::string &file,
+// The tracker's parameters of the configuration @p file ([slam], [localize], [echo],
+// [normals] and [reloc] keys), then the K=V keys of @p sets in order, slam.profile before
+// the rest (as `houghlocd --config FILE --set K=V`). nullptr with a one-line reason in
+// @p why on any bad key, value or file ("FILE:LINE: key 'x.y': ...").
+std::unique_ptr<hl_params_t> load_config(const std::string &file,
                                          const std::vector<std::string> &sets,
                                          std::string *why);
 

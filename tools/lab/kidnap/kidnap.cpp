@@ -2,8 +2,10 @@
 // often hl_slam_relocalize finds a robot set down anywhere in a known map, heading
 // unknown, from one scan, and how long it takes.
 //
-// The parameters are the daemon's: its configuration loader reads --config (and --set),
-// so the experiment measures exactly what houghlocd would do with that file.
+// The parameters are the core's table (houghloc/params.h), read from --config (and --set)
+// in houghlocd's form: a file of the daemon's tracker keys gives what houghlocd would do
+// with it, and the global search's study keys (the table's level "study", which
+// houghlocd does not offer) are set here too.
 #include <getopt.h>
 
 #include <cerrno>
@@ -32,8 +34,9 @@ void usage(FILE *to)
         "  %s\n"
         "(a success is found, not ambiguous, within %.1f m and %.0f degrees of the truth;\n"
         "times are the call alone). Progress on stderr.\n"
-        "  --config FILE     houghlocd's configuration (/dev/null: the defaults)\n"
-        "  --set K=V         a configuration key, after the file (repeatable)\n"
+        "  --config FILE     the tracker's keys in houghlocd's form, the studies' too\n"
+        "                    (/dev/null: the defaults)\n"
+        "  --set K=V         a key, after the file (repeatable)\n"
         "  --world, --input  the row's first two cells\n"
         "A simulated world: the map is the daemon's map file MAP of its tour of the world\n"
         "FILE ('lab': the built-in lab); N soundings at random free poses, drawn with seed S\n"
@@ -176,7 +179,7 @@ bool run_sim_map(const hl_slam_params_t &p, const std::string &what, const std::
                  hlkid::Scorer *scorer)
 {
     std::string err;
-    std::unique_ptr<hl_slam_t, hlkid::SlamDeleter> slam(hl_slam_create(&p));
+    std::unique_ptr<hl_slam_t, hlkid::SlamDeleter> slam(hl_slam_create_with(&p));
     if (!slam) {
         std::fprintf(stderr, "hl-kidnap: %s: cannot create the slam\n", what.c_str());
         return false;
@@ -212,12 +215,12 @@ bool run_sim_map(const hl_slam_params_t &p, const std::string &what, const std::
 int run(const Options &o)
 {
     std::string why;
-    std::unique_ptr<hl_slam_params_t> cfg = hlkid::load_config(o.config, o.sets, &why);
+    std::unique_ptr<hl_params_t> cfg = hlkid::load_config(o.config, o.sets, &why);
     if (!cfg) {
         std::fprintf(stderr, "hl-kidnap: %s\n", why.c_str());
         return 1;
     }
-    const hl_slam_params_t &p = *cfg;
+    const hl_slam_params_t &p = *hl_params_slam(cfg.get());
     const std::string what = o.world + " " + o.input;
     hlkid::Scorer scorer(o.world, o.input, p.reloc, o.alone_first);
     std::string err;

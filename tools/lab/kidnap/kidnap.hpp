@@ -14,9 +14,9 @@
 
 #include "dataset.hpp"
 #include "inputs.hpp"
-#include "houghloc/map.h"
+#include "houghloc-internal/map.h"
 #include "houghloc-internal/slam_search.h"
-#include "houghloc/slam.h"
+#include "houghloc-internal/slam_params.h"
 
 namespace hlkid {
 

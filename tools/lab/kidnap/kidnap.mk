@@ -41,7 +41,7 @@ KIDNAP_WORLDS      ?= lab corridor
 KIDNAP_TOUR_SEEDS  ?= 1 2 3 4 5 6 7 8
 # What the map-making tour sets, each for the map under test to be the best the daemon
 # makes (measurements: docs/results/relocalization.md):
-#   daemon.lost_after=0 daemon.search_every=0   no lost mode: it calls the very search
+#   slam.lost_after=0 slam.search_every=0       no lost mode: it calls the very search
 #                                                under test, and the map must not depend on it
 #   slam.cull_choices=16                         keep the map by evidence (map.h), not the
 #                                                paper's uniform cull, which forgets walls
@@ -56,7 +56,7 @@ KIDNAP_TOUR_SEEDS  ?= 1 2 3 4 5 6 7 8
 #                                                stop's readings tie its heading to the world
 #   slam.long_drive_mm=2000                      after a drive of 2 m or more, also try the
 #                                                drive turned by +-6 and +-12 degrees
-KIDNAP_TOUR_SET    ?= daemon.lost_after=0 daemon.search_every=0 slam.cull_choices=16 \
+KIDNAP_TOUR_SET    ?= slam.lost_after=0 slam.search_every=0 slam.cull_choices=16 \
                       slam.map_per_place=3 slam.map_square_mm=100 slam.refine_heading=false \
                       slam.close_loops=true slam.square_walls=true slam.long_drive_mm=2000
 # As tools/lab/realeval/realeval.mk (read after this file) sets them: the same defaults.
@@ -82,10 +82,9 @@ TOUR_STUDY_OBJS := $(call obj,tools/lab/kidnap/tour_study.cpp tools/lab/kidnap/i
 LAB_BINS += $(BUILD)/bin/hl-kidnap $(BUILD)/bin/hl-tour-study
 LAB_INTEGRATION_TESTS += tools/lab/tests/test_kidnap.sh
 
-# hl-kidnap reads the daemon's configuration and map files with the daemon's own code
-# (houghloc-internal/daemon_config.h, include/internal/daemon; houghloc/mapstore.h), the
-# logs with the experiments' reader; so does hl-tour-study.
-$(call obj,$(KIDNAP_SRCS) tools/lab/kidnap/tour_study.cpp): CPPFLAGS += $(DAEMON_INTERNAL_INC)
+# hl-kidnap reads houghlocd's configuration keys through the core's table
+# (houghloc-internal/params.h) and map files with the store's code (houghloc/mapstore.h),
+# the logs with the experiments' reader; so does hl-tour-study.
 $(call obj,$(KIDNAP_SRCS) tools/lab/kidnap/tour_study.cpp): $(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CXX     $<"

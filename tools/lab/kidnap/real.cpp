@@ -89,7 +89,7 @@ bool run_real(const hl_slam_params_t &p, const hlexp::Soundings &log, int trials
         return false;
     }
     TruthMapper mapper(p, log);
-    std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create(&p));
+    std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create_with(&p));
     if (!slam) {
         *err = "cannot create the slam (out of memory?)";
         return false;

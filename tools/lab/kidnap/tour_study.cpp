@@ -5,7 +5,8 @@
 // and then its stops fitted to every match between two of them (loop closure, outside
 // the paper's method).
 //
-// The parameters are the daemon's: its configuration loader reads --config and --set.
+// The parameters are the core's table (houghloc/params.h), read from --config and --set
+// in houghlocd's form (inputs.hpp).
 #include <getopt.h>
 
 #include <algorithm>
@@ -23,9 +24,9 @@ extern "C" {
 #include "houghloc/mapstore.h"
 }
 
-#include "houghloc/map.h"
+#include "houghloc-internal/map.h"
 #include "houghloc-internal/slam_search.h"
-#include "houghloc/slam.h"
+#include "houghloc-internal/slam_params.h"
 #include "inputs.hpp"
 
 namespace {
@@ -66,8 +67,9 @@ void usage(FILE *to)
         "Prints a line per stop (stop, heading error in degrees, position error in mm), then\n"
         "  tour_study mode=MODE stops=N rmse_mm=X heading_rms_deg=X heading_mean_deg=X far=K\n"
         "(far: stops more than 0.5 m off). --quiet prints the last line alone.\n"
-        "  --config FILE     houghlocd's configuration (/dev/null: the defaults)\n"
-        "  --set K=V         a configuration key, after the file (repeatable)\n"
+        "  --config FILE     the tracker's keys in houghlocd's form, the studies' too\n"
+        "                    (/dev/null: the defaults)\n"
+        "  --set K=V         a key, after the file (repeatable)\n"
         "  --write-map MAP   (track, exact, graph) the tour's map as a houghlocd map file\n"
         "                    (hl-kidnap --map reads it): the slam's own; with graph, the\n"
         "                    scans the tour mapped drawn again at the fitted poses\n"
@@ -159,7 +161,7 @@ struct Tracked {
 bool track(const hl_slam_params_t &p, const hlexp::Soundings &tour, bool exact, Tracked *t,
            std::string *err)
 {
-    std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create(&p));
+    std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create_with(&p));
     if (!slam) {
         *err = "cannot create the slam";
         return false;
@@ -193,7 +195,7 @@ bool track(const hl_slam_params_t &p, const hlexp::Soundings &tour, bool exact, 
 bool oracle(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracked *t,
             std::vector<bool> *scored, std::string *err)
 {
-    std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create(&p));
+    std::unique_ptr<hl_slam_t, SlamDeleter> slam(hl_slam_create_with(&p));
     if (!slam) {
         *err = "cannot create the slam";
         return false;
@@ -218,8 +220,8 @@ bool oracle(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracked *t,
 
 // Stop @p k matched against stop @p j and its neighbours (those HL_CLOSURE_GAP before k);
 // false when the match does not count (above).
-bool match(const hl_slam_params_t &p, const hlexp::Soundings &tour, const Tracked &t,
-           size_t j, size_t k, hl_map_t *sub, hl_slam_t *probe, Pose2 *found)
+bool match(const hlexp::Soundings &tour, const Tracked &t, size_t j, size_t k, hl_map_t *sub,
+           hl_slam_t *probe, Pose2 *found)
 {
     hl_slam_state_t state;
     hl_slam_get_state(probe, &state);
@@ -236,7 +238,7 @@ bool match(const hl_slam_params_t &p, const hlexp::Soundings &tour, const Tracke
     if (hl_slam_localize(probe, &tour[k]->msg.scan, t.est[k], &loc, &pose) != HL_OK)
         return false;
     *found = hl_pg_from_pose(pose);
-    return hl_closure_counts(&loc, pose, t.est[k], p.min_votes, p.wild_mm);
+    return hl_closure_counts(&loc, pose, t.est[k], HL_SLAM_MIN_VOTES, HL_SLAM_WILD_MM);
 }
 
 // Loop closure: the tracked stops moved to the least-squares fit of their steps and of
@@ -245,7 +247,7 @@ bool close_loops(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracke
                  std::string *err)
 {
     const size_t n = t->est.size();
-    std::unique_ptr<hl_slam_t, SlamDeleter> probe(hl_slam_create(&p));
+    std::unique_ptr<hl_slam_t, SlamDeleter> probe(hl_slam_create_with(&p));
     std::unique_ptr<hl_map_t, MapDeleter> sub(hl_map_create(p.map_capacity, p.seed));
     if (!probe || !sub) {
         *err = "cannot create the slam";
@@ -267,7 +269,7 @@ bool close_loops(const hl_slam_params_t &p, const hlexp::Soundings &tour, Tracke
                 continue;
             Pose2 found;
             tried++;
-            if (match(p, tour, *t, j, k, sub.get(), probe.get(), &found))
+            if (match(tour, *t, j, k, sub.get(), probe.get(), &found))
                 edges.push_back(Edge{ static_cast<uint32_t>(j), static_cast<uint32_t>(k),
                                       hl_pg_between(poses[j], found), true });
         }
@@ -348,12 +350,12 @@ void error_of(hl_pose_t est, hl_pose_t truth, double *deg, double *mm)
 int run(const Options &o)
 {
     std::string err;
-    std::unique_ptr<hl_slam_params_t> cfg = hlkid::load_config(o.config, o.sets, &err);
+    std::unique_ptr<hl_params_t> cfg = hlkid::load_config(o.config, o.sets, &err);
     if (!cfg) {
         std::fprintf(stderr, "hl-tour-study: %s\n", err.c_str());
         return 1;
     }
-    const hl_slam_params_t &p = *cfg;
+    const hl_slam_params_t &p = *hl_params_slam(cfg.get());
     hlexp::Soundings tour;
     if (!hlkid::load_soundings(o.tour, &tour, &err)) {
         std::fprintf(stderr, "hl-tour-study: %s\n", err.c_str());

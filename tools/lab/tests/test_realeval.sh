@@ -241,28 +241,28 @@ check "a missing building: make fails with one line naming it" \
 
 # The paper files are the paper preset whole but for the raster bound; the improved
 # files keep the improved mode, the laser's with thin beams and a map for a building.
-"$BIN/houghlocd" --config /dev/null --set slam.mode=paper --print-config=all >"$tmp/paper" 2>&1
+"$BIN/houghlocd" --config /dev/null --set slam.profile=paper --print-config=all >"$tmp/paper" 2>&1
 for c in laser sonar; do
     "$BIN/houghlocd" --config "tools/lab/realeval/$c-paper.conf" --print-config=all >"$tmp/$c.paper" 2>&1
     check "$c-paper.conf: the preset's values (47 mm cells, global search, no guard)" \
-        sh -c 'grep -q "^mode = paper$" "$1" && grep -q "^cell_mm = 47$" "$1" &&
+        sh -c 'grep -q "^profile = paper$" "$1" && grep -q "^cell_mm = 47$" "$1" &&
                grep -q "^window_mm = 0$" "$1" && grep -q "^guarded = false$" "$1" &&
                grep -q "^echo_bearings = false$" "$1" && grep -q "^group_mm = 0$" "$1" &&
                grep -q "^map_per_place = 0$" "$1"' - "$tmp/$c.paper"
-    check "$c-paper.conf: [slam] .. [refine] as the bare preset but max_cells 64 Mi" sh -c '
+    check "$c-paper.conf: [slam] .. [reloc] as the bare preset but max_cells 64 Mi" sh -c '
         sed -n "/^\[slam\]/,\$p" "$1" | grep -v "^max_cells = " >"$1.tail"
         sed -n "/^\[slam\]/,\$p" "$2" | grep -v "^max_cells = " >"$2.tail"
         cmp -s "$1.tail" "$2.tail" && grep -q "^max_cells = 67108864$" "$1"' - "$tmp/$c.paper" "$tmp/paper"
 done
 "$BIN/houghlocd" --config tools/lab/realeval/laser.conf --print-config=all >"$tmp/laser.improved" 2>&1
 check "laser.conf in improved mode: echo bearings off, fitted normals keeping the unfitted, the guard on, a bounded 15,000-vector map" sh -c '
-    grep -q "^mode = improved$" "$1" && grep -q "^echo_bearings = false$" "$1" &&
+    grep -q "^profile = laser$" "$1" && grep -q "^echo_bearings = false$" "$1" &&
     grep -q "^fit_normals = true$" "$1" && grep -q "^keep_unfitted = true$" "$1" &&
     grep -q "^guarded = true$" "$1" && grep -q "^map_capacity = 15000$" "$1" &&
     grep -q "^map_per_place = 2$" "$1"' - "$tmp/laser.improved"
 "$BIN/houghlocd" --config tools/lab/realeval/sonar.conf --print-config=all >"$tmp/sonar.improved" 2>&1
 check "sonar.conf in improved mode: echo bearings on" sh -c '
-    grep -q "^mode = improved$" "$1" && grep -q "^echo_bearings = true$" "$1"' - "$tmp/sonar.improved"
+    grep -q "^profile = sonar-continuous$" "$1" && grep -q "^echo_bearings = true$" "$1"' - "$tmp/sonar.improved"
 
 # The real-data evaluation runs the product's profiles: its improved-mode files name them.
 check "make eval-real's laser and pseudo-sonar rows run slam.profile = laser / sonar-continuous" \

@@ -24,8 +24,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "houghloc/localize.h"
-#include "houghloc/map.h"
+#include "houghloc-internal/localize.h"
+#include "houghloc-internal/map.h"
 #include "houghloc/rng.h"
 #include "houghloc/scan.h"
 

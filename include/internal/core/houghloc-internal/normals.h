@@ -1,5 +1,5 @@
 /*
- * normals.h - each laser reading's surface normal, from its neighbours (an improvement
+ * normals.h (internal) - each laser reading's surface normal, from its neighbours (an improvement
  * on the paper for dense scanners).
  *
  * The paper's tangent vector is a sonar's: a sonar only hears a surface near square to
@@ -22,12 +22,11 @@
  * Readings are taken to be in bearing order, as a scanner gives them. No allocation;
  * O(n * w) for n readings and a window of w.
  */
-#ifndef HOUGHLOC_NORMALS_H
-#define HOUGHLOC_NORMALS_H
+#ifndef HOUGHLOC_INTERNAL_NORMALS_H
+#define HOUGHLOC_INTERNAL_NORMALS_H
 
 #include <stdint.h>
 
-#include "houghloc/export.h"
 #include "houghloc/scan.h"
 
 #ifdef __cplusplus
@@ -35,6 +34,12 @@ extern "C" {
 #endif
 
 #define HL_NORMALS_MAX_HALF_WINDOW 32
+
+/* Fixed (were settings): at 1 degree between beams, 4 neighbours each side span 0.6 m of
+ * a wall 4 m away; 250 mm of reach keeps the line on one surface near the robot and lets
+ * a far wall's sparser points still make one from their nearest neighbours. */
+#define HL_NORMALS_HALF_WINDOW 4
+#define HL_NORMALS_REACH_MM 250
 
 typedef struct hl_normals_params {
     uint16_t half_window;       /* neighbours looked at on each side, in scan order;
@@ -53,9 +58,9 @@ typedef struct hl_normals_params {
 } hl_normals_params_t;
 
 /** Fills @p p with the defaults above. */
-HL_API void hl_normals_params_default(hl_normals_params_t *p);
+void hl_normals_params_default(hl_normals_params_t *p);
 /** A one-line description of what is wrong with @p p, or NULL if nothing. */
-HL_API const char *hl_normals_params_error(const hl_normals_params_t *p);
+const char *hl_normals_params_error(const hl_normals_params_t *p);
 
 /**
  * Copies @p in to @p out with every valid reading's tilt set from the line through it and
@@ -65,7 +70,7 @@ HL_API const char *hl_normals_params_error(const hl_normals_params_t *p);
  * @return HL_OK; HL_ERR_ARG for NULL, overlap or invalid parameters; HL_ERR_RANGE when
  *         @p in fails hl_scan_check.
  */
-HL_API hl_status_t hl_normals_fit(const hl_normals_params_t *p, const hl_scan_t *in, hl_scan_t *out);
+hl_status_t hl_normals_fit(const hl_normals_params_t *p, const hl_scan_t *in, hl_scan_t *out);
 
 #ifdef __cplusplus
 }

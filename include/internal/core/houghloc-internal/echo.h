@@ -1,5 +1,5 @@
 /*
- * echo.h - where in the beam each sonar echo came from (an improvement on the paper).
+ * echo.h (internal) - where in the beam each sonar echo came from (an improvement on the paper).
  *
  * A sonar reading is the first echo from anywhere in a cone of about 22 degrees, but the
  * paper places it on the beam axis. For most readings that is wrong by up to half the
@@ -26,17 +26,25 @@
  * Integer arithmetic only; no allocation; O(n * k * s) for n readings, k neighbours
  * within a cone width and s candidate bearings (128 x 16 x 45 for the paper's ring).
  */
-#ifndef HOUGHLOC_ECHO_H
-#define HOUGHLOC_ECHO_H
+#ifndef HOUGHLOC_INTERNAL_ECHO_H
+#define HOUGHLOC_INTERNAL_ECHO_H
 
 #include <stdint.h>
 
-#include "houghloc/export.h"
 #include "houghloc/scan.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Fixed (were settings; the lab's studies found nothing better, docs/design/expert-keys.md):
+ * the candidate bearings' spacing, the range noise (10 mm + 1 %, the ring's), and the
+ * contradiction's cap and tie (3-16 and 0.25-1 were within noise of these). */
+#define HL_ECHO_STEP_DEG 0.5
+#define HL_ECHO_NOISE_MM 10
+#define HL_ECHO_NOISE_PERMILLE 10
+#define HL_ECHO_CAP 8           /* x 256 in cap_q8 */
+#define HL_ECHO_TIE 0.5         /* x 256 in tie_q8 */
 
 /* At most this many candidate bearings per reading (half_beam * 2 / step + 1). */
 #define HL_ECHO_MAX_CANDIDATES 257
@@ -57,9 +65,9 @@ typedef struct hl_echo_params {
 } hl_echo_params_t;
 
 /** Fills @p p with the defaults above. */
-HL_API void hl_echo_params_default(hl_echo_params_t *p);
+void hl_echo_params_default(hl_echo_params_t *p);
 /** A one-line description of what is wrong with @p p, or NULL if nothing. */
-HL_API const char *hl_echo_params_error(const hl_echo_params_t *p);
+const char *hl_echo_params_error(const hl_echo_params_t *p);
 
 /**
  * Copies @p in to @p out with every valid reading's bearing moved to its estimated echo
@@ -68,7 +76,7 @@ HL_API const char *hl_echo_params_error(const hl_echo_params_t *p);
  * @return HL_OK; HL_ERR_ARG for NULL, overlap or invalid parameters; HL_ERR_RANGE when
  *         @p in fails hl_scan_check.
  */
-HL_API hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_scan_t *out);
+hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_scan_t *out);
 
 #ifdef __cplusplus
 }
