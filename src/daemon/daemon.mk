@@ -31,10 +31,11 @@ $(BUILD)/asan/src/daemon/%.o: src/daemon/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
 	$(Q)$(CC) $(DAEMON_CPPFLAGS) $(DAEMON_CFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+# The daemon's tests also read the store tests' map file fixture (tests/store).
 $(BUILD)/asan/tests/daemon/%.o: tests/daemon/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
-	$(Q)$(CC) $(DAEMON_CPPFLAGS) $(DAEMON_CFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+	$(Q)$(CC) $(DAEMON_CPPFLAGS) -Itests/store $(DAEMON_CFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
 
 $(DAEMON_LIB): $(DAEMON_OBJS)
 $(DAEMON_ASAN_LIB): $(DAEMON_ASAN_OBJS)
