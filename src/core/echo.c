@@ -3,6 +3,8 @@
 
 #include <stdlib.h>
 
+#include "valid_scan.h"
+
 void hl_echo_params_default(hl_echo_params_t *p)
 {
     /* Not the 22-degree cone's 11: an echo must clear the receiver's threshold, and off
@@ -118,6 +120,14 @@ hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_s
         return HL_ERR_ARG;
     if (hl_scan_check(in) != HL_OK)
         return HL_ERR_RANGE;
+    return hl_echo_correct_valid(p, in, out);
+}
+
+hl_status_t hl_echo_correct_valid(const hl_echo_params_t *p, const hl_scan_t *in,
+                                  hl_scan_t *out)
+{
+    if (!in || !out || in == out || hl_echo_params_error(p))
+        return HL_ERR_ARG;
     uint32_t order[HL_SCAN_MAX_READINGS];
     uint32_t n = 0;
     for (uint32_t i = 0; i < in->count; i++)

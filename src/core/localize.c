@@ -14,6 +14,7 @@
 #include "peak.h"
 
 #include "loc_params.h"
+#include "valid_scan.h"
 #include "vgroup.h"
 
 struct hl_localizer {
@@ -402,8 +403,21 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
 {
     if (!loc || (!map && n > 0) || !scan || !query || !result)
         return HL_ERR_ARG;
+    if (hl_scan_check(scan) != HL_OK) {
+        memset(result, 0, sizeof *result);
+        return HL_ERR_RANGE;
+    }
+    return hl_loc_run_valid(loc, map, n, scan, query, result);
+}
+
+hl_status_t hl_loc_run_valid(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
+                             const hl_scan_t *scan, const hl_loc_query_t *query,
+                             hl_loc_result_t *result)
+{
+    if (!loc || (!map && n > 0) || !scan || !query || !result)
+        return HL_ERR_ARG;
     memset(result, 0, sizeof *result);
-    if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(query->predicted) ||
+    if (!hl_pose_in_range(query->predicted) ||
         query->window_mm < 0 || query->window_mm > HL_LOC_MAX_SIDE_MM / 2)
         return HL_ERR_RANGE;
     if (n > loc->p.max_map_vectors)

@@ -5,6 +5,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "valid_scan.h"
+
 void hl_normals_params_default(hl_normals_params_t *p)
 {
     /* At 1 degree between beams, 4 neighbours each side span 0.6 m of a wall 4 m away;
@@ -92,14 +94,26 @@ static bool fit_one(const hl_normals_params_t *p, const hl_scan_t *in, uint32_t 
     return true;
 }
 
+/* Input and output overlap. */
+static bool overlap(const hl_scan_t *in, const hl_scan_t *out)
+{
+    return (const void *)in < (const void *)(out + 1) && (const void *)out < (const void *)(in + 1);
+}
+
 hl_status_t hl_normals_fit(const hl_normals_params_t *p, const hl_scan_t *in, hl_scan_t *out)
 {
-    if (!p || !in || !out || hl_normals_params_error(p))
-        return HL_ERR_ARG;
-    if ((const void *)in < (const void *)(out + 1) && (const void *)out < (const void *)(in + 1))
+    if (!p || !in || !out || hl_normals_params_error(p) || overlap(in, out))
         return HL_ERR_ARG;
     if (hl_scan_check(in) != HL_OK)
         return HL_ERR_RANGE;
+    return hl_normals_fit_valid(p, in, out);
+}
+
+hl_status_t hl_normals_fit_valid(const hl_normals_params_t *p, const hl_scan_t *in,
+                                 hl_scan_t *out)
+{
+    if (!p || !in || !out || hl_normals_params_error(p) || overlap(in, out))
+        return HL_ERR_ARG;
     double px[HL_SCAN_MAX_READINGS], py[HL_SCAN_MAX_READINGS];     /* 16 KiB */
     for (uint32_t i = 0; i < in->count; i++)
         if (in->readings[i].valid)

@@ -43,8 +43,8 @@ const hl_config_key_t hl_config_keys[] = {
       "doubtful scans in a row (rejected, or matched far worse than recent ones) that make the "
       "daemon LOST: each scan then searches the whole map; 0: never" },
     { "daemon.search_every", HL_KEY_I32, S(search_every), 0, 1000000,
-      "while tracking, also search the whole map every this many scans, to notice a robot "
-      "carried away (a sonar's scans are seconds apart); 0: never" },
+      "while tracking, also search the whole map every this many scans and on every scan "
+      "tracking is in doubt about, to notice a robot carried away; 0: never" },
     { "daemon.lost_peak_ratio", HL_KEY_DOUBLE, S(lost_peak_ratio), 0, 1,
       "an accepted scan whose vote peak is below this fraction of the recent average is doubtful" },
     { "daemon.log_level", HL_KEY_LEVEL, F(log_level), 0, 0,

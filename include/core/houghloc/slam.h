@@ -11,6 +11,11 @@
  * the whole map for it while it is, and confirms what the search finds. Its answer is one
  * status, hl_slam_status_t, and the global search's fields when one ran.
  *
+ * The cycle is one pass: the scan is checked and prepared once, the prediction has one
+ * definition (hl_pose_predict), and no search runs twice with the same inputs within a
+ * scan (tracking's local search, computed before the recovery decides, is the one it
+ * compares and the one committed).
+ *
  * Two modes:
  *  - paper:    every localization is accepted and extends the map (the paper's method);
  *  - guarded:  the search is centred on the odometry prediction, and a pose is rejected
@@ -86,7 +91,7 @@ typedef enum hl_slam_status {
 /* Why the tracker became lost with a scan (hl_slam_step_t.lost_why). */
 typedef enum hl_slam_lost_why {
     HL_SLAM_LOST_NOT = 0,       /* it did not */
-    HL_SLAM_LOST_ELSEWHERE = 1, /* the periodic global search (search_every) found the
+    HL_SLAM_LOST_ELSEWHERE = 1, /* the watch's global search (search_every) found the
                                    robot elsewhere, explaining the scan clearly better */
     HL_SLAM_LOST_DOUBTFUL = 2,  /* lost_after doubtful scans in a row */
 } hl_slam_lost_why_t;
@@ -201,10 +206,14 @@ typedef struct hl_slam_params {
                                    the lost state after that many scans tracked well in a
                                    row; 0..1000000, 0 (the default): never lost by doubt */
     double lost_peak_ratio;     /* 0..1; default 0.5 */
-    int32_t search_every;       /* while tracking, every this many scans also run the
-                                   global search: a robot carried away is lost when it
-                                   finds the scan clearly better explained elsewhere;
-                                   0..1000000, 0 (the default): never */
+    int32_t search_every;       /* the watch: while tracking, every this many scans, and
+                                   on every scan tracking is in doubt about (the first
+                                   after hl_slam_restore, one it cannot localize against
+                                   a map that holds something, one rejected or with a
+                                   peak below lost_peak_ratio of the recent average),
+                                   also run the global search: a robot carried away is
+                                   lost when it finds the scan clearly better explained
+                                   elsewhere; 0..1000000, 0 (the default): never */
 } hl_slam_params_t;
 
 HL_API void hl_slam_params_default(hl_slam_params_t *p);
@@ -249,6 +258,8 @@ typedef struct hl_slam_step {
     bool searched_lost;             /* the global search ran because the tracker is lost
                                        (also when it became lost with this scan) ... */
     hl_status_t search_status;      /* ... and returned this (HL_OK: see search) */
+    bool watched;                   /* the watch (search_every) ran the global search on
+                                       this scan while tracking */
 } hl_slam_step_t;
 
 typedef struct hl_slam hl_slam_t;
