@@ -133,16 +133,6 @@ static hl_bam_t blend_heading(hl_bam_t predicted, hl_bam_t found, double gain)
     return (hl_bam_t)(predicted + (int32_t)lround(gain * d));
 }
 
-const hl_scan_t *hl_slam_prepare(const hl_slam_params_t *p, const hl_scan_t *scan,
-                                 hl_scan_t *echoed, hl_scan_t *fitted)
-{
-    if (p->echo_bearings && hl_echo_correct(&p->echo, scan, echoed) == HL_OK)
-        scan = echoed;
-    if (p->fit_normals && hl_normals_fit(&p->normals, scan, fitted) == HL_OK)
-        scan = fitted;
-    return scan;
-}
-
 /* hl_slam_prepare of a checked scan. */
 static const hl_scan_t *prepare_valid(const hl_slam_params_t *p, const hl_scan_t *scan,
                                       hl_scan_t *echoed, hl_scan_t *fitted)
@@ -152,6 +142,13 @@ static const hl_scan_t *prepare_valid(const hl_slam_params_t *p, const hl_scan_t
     if (p->fit_normals && hl_normals_fit_valid(&p->normals, scan, fitted) == HL_OK)
         scan = fitted;
     return scan;
+}
+
+const hl_scan_t *hl_slam_prepare(const hl_slam_params_t *p, const hl_scan_t *scan,
+                                 hl_scan_t *echoed, hl_scan_t *fitted)
+{
+    /* every step refuses a scan hl_scan_check refuses, and leaves its input */
+    return hl_scan_check(scan) == HL_OK ? prepare_valid(p, scan, echoed, fitted) : scan;
 }
 
 const hl_scan_t *hl_slam_ready(hl_slam_t *s, const hl_scan_t *scan)

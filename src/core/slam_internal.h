@@ -69,7 +69,7 @@ struct hl_slam {
     hl_slam_matching_t matching;
     hl_slam_recovery_t recovery;
     hl_scan_t *kept_scans;  /* reloc.scans copies when it is above 1: the scans the
-                               recovery's search takes together */
+                               recovery's search takes together, as prepared */
     hl_scan_t *search_echoed, *search_fitted;   /* HL_RELOC_MAX_SCANS each, as echoed and
                                fitted: the scans of hl_slam_relocalize_scans prepared */
     uint64_t scans;         /* hl_slam_update calls taken (search_every counts them) */
@@ -145,8 +145,8 @@ uint32_t hl_slam_judge_ready(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t pos
  *  recovery's state is left alone). */
 void hl_slam_place(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry);
 
-/** Hough, then the optional refinement, of @p scan against @p map (the slam's, or a loop
- *  closure's map of one earlier stop) from @p predicted. */
+/** Hough, then the optional refinement, of @p scan (checked) against @p map (the slam's,
+ *  or a loop closure's map of one earlier stop) from @p predicted; never memoized. */
 hl_status_t hl_slam_localize_in(hl_slam_t *s, const hl_map_t *map, const hl_scan_t *scan,
                                 hl_pose_t predicted, hl_loc_result_t *loc, hl_pose_t *pose);
 

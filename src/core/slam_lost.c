@@ -1,9 +1,16 @@
 /*
  * slam_lost.c - hl_slam_update: tracking, and the recovery of a robot whose pose is lost.
  *
- * The tracker is lost when the global search, run on every search_every-th scan while
- * tracking, finds the robot clearly elsewhere (it was carried away: tracking may match a
- * wrong place of a corridor well enough); after lost_after doubtful scans in a row
+ * One pass: hl_slam_update checks and prepares the scan once; tracking's answer is
+ * computed first (hl_slam_propose) and committed only after the watch has decided, so the
+ * watch compares the search with the very local search tracking takes; the searches made
+ * to confirm or compare are memoized for the scan (slam_internal.h), so none runs twice
+ * with the same inputs.
+ *
+ * The tracker is lost when the watch's global search (search_every > 0: on every scan
+ * tracking is in doubt about, and every search_every-th scan) finds the robot clearly
+ * elsewhere (it was carried away: tracking may match a wrong place of a corridor well
+ * enough); after lost_after doubtful scans in a row
  * (rejected, or accepted with a peak below lost_peak_ratio of the recent average: the
  * estimate drifted off the map, or the robot entered unmapped space); or when told
  * (hl_slam_lose). While lost:

@@ -205,9 +205,7 @@ hl_status_t __wrap_hl_reloc_run_scans_valid(hl_reloc_t *r, const hl_vector_t *ma
 #define MAPPED 30
 
 typedef struct run {
-    walk_t *w;
-    hl_slam_t *s;
-    hl_scan_t *scan;
+    walk_run_t walk;
     counts_t total;         /* over every scan so far */
 } run_t;
 
@@ -215,33 +213,27 @@ typedef struct run {
  * the sonar's echo bearings on (the synthetic ray is thin: they move little). */
 static run_t start(uint64_t seed, int32_t search_every)
 {
-    run_t r = { .w = make_walk(seed), .scan = malloc(sizeof *r.scan) };
     hl_slam_params_t p;
     ray_sensor_defaults(&p);
     p.echo_bearings = true;
     p.lost_after = 2;
     p.search_every = search_every;
-    r.s = hl_slam_create(&p);
-    assert_non_null(r.s);
-    hl_slam_reset(r.s, r.w->truth[0]);
-    return r;
+    return (run_t){ .walk = walk_run_start(seed, &p) };
 }
 
 static void finish(run_t *r)
 {
-    hl_slam_destroy(r->s);
-    free(r->scan);
-    free(r->w);
+    walk_run_finish(&r->walk);
 }
 
 /* One scan sounded at @p truth, the odometry saying @p odometry, counted on its own: it is
  * checked once and echo-corrected once, and no search repeats its inputs. */
 static hl_slam_step_t sound(run_t *r, hl_pose_t truth, hl_pose_t odometry, counts_t *out)
 {
-    sr_sound(&r->w->room, truth, 128, 8000, 15, r->scan);
+    sr_sound(&r->walk.w->room, truth, 128, 8000, 15, r->walk.scan);
     memset(&n, 0, sizeof n);
     hl_slam_step_t step;
-    assert_int_equal(hl_slam_update(r->s, r->scan, odometry, &step), HL_OK);
+    assert_int_equal(hl_slam_update(r->walk.s, r->walk.scan, odometry, &step), HL_OK);
     assert_int_equal(n.checks, 1);
     assert_int_equal(n.echoes, 1);
     assert_int_equal(n.repeated_local, 0);
@@ -265,8 +257,8 @@ static void test_tracked_walk_one_search_a_scan(void **state)
     int watched = 0, doubted = 0;
     for (int i = 0; i < STEPS; i++) {
         counts_t c;
-        hl_slam_step_t step = sound(&r, r.w->truth[i], r.w->odom[i], &c);
-        assert_false(hl_slam_lost(r.s));
+        hl_slam_step_t step = sound(&r, r.walk.w->truth[i], r.walk.w->odom[i], &c);
+        assert_false(hl_slam_lost(r.walk.s));
         assert_int_equal(c.local, 1);
         assert_int_equal(c.global, step.watched ? 1 : 0);
         bool doubt = step.status != HL_SLAM_ACCEPTED;
@@ -286,16 +278,10 @@ static void test_tracked_walk_one_search_a_scan(void **state)
     finish(&r);
 }
 
-/* The step of the walk farthest from where it stands after MAPPED steps. */
+/* Where a kidnapper sets the robot down after MAPPED steps. */
 static int far_step(const run_t *r)
 {
-    int best = 0;
-    for (int i = 0; i < MAPPED - 5; i++)
-        if (dist(r->w->truth[i], r->w->truth[MAPPED - 1]) >
-            dist(r->w->truth[best], r->w->truth[MAPPED - 1]))
-            best = i;
-    assert_true(dist(r->w->truth[best], r->w->truth[MAPPED - 1]) > 1500);
-    return best;
+    return walk_far_step(r->walk.w, MAPPED);
 }
 
 /* Carried away between two periodic searches: the first scan there is in doubt, so the
@@ -306,27 +292,27 @@ static void test_carried_away_searched_when_in_doubt(void **state)
     (void)state;
     run_t r = start(22, 1000);
     for (int i = 0; i < MAPPED; i++)
-        sound(&r, r.w->truth[i], r.w->odom[i], NULL);
-    assert_false(hl_slam_lost(r.s));
+        sound(&r, r.walk.w->truth[i], r.walk.w->odom[i], NULL);
+    assert_false(hl_slam_lost(r.walk.s));
     int k = far_step(&r);
-    hl_pose_t still = r.w->odom[MAPPED - 1];
+    hl_pose_t still = r.walk.w->odom[MAPPED - 1];
     counts_t c;
-    hl_slam_step_t out = sound(&r, r.w->truth[k], still, &c);
+    hl_slam_step_t out = sound(&r, r.walk.w->truth[k], still, &c);
     assert_true(out.watched);
     assert_int_equal(out.status, HL_SLAM_RELOCALIZED);
     assert_int_equal(out.lost_why, HL_SLAM_LOST_ELSEWHERE);
-    assert_true(dist(out.pose, r.w->truth[k]) < 300);
+    assert_true(dist(out.pose, r.walk.w->truth[k]) < 300);
     assert_int_equal(c.local, 1);
     assert_int_equal(c.global, 1);
 
     /* the next step: the candidate confirmed by one local search, which tracking takes */
-    hl_pose_t moved = hl_pose_compose(still, hl_pose_between(r.w->truth[k], r.w->truth[k + 1]));
-    out = sound(&r, r.w->truth[k + 1], moved, &c);
+    hl_pose_t moved = hl_pose_compose(still, hl_pose_between(r.walk.w->truth[k], r.walk.w->truth[k + 1]));
+    out = sound(&r, r.walk.w->truth[k + 1], moved, &c);
     assert_int_equal(out.found_how, HL_SLAM_FOUND_CONFIRMED);
     assert_int_equal(out.status, HL_SLAM_ACCEPTED);
     assert_int_equal(c.local, 1);
     assert_int_equal(c.global, 0);
-    assert_false(hl_slam_lost(r.s));
+    assert_false(hl_slam_lost(r.walk.s));
     finish(&r);
 }
 
@@ -338,22 +324,22 @@ static void test_lost_by_doubt_one_pass(void **state)
     (void)state;
     run_t r = start(22, 0);
     for (int i = 0; i < MAPPED; i++)
-        sound(&r, r.w->truth[i], r.w->odom[i], NULL);
+        sound(&r, r.walk.w->truth[i], r.walk.w->odom[i], NULL);
     int k = far_step(&r);
-    hl_pose_t still = r.w->odom[MAPPED - 1];
+    hl_pose_t still = r.walk.w->odom[MAPPED - 1];
     counts_t c;
-    hl_slam_step_t out = sound(&r, r.w->truth[k], still, &c);
+    hl_slam_step_t out = sound(&r, r.walk.w->truth[k], still, &c);
     assert_int_equal(out.status, HL_SLAM_REJECTED_WILD);
     assert_false(out.watched);
     assert_int_equal(c.global, 0);
-    out = sound(&r, r.w->truth[k], still, &c);
+    out = sound(&r, r.walk.w->truth[k], still, &c);
     assert_int_equal(out.lost_why, HL_SLAM_LOST_DOUBTFUL);
     assert_true(out.searched_lost);
     assert_int_equal(c.local, 1);
     assert_int_equal(c.global, 1);
     for (int i = 1; i < 4; i++) {
-        hl_pose_t at = r.w->truth[k + i];
-        sound(&r, at, hl_pose_compose(still, hl_pose_between(r.w->truth[k], at)), &c);
+        hl_pose_t at = r.walk.w->truth[k + i];
+        sound(&r, at, hl_pose_compose(still, hl_pose_between(r.walk.w->truth[k], at)), &c);
         assert_true(c.local <= 2);     /* the candidate's, and tracking's from its own */
     }
     finish(&r);
@@ -367,20 +353,20 @@ static void test_restored_tracker_searches_first_scan(void **state)
     (void)state;
     run_t a = start(31, 1000);
     for (int i = 0; i < 20; i++)
-        sound(&a, a.w->truth[i], a.w->odom[i], NULL);
+        sound(&a, a.walk.w->truth[i], a.walk.w->odom[i], NULL);
     hl_slam_state_t st;
-    hl_slam_get_state(a.s, &st);
-    hl_map_t *m = hl_slam_map(a.s);
+    hl_slam_get_state(a.walk.s, &st);
+    hl_map_t *m = hl_slam_map(a.walk.s);
 
     run_t b = start(31, 1000);
-    sound(&b, b.w->truth[0], b.w->odom[0], NULL);   /* its period's first scan behind it */
-    assert_int_equal(hl_slam_restore(b.s, &st, hl_map_vectors(m), hl_map_count(m)), HL_OK);
+    sound(&b, b.walk.w->truth[0], b.walk.w->odom[0], NULL);   /* its period's first scan behind it */
+    assert_int_equal(hl_slam_restore(b.walk.s, &st, hl_map_vectors(m), hl_map_count(m)), HL_OK);
     counts_t c;
-    hl_slam_step_t out = sound(&b, b.w->truth[20], b.w->odom[20], &c);
+    hl_slam_step_t out = sound(&b, b.walk.w->truth[20], b.walk.w->odom[20], &c);
     assert_true(out.watched);
     assert_int_equal(c.global, 1);
     assert_int_equal(out.status, HL_SLAM_ACCEPTED);
-    out = sound(&b, b.w->truth[21], b.w->odom[21], &c);
+    out = sound(&b, b.walk.w->truth[21], b.walk.w->odom[21], &c);
     assert_false(out.watched);
     assert_int_equal(c.global, 0);
     finish(&a);
