@@ -2,21 +2,25 @@
 #
 #   make            build the product into build/: the daemon, its clients and tools, the
 #                   libraries and the bindings (BINS)
-#   make test       install missing packages, build the product, the unit tests and the
-#                   lab programs the tests exercise, run all tests (unit tests under
-#                   AddressSanitizer + UndefinedBehaviorSanitizer)
+#   make test       install missing packages, build the product and its unit tests, run
+#                   the product's tests (unit tests under AddressSanitizer +
+#                   UndefinedBehaviorSanitizer, then the integration tests and the
+#                   goldens); nothing of the laboratory is built
 #   make demo       houghlocd drives the built-in simulated robot through the lab
 #                   (WORLD=corridor: the second building)
 #   make lab        build the laboratory's programs (LAB_BINS, tools/lab/lab.mk); its
 #                   targets build what they need and run it: bench, logs, experiments,
 #                   experiments-seeds, kidnap, eval-real, trials
+#   make lab-test   the laboratory's own tests (tools/lab/tests): its programs, make
+#                   kidnap and make eval-real on small inputs; CI runs it after make test
 #   make fuzz       the fuzz targets under libFuzzer (tests/fuzz/fuzz.mk)
 #   make crash-trials  kill -9 of houghlocd during a replay, 100 times (src/daemon)
 #   make clean
 #
 # The product's fragments (src/*/*.mk, tools/*/*.mk, tests/*/*.mk, packaging/*.mk) add
 # their programs to BINS and their tests to TEST_BINS and INTEGRATION_TESTS; the lab's
-# (tools/lab/lab.mk and tools/lab/*/*.mk) add theirs to LAB_BINS.
+# (tools/lab/lab.mk and tools/lab/*/*.mk) add theirs to LAB_BINS, LAB_TEST_BINS and
+# LAB_INTEGRATION_TESTS.
 
 BUILD    ?= build
 CC       ?= cc
@@ -39,15 +43,19 @@ SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fra
 # Layers are enforced here: each compiles with the public headers of its own layer and of
 # those it builds on, and nothing else. include/core/houghloc is the core's API (and
 # libhoughloc's installed headers); include/robot, include/bus and include/store those of
-# the robot link, the bus and the map and key files; include/internal holds the core's
-# private modules that its own tests and the laboratory's research tools read
-# (houghloc-internal/...). Only src/bus and the tools see the generated LCM headers
-# (LCMGEN_CPPFLAGS); only src/daemon sees its own folder.
+# the robot link, the bus and the map and key files. include/internal holds what is not
+# API, one folder per layer that implements it, each spelt houghloc-internal/NAME.h:
+# include/internal/core the core's private modules (the pose graph, loop closure's
+# matcher, the solve layer's interface) that the core's and the solve layer's tests and
+# the laboratory's research tools read; include/internal/daemon the daemon's configuration
+# loader for the laboratory's tools. Only src/bus and the tools see the generated LCM
+# headers (LCMGEN_CPPFLAGS); only src/daemon sees its own folder.
 HL_DEFS      := -D_POSIX_C_SOURCE=200809L -MMD -MP
 CORE_INC     := -Iinclude/core
-INTERNAL_INC := -Iinclude/internal
+CORE_INTERNAL_INC   := -Iinclude/internal/core
+DAEMON_INTERNAL_INC := -Iinclude/internal/daemon
 PUBLIC_INC   := $(CORE_INC) -Iinclude/robot -Iinclude/bus -Iinclude/store
-CORE_CPPFLAGS  := $(CORE_INC) $(INTERNAL_INC) $(HL_DEFS)
+CORE_CPPFLAGS  := $(CORE_INC) $(CORE_INTERNAL_INC) $(HL_DEFS)
 ROBOT_CPPFLAGS := $(CORE_INC) -Iinclude/robot $(HL_DEFS)
 LCMGEN_CPPFLAGS := -I$(BUILD)/lcmtypes
 BUS_CPPFLAGS   := $(CORE_INC) -Iinclude/bus $(LCMGEN_CPPFLAGS) $(HL_DEFS)
@@ -87,7 +95,8 @@ obj     = $(patsubst %.c,$(BUILD)/obj/%.o,$(patsubst %.cpp,$(BUILD)/obj/%.o,$(1)
 asanobj = $(patsubst %.c,$(BUILD)/asan/%.o,$(1))
 
 # The core's library carries the solve layer (src/solve/solve.mk): C++ on Eigen, compiled
-# with Eigen's include path alone, called by the core through include/internal/houghloc-internal/solve.h.
+# with Eigen's include path alone, called by the core through houghloc-internal/solve.h
+# (include/internal/core).
 SOLVE_SRCS := $(sort $(wildcard src/solve/*.cpp))
 CORE_OBJS      := $(call obj,$(CORE_SRCS) $(SOLVE_SRCS)) $(BUILD)/obj/gen/trig_table.o
 CORE_ASAN_OBJS := $(call asanobj,$(CORE_SRCS)) $(patsubst %.cpp,$(BUILD)/asan/%.o,$(SOLVE_SRCS)) \
@@ -104,7 +113,9 @@ CORE_TESTS := $(patsubst tests/core/%.c,$(BUILD)/tests/core/%,$(wildcard tests/c
 TEST_BINS  := $(CORE_TESTS)
 BINS       :=
 LAB_BINS   :=
-INTEGRATION_TESTS := tests/integration/test_tools.sh
+# Every product program's usage (test_usage.sh) and the layering the include paths
+# cannot enforce (test_layers.sh).
+INTEGRATION_TESTS := tests/integration/test_usage.sh tests/integration/test_layers.sh
 
 .PHONY: all deps test unit-test demo clean lcmtypes
 .DEFAULT_GOAL := all
@@ -181,8 +192,9 @@ $(BUILD)/asan/src/core/%.o: src/core/%.c
 	@echo "  CC-SAN  $<"
 	$(Q)$(CC) $(CORE_CPPFLAGS) $(CFLAGS) $(HIDDEN) $(SAN) -c -o $@ $<
 # The core's tests also read its private modules: houghloc-internal/ and src/core's own
-# headers (peak.h, blur.h).
-$(BUILD)/asan/tests/core/%.o: CPPFLAGS += $(INTERNAL_INC) -Isrc/core
+# headers (peak.h, blur.h); and the tests' support (tests/support: synthetic rooms, the
+# reference localizer).
+$(BUILD)/asan/tests/core/%.o: CPPFLAGS += $(CORE_INTERNAL_INC) -Isrc/core $(TEST_SUPPORT_INC)
 $(BUILD)/asan/%.o: %.c | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
@@ -198,7 +210,7 @@ $(CORE_ASAN_LIB): $(CORE_ASAN_OBJS)
 $(LCM_LIB): $(LCM_OBJS)
 
 # ---- unit tests -----------------------------------------------------------------------
-$(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TESTKIT_ASAN_LIB) $(CORE_ASAN_LIB)
+$(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TEST_SUPPORT_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CC) $(SAN) -o $@ $^ $(TEST_LDFLAGS) $(CMOCKA_LIBS) $(SYS_LIBS)
@@ -206,10 +218,10 @@ $(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TESTKIT_ASAN_LIB) $(CORE_A
 unit-test: $(TEST_BINS)
 	$(Q)sh tests/run-unit.sh $(TEST_BINS)
 
-# The integration tests run the product and the lab's programs (test_tools.sh, kidnap,
-# eval-real), so both are built first.
+# The product's tests: they run the programs `make` builds, nothing of the laboratory
+# (its tests are make lab-test's, tools/lab/lab.mk).
 test: deps
-	$(Q)$(MAKE) --no-print-directory all lab
+	$(Q)$(MAKE) --no-print-directory all
 	$(Q)$(MAKE) --no-print-directory unit-test
 	$(Q)sh tests/run-integration.sh $(INTEGRATION_TESTS)
 

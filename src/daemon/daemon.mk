@@ -1,10 +1,11 @@
 # src/daemon/daemon.mk - houghlocd: the daemon (config, poll loop, cycle, publishing, map
 # persistence, authentication keys). The only code that owns fds, timers and signals.
 # It sees every layer's public headers and its own folder, never the generated LCM
-# headers (messages go through src/bus); of the internal ones only
-# houghloc-internal/daemon_config.h, which it implements for the laboratory's tools.
+# headers (messages go through src/bus); of the internal ones only its own folder,
+# include/internal/daemon (houghloc-internal/daemon_config.h, which it implements for the
+# laboratory's tools), never the core's.
 
-DAEMON_CPPFLAGS := $(PUBLIC_INC) -Iinclude/internal -Isrc/daemon $(HL_DEFS)
+DAEMON_CPPFLAGS := $(PUBLIC_INC) $(DAEMON_INTERNAL_INC) -Isrc/daemon $(HL_DEFS)
 DAEMON_PKGS     := inih libsystemd zlib libserialport
 DAEMON_CFLAGS   := $(shell pkg-config --cflags $(DAEMON_PKGS) 2>/dev/null) $(PKG_CFLAGS)
 DAEMON_LIBS     := $(shell pkg-config --libs $(DAEMON_PKGS) 2>/dev/null)
@@ -31,10 +32,11 @@ $(BUILD)/asan/src/daemon/%.o: src/daemon/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
 	$(Q)$(CC) $(DAEMON_CPPFLAGS) $(DAEMON_CFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+# The daemon's tests also read the store tests' map file fixture (tests/store).
 $(BUILD)/asan/tests/daemon/%.o: tests/daemon/%.c
 	@mkdir -p $(@D)
 	@echo "  CC-SAN  $<"
-	$(Q)$(CC) $(DAEMON_CPPFLAGS) $(DAEMON_CFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
+	$(Q)$(CC) $(DAEMON_CPPFLAGS) -Itests/store $(DAEMON_CFLAGS) $(CFLAGS) $(SAN) -c -o $@ $<
 
 $(DAEMON_LIB): $(DAEMON_OBJS)
 $(DAEMON_ASAN_LIB): $(DAEMON_ASAN_OBJS)

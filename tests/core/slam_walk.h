@@ -8,7 +8,7 @@
 #include <stdlib.h>
 
 #include "houghloc/slam.h"
-#include "../../tools/lab/testkit/synthroom.h"
+#include "synthroom.h"
 
 #define STEPS 40
 

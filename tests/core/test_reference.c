@@ -1,4 +1,4 @@
-/* The fixed-point localizer against the floating-point reference (tools/lab/testkit):
+/* The fixed-point localizer against the floating-point reference (tests/support):
  * on randomized scenes the peak cell is the same and the interpolated poses agree
  * within half a cell (and half a heading step).
  *
@@ -21,8 +21,8 @@
 #include <stdlib.h>
 
 #include "houghloc/localize.h"
-#include "../../tools/lab/testkit/ref_localize.h"
-#include "../../tools/lab/testkit/synthroom.h"
+#include "ref_localize.h"
+#include "synthroom.h"
 
 #define SCENES 24
 

@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "houghloc/refine.h"
-#include "../../tools/lab/testkit/synthroom.h"
+#include "synthroom.h"
 
 typedef struct fixture {
     sr_room_t room;

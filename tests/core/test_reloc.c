@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "houghloc/reloc.h"
-#include "../../tools/lab/testkit/synthroom.h"
+#include "synthroom.h"
 #include "reloc_ring.h"
 
 typedef struct fixture {

@@ -16,7 +16,7 @@
 
 #include "houghloc-internal/slam_search.h"
 #include "houghloc/slam.h"
-#include "../../tools/lab/testkit/synthroom.h"
+#include "synthroom.h"
 
 #include "slam_walk.h"
 

@@ -1,7 +1,7 @@
 /* Tests for the map file's default location (map_location.c) and for the refusal of a
  * map file larger than the configured map (mapstore.c's HL_ERR_CAPACITY tells how many
  * vectors it holds, so that the daemon can name the capacity to set). */
-#include "../store/mapstore_fixture.h"
+#include "mapstore_fixture.h"
 
 #include "map_location.h"
 

@@ -34,7 +34,9 @@ FUZZ_UNLISTED := $(filter-out $(FUZZ_NAMES),$(patsubst tests/fuzz/fuzz_%,%,$(bas
                  $(wildcard tests/fuzz/fuzz_*.c tests/fuzz/fuzz_*.cpp))))
 $(if $(FUZZ_UNLISTED),$(error tests/fuzz/fuzz.mk: put fuzz_$(firstword $(FUZZ_UNLISTED)) in a group))
 
-FUZZ_INC := -Itests/fuzz -Isrc/daemon -Itools/carmen -Itools/sim $(INTERNAL_INC)
+# (The libFuzzer build compiles every layer's sources with these: both internal folders.)
+FUZZ_INC := -Itests/fuzz -Isrc/daemon -Itools/carmen -Itools/sim $(CORE_INTERNAL_INC) \
+            $(DAEMON_INTERNAL_INC)
 FUZZ_SIM_ASAN_LIB := $(BUILD)/lib/libhoughloc_sim_asan.a
 FUZZ_CARMEN_ASAN_OBJ := $(BUILD)/asan/tools/carmen/carmen_log.o
 

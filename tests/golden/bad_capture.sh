@@ -16,24 +16,22 @@ trap 'rm -rf "$tmp"' EXIT
 . tests/integration/lib.sh
 
 # replay NAME CAPTURE: houghlocd on CAPTURE (at most 60 s); its exit code in $tmp/NAME.rc,
-# its output log $tmp/NAME.lcmlog, its SONAR and ODOMETRY extracted.
+# its output log $tmp/NAME.lcmlog, its SONAR and ODOMETRY as the goldens' text, one line
+# a message ($tmp/NAME.SONAR, $tmp/NAME.ODOMETRY).
 replay() {
     timeout 60 "$BIN/houghlocd" --config $G/arcos.conf --set robot.link=file:$2 \
         --fresh-map --map "$tmp/$1.hlmap" --lcm-url memq:// \
         --lcm-out "file://$tmp/$1.lcmlog?mode=w" 2>"$tmp/$1.err"
     echo $? >"$tmp/$1.rc"
     for ch in SONAR ODOMETRY; do
-        "$BIN/hl-eval" extract "$tmp/$1.lcmlog" $ch "$tmp/$1.$ch" 2>/dev/null || : >"$tmp/$1.$ch"
+        "$BIN/hl-eval" text "$tmp/$1.lcmlog" $ch "$tmp/$1.$ch" 2>/dev/null || : >"$tmp/$1.$ch"
     done
 }
 bad_packets() { "$BIN/hl-eval" status "$tmp/$1.lcmlog" | sed -n 's/.* bad_packets=\([0-9]*\) .*/\1/p'; }
-# records FILE: how many records an extracted stream holds (4-byte length, payload)
-records() {
-    od -An -v -tu1 "$1" | awk '{ for (i = 1; i <= NF; i++) b[n++] = $i }
-        END { i = 0; r = 0; while (i + 4 <= n) { i += 4 + ((b[i] * 256 + b[i + 1]) * 256 + b[i + 2]) * 256 + b[i + 3]; r++ }; print r }'
-}
-# is_prefix SHORT LONG: SHORT is LONG's beginning (and not empty)
-is_prefix() { [ -s "$1" ] && head -c "$(wc -c <"$1")" "$2" | cmp -s - "$1"; }
+# messages FILE: how many messages a text stream holds (one a line)
+messages() { wc -l <"$1"; }
+# is_prefix SHORT LONG: SHORT's messages are LONG's first ones (and there are some)
+is_prefix() { [ -s "$1" ] && head -n "$(messages "$1")" "$2" | cmp -s - "$1"; }
 
 # The offsets at which the capture's packets start (0xFA 0xFB, count, count bytes).
 od -An -v -tu1 $G/arcos.capture | awk '
@@ -54,8 +52,8 @@ done
 tail -c +$((prev + 1)) $G/arcos.capture >>"$tmp/garbled"
 replay garbled "$tmp/garbled"
 check "garbage between packets: exit 0" test "$(cat "$tmp/garbled.rc")" -eq 0
-check "... the same SONAR as the intact capture" cmp -s "$tmp/garbled.SONAR" $G/arcos.SONAR
-check "... the same ODOMETRY" cmp -s "$tmp/garbled.ODOMETRY" $G/arcos.ODOMETRY
+check "... the same SONAR as the intact capture" cmp -s "$tmp/garbled.SONAR" $G/arcos.SONAR.txt
+check "... the same ODOMETRY" cmp -s "$tmp/garbled.ODOMETRY" $G/arcos.ODOMETRY.txt
 check "... and the garbage counted in STATUS bad_packets" test "$(bad_packets garbled)" -gt 0
 
 # Cut in the middle of the last packet but one.
@@ -63,8 +61,8 @@ cut=$(($(tail -2 "$tmp/starts" | head -1) + 5))
 head -c $cut $G/arcos.capture >"$tmp/cut"
 replay cut "$tmp/cut"
 check "a capture cut inside a packet: exit 0" test "$(cat "$tmp/cut.rc")" -eq 0
-check "... its ODOMETRY the golden's beginning" is_prefix "$tmp/cut.ODOMETRY" $G/arcos.ODOMETRY
-check "... one message short of it" test "$(wc -c <"$tmp/cut.ODOMETRY")" -lt "$(wc -c <$G/arcos.ODOMETRY)"
+check "... its ODOMETRY the golden's beginning" is_prefix "$tmp/cut.ODOMETRY" $G/arcos.ODOMETRY.txt
+check "... one message short of it" test "$(messages "$tmp/cut.ODOMETRY")" -lt "$(messages $G/arcos.ODOMETRY.txt)"
 
 # A byte flipped inside a SIP: its checksum fails, the rest goes on. (The sounding does
 # not: one SIP fewer puts the daemon's robot time a SIP behind what the captured robot
@@ -76,10 +74,8 @@ tail -c +$((flip + 2)) $G/arcos.capture >>"$tmp/flipped"
 replay flipped "$tmp/flipped"
 check "a corrupted SIP: exit 0, counted in bad_packets" \
     sh -c "test $(cat "$tmp/flipped.rc") -eq 0 && test $(bad_packets flipped) -gt 0"
-# every ODOMETRY record is as long as the first: 4 bytes of length and the payload
-record=$(od -An -v -tu1 -N4 $G/arcos.ODOMETRY | awk '{ print 4 + (($1 * 256 + $2) * 256 + $3) * 256 + $4 }')
 check "... and every other SIP is published: one ODOMETRY fewer than the golden's" \
-    test "$(wc -c <"$tmp/flipped.ODOMETRY")" -eq $(($(wc -c <$G/arcos.ODOMETRY) - record))
+    test "$(messages "$tmp/flipped.ODOMETRY")" -eq $(($(messages $G/arcos.ODOMETRY.txt) - 1))
 
 # Nothing but garbage (bytes of a sonar log: 0xFA 0xFB may turn up, with wrong counts).
 head -c "$size" logs/tour.lcmlog >"$tmp/junk"
@@ -107,7 +103,7 @@ if sh tests/golden/capture.sh "$tmp/fresh.capture" >/dev/null; then
     replay fresh1 "$tmp/fresh.capture"
     replay fresh2 "$tmp/fresh.capture"
     check "a fresh capture replays to one SONAR, the same twice" \
-        sh -c "test $(records "$tmp/fresh1.SONAR") -eq 1 && cmp -s $tmp/fresh1.SONAR $tmp/fresh2.SONAR &&
+        sh -c "test $(messages "$tmp/fresh1.SONAR") -eq 1 && cmp -s $tmp/fresh1.SONAR $tmp/fresh2.SONAR &&
                cmp -s $tmp/fresh1.ODOMETRY $tmp/fresh2.ODOMETRY"
 else
     check "houghloc-sim --capture records a connection" false

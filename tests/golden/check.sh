@@ -1,19 +1,22 @@
 #!/bin/sh
 # tests/golden/check.sh - the goldens, kept as gpsd keeps its regression logs: houghlocd's
-# output for fixed inputs, committed, compared byte for byte, so that any change of output
-# is a visible diff. One golden a line below (GOLDENS); each is
-#   pose NAME LOG KEY=VALUE...   the POSE stream of houghlocd's batch replay of LOG with
-#                                those settings (hl-eval extract OUT POSE)
-#   arcos                        the SONAR and ODOMETRY houghlocd publishes from a captured
-#                                ARCOS byte stream (arcos.capture, replayed with
-#                                robot.link = file:, settings arcos.conf)
+# output for fixed inputs, committed as text, one line per message with every field
+# (hl-eval text; the format in tests/golden/README.md), compared byte for byte, so that
+# any change of output is a visible diff. One golden a line below (GOLDENS); each is
+#   pose NAME LOG KEY=VALUE...   NAME.POSE.txt: the POSE stream of houghlocd's batch replay
+#                                of LOG with those settings
+#   arcos                        arcos.SONAR.txt and arcos.ODOMETRY.txt: the SONAR and
+#                                ODOMETRY houghlocd publishes from a captured ARCOS byte
+#                                stream (arcos.capture, replayed with robot.link = file:,
+#                                settings arcos.conf)
 #
 #   sh tests/golden/check.sh               compare every golden (make test); a failure
-#                                          names the first differing record
+#                                          names the first differing message and its
+#                                          differing fields
 #   sh tests/golden/check.sh --regenerate  rewrite them and say which changed (make golden)
 #
 # GOLDEN_SET="KEY=VALUE ..." adds those --set options to every run: a way to see the check
-# fail, e.g. GOLDEN_SET=localize.blur_mm=40. $BUILD names the build folder (default build).
+# fail, e.g. GOLDEN_SET=localize.blur_sigma_mm=40. $BUILD names the build folder (default build).
 set -u
 BIN=${BUILD:-build}/bin
 G=tests/golden
@@ -33,22 +36,6 @@ changed=0
 extra=""
 for kv in ${GOLDEN_SET:-}; do extra="$extra --set $kv"; done
 
-# records FILE: one line per record of an extracted stream (4-byte big-endian length, then
-# the payload): its number, length and payload in hex, so that a difference has a line.
-records() {
-    od -An -v -tu1 "$1" | awk '
-        { for (i = 1; i <= NF; i++) b[n++] = $i }
-        END {
-            i = 0; r = 0
-            while (i + 4 <= n) {
-                len = ((b[i] * 256 + b[i + 1]) * 256 + b[i + 2]) * 256 + b[i + 3]; i += 4
-                line = ""
-                for (k = 0; k < len && i < n; k++) line = line sprintf("%02x", b[i++])
-                printf "record %d (%d bytes) %s\n", r++, len, line
-            }
-        }'
-}
-
 # verdict FILE WHAT: $tmp/FILE against the golden $G/FILE (or into it, regenerating).
 verdict() {
     new=$tmp/$1 old=$G/$1
@@ -58,7 +45,7 @@ verdict() {
         else
             cp "$new" "$old"
             changed=$((changed + 1))
-            echo "CHANGED: $old ($(records "$old" | wc -l) records)"
+            echo "CHANGED: $old ($(wc -l <"$old") messages)"
         fi
         return
     fi
@@ -67,23 +54,22 @@ verdict() {
     elif cmp -s "$new" "$old"; then
         echo "ok: $2 equals $old"
     else
-        records "$old" >"$tmp/golden.txt"
-        records "$new" >"$tmp/run.txt"
-        at=$(cmp "$tmp/golden.txt" "$tmp/run.txt" 2>&1 | sed -n 's/.*line \([0-9]*\).*/\1/p')
-        echo "FAIL: $2 differs from $old (make golden to accept): golden $(wc -l <"$tmp/golden.txt")" \
-             "records, this run $(wc -l <"$tmp/run.txt")"
-        if [ -n "$at" ]; then
-            sed -n "${at}p" "$tmp/golden.txt" >"$tmp/golden.line"
-            sed -n "${at}p" "$tmp/run.txt" >"$tmp/run.line"
-            # the payloads' hex from the first differing byte (an even column of the hex)
-            awk 'NR == FNR { a = $NF; head = $1 " " $2 " " $3 " " $4; next }
-                 { b = $NF; i = 1; while (i <= length(a) && substr(a, i, 2) == substr(b, i, 2)) i += 2
-                   printf "  first difference: %s, payload byte %d\n", head, (i - 1) / 2
-                   printf "    golden:   ...%s\n    this run: ...%s\n", substr(a, i, 64), substr(b, i, 64) }' \
-                "$tmp/golden.line" "$tmp/run.line"
-        else
-            echo "  $(cmp "$tmp/golden.txt" "$tmp/run.txt" 2>&1 | head -1)"
-        fi
+        echo "FAIL: $2 differs from $old (make golden to accept): golden $(wc -l <"$old")" \
+             "messages, this run $(wc -l <"$new")"
+        # the first differing message (its line) and the fields that differ in it
+        at=$(cmp "$old" "$new" 2>&1 | sed -n 's/.* line \([0-9]*\).*/\1/p')
+        awk -v at="${at:-0}" '
+            FNR == at { if (FILENAME == ARGV[1]) g = $0; else r = $0 }
+            END {
+                printf "  first difference: message %d\n", at
+                n = split(g, a, " "); m = split(r, b, " "); shown = 0
+                for (i = 1; i <= (n > m ? n : m) && shown < 6; i++)
+                    if (a[i] != b[i]) {
+                        printf "    golden:   %s\n    this run: %s\n", substr(a[i], 1, 120),
+                               substr(b[i], 1, 120)
+                        shown++
+                    }
+            }' "$old" "$new"
         fail=1
     fi
 }
@@ -107,8 +93,8 @@ pose() {
     run "$name" "$BIN/houghlocd" --config /dev/null $sets $extra --fresh-map \
         --map "$tmp/$name.hlmap" --lcm-url "file://$PWD/$log?speed=0" \
         --lcm-out "file://$tmp/$name.lcmlog?mode=w" || return
-    "$BIN/hl-eval" extract "$tmp/$name.lcmlog" POSE "$tmp/$name.POSE"
-    verdict "$name.POSE" "POSE of $log with $*"
+    "$BIN/hl-eval" text "$tmp/$name.lcmlog" POSE "$tmp/$name.POSE.txt" || { fail=1; return; }
+    verdict "$name.POSE.txt" "POSE of $log with $*"
 }
 
 arcos() {
@@ -117,8 +103,8 @@ arcos() {
         $extra --fresh-map --map "$tmp/arcos.hlmap" --lcm-url memq:// \
         --lcm-out "file://$tmp/arcos.lcmlog?mode=w" || return
     for ch in SONAR ODOMETRY; do
-        "$BIN/hl-eval" extract "$tmp/arcos.lcmlog" $ch "$tmp/arcos.$ch"
-        verdict "arcos.$ch" "$ch from $G/arcos.capture"
+        "$BIN/hl-eval" text "$tmp/arcos.lcmlog" $ch "$tmp/arcos.$ch.txt" || { fail=1; continue; }
+        verdict "arcos.$ch.txt" "$ch from $G/arcos.capture"
     done
 }
 

@@ -5,7 +5,7 @@
 #include <set>
 #include <utility>
 
-#include "../../tools/sim/layout.hpp"
+#include "layout.hpp"
 
 using namespace hlsim;
 

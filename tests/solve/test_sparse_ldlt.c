@@ -1,4 +1,4 @@
-/* Tests for src/solve/sparse_ldlt.cpp (include/internal/houghloc-internal/solve.h): a small SPD block system
+/* Tests for src/solve/sparse_ldlt.cpp (include/internal/core/houghloc-internal/solve.h): a small SPD block system
  * against its dense solution, blocks of one place summed, the pattern's analysis reused
  * with new values (and the same answer as a fresh solver), a singular and an indefinite
  * system refused, bad arguments refused. */

@@ -3,7 +3,8 @@
 # top Makefile.
 #
 # The metrics (metrics.cpp) need neither LCM nor the bus, so the test links them alone;
-# the log reading (runlog.o) is hl-eval's (eval.mk).
+# the log reading (runlog.c, which houghloc-map and the tests' hl-eval also link) is
+# built by the generic rule.
 
 HLEVAL_OBJS := $(BUILD)/obj/tools/eval/houghloc_eval.o $(BUILD)/obj/tools/eval/metrics.o \
                $(BUILD)/obj/tools/eval/runlog.o

@@ -3,8 +3,7 @@
 # Makefile.
 #
 # It reads map files with the daemon's own loader (the store library, src/store) and
-# logs with hl-eval's reader
-# (tools/eval/runlog.o); messages go through src/bus.
+# logs with houghloc-eval's reader (tools/eval/runlog.o); messages go through src/bus.
 
 MAP_TOOL_OBJS := $(BUILD)/obj/tools/map/houghloc_map.o $(BUILD)/obj/tools/map/mapgrid.o \
                  $(BUILD)/obj/tools/map/mapdraw.o $(BUILD)/obj/tools/eval/runlog.o \

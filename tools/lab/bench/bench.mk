@@ -11,7 +11,13 @@ BENCH_TABLE := docs/results/bench-table.md
 
 LAB_BINS += $(BUILD)/bin/hl-bench
 
-$(BUILD)/bin/hl-bench: $(call obj,tools/lab/bench/bench_localize.c) $(TESTKIT_LIB) $(CORE_LIB)
+# The benchmarks' scenes: the tests' synthetic rooms and reference localizer
+# (tests/support), and the loop-closure graph of hl-bench-posegraph and hl-bench-solve
+# (corridor.c, on the rooms' random numbers).
+$(BUILD)/obj/tools/lab/bench/%.o: CPPFLAGS += $(TEST_SUPPORT_INC)
+BENCH_CORRIDOR_OBJ := $(call obj,tools/lab/bench/corridor.c)
+
+$(BUILD)/bin/hl-bench: $(call obj,tools/lab/bench/bench_localize.c) $(TEST_SUPPORT_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	$(Q)$(CC) -o $@ $^ $(SYS_LIBS)
 

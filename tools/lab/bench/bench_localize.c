@@ -39,9 +39,9 @@
 #include "houghloc/localize.h"
 #include "houghloc/refine.h"
 #include "houghloc/reloc.h"
-#include "../testkit/ref_localize.h"
+#include "ref_localize.h"
 #include "timing.h"
-#include "../testkit/synthroom.h"
+#include "synthroom.h"
 
 #define POSES 8
 

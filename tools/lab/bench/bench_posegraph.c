@@ -26,7 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../testkit/corridor.h"
+#include "corridor.h"
 #include "timing.h"
 #include "houghloc-internal/closure.h"
 

@@ -3,6 +3,6 @@
 
 LAB_BINS += $(BUILD)/bin/hl-bench-posegraph
 
-$(BUILD)/bin/hl-bench-posegraph: $(call obj,tools/lab/bench/bench_posegraph.c) $(TESTKIT_LIB) $(CORE_LIB)
+$(BUILD)/bin/hl-bench-posegraph: $(call obj,tools/lab/bench/bench_posegraph.c) $(BENCH_CORRIDOR_OBJ) $(TEST_SUPPORT_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	$(Q)$(CC) -o $@ $^ $(SYS_LIBS)

@@ -1,6 +1,6 @@
 /*
  * bench_solve - what one Gauss-Newton step's solve of loop closure's normal equations costs
- * on Eigen's sparse Cholesky (include/internal/houghloc-internal/solve.h) against Eigen's preconditioned
+ * on Eigen's sparse Cholesky (include/internal/core/houghloc-internal/solve.h) against Eigen's preconditioned
  * conjugate gradients, on the synthetic corridor graph of bench_posegraph.c
  * (docs/results/pose-graph-solver.md).
  *
@@ -42,7 +42,7 @@
 #include "houghloc-internal/solve.h"
 #include "timing.h"
 
-#include "../testkit/corridor.h"
+#include "corridor.h"
 extern "C" {
 #include "houghloc-internal/closure.h"
 }
@@ -59,7 +59,7 @@ struct Graph {
     std::vector<hl_pg_edge_t> edges;
 };
 
-/* hl-bench-posegraph's corridor tour, edge for edge (tools/lab/testkit/corridor.h). */
+/* hl-bench-posegraph's corridor tour, edge for edge (corridor.h). */
 Graph corridor(uint32_t n)
 {
     Graph g;

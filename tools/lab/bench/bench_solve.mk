@@ -4,6 +4,6 @@
 
 LAB_BINS += $(BUILD)/bin/hl-bench-solve
 
-$(BUILD)/bin/hl-bench-solve: $(call obj,tools/lab/bench/bench_solve.cpp) $(TESTKIT_LIB) $(CORE_LIB)
+$(BUILD)/bin/hl-bench-solve: $(call obj,tools/lab/bench/bench_solve.cpp) $(BENCH_CORRIDOR_OBJ) $(TEST_SUPPORT_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	$(Q)$(CXX) -o $@ $^ $(SYS_LIBS)

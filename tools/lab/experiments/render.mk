@@ -1,5 +1,6 @@
 # tools/lab/experiments/render.mk - the figure renderer (cairo -> PNG) used by the experiment
-# runner, and its tests. Included by tools/lab/lab.mk.
+# runner, and its tests (tools/lab/tests/test_render.cpp, make lab-test). Included by
+# tools/lab/lab.mk.
 #
 # A program linking $(RENDER_LIB) also needs $(RENDER_LDLIBS) after it.
 
@@ -12,8 +13,8 @@ RENDER_OBJS      := $(call obj,$(RENDER_SRCS))
 RENDER_ASAN_OBJS := $(patsubst %.cpp,$(BUILD)/asan/%.o,$(RENDER_SRCS))
 RENDER_LDLIBS    := $(CORE_LIB) $(CAIRO_LIBS) $(SYS_LIBS)
 
-RENDER_TESTS := $(BUILD)/tests/experiments/test_render
-TEST_BINS    += $(RENDER_TESTS)
+RENDER_TESTS  := $(BUILD)/tests/lab/test_render
+LAB_TEST_BINS += $(RENDER_TESTS)
 
 $(RENDER_LIB): $(RENDER_OBJS)
 $(RENDER_ASAN_LIB): $(RENDER_ASAN_OBJS)
@@ -26,13 +27,13 @@ $(RENDER_ASAN_OBJS): $(BUILD)/asan/%.o: %.cpp | $(LCM_STAMP)
 	@echo "  CXX-SAN $<"
 	$(Q)$(CXX) $(CPPFLAGS) $(CAIRO_CFLAGS) $(CXXFLAGS) $(SAN) -c -o $@ $<
 
-$(BUILD)/asan/tests/experiments/test_render.o: $(BUILD)/asan/%.o: %.cpp | $(LCM_STAMP)
+$(BUILD)/asan/tools/lab/tests/test_render.o: $(BUILD)/asan/%.o: %.cpp | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CXX-SAN $<"
 	$(Q)$(CXX) $(CPPFLAGS) -Itools/lab/experiments $(CAIRO_CFLAGS) $(CXXFLAGS) $(SAN) -c -o $@ $<
 
-$(BUILD)/tests/experiments/test_render: $(BUILD)/asan/tests/experiments/test_render.o \
-                                        $(RENDER_ASAN_LIB) $(CORE_ASAN_LIB)
+$(BUILD)/tests/lab/test_render: $(BUILD)/asan/tools/lab/tests/test_render.o \
+                                $(RENDER_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
 	$(Q)$(CXX) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(CAIRO_LIBS) $(SYS_LIBS)

@@ -80,11 +80,12 @@ TOUR_STUDY_OBJS := $(call obj,tools/lab/kidnap/tour_study.cpp tools/lab/kidnap/i
                               tools/lab/experiments/dataset.cpp)
 
 LAB_BINS += $(BUILD)/bin/hl-kidnap $(BUILD)/bin/hl-tour-study
-INTEGRATION_TESTS += tests/integration/test_kidnap.sh
+LAB_INTEGRATION_TESTS += tools/lab/tests/test_kidnap.sh
 
 # hl-kidnap reads the daemon's configuration and map files with the daemon's own code
-# (src/daemon: config.h, mapstore.h), the logs with the experiments' reader; so does
-# hl-tour-study.
+# (houghloc-internal/daemon_config.h, include/internal/daemon; houghloc/mapstore.h), the
+# logs with the experiments' reader; so does hl-tour-study.
+$(call obj,$(KIDNAP_SRCS) tools/lab/kidnap/tour_study.cpp): CPPFLAGS += $(DAEMON_INTERNAL_INC)
 $(call obj,$(KIDNAP_SRCS) tools/lab/kidnap/tour_study.cpp): $(BUILD)/obj/%.o: %.cpp | $(LCM_STAMP)
 	@mkdir -p $(@D)
 	@echo "  CXX     $<"

@@ -15,6 +15,8 @@ FORGE_OBJS := $(BUILD)/obj/tools/lab/trials/forge.o $(BUILD)/obj/tools/lab/trial
 POISON_OBJS := $(BUILD)/obj/tools/lab/trials/poison.o
 
 LAB_BINS += $(BUILD)/bin/hl-flood $(BUILD)/bin/hl-forge $(BUILD)/bin/hl-poison
+# houghloc-goto against hl-forge's forged replies.
+LAB_INTEGRATION_TESTS += tools/lab/tests/test_forged_replies.sh
 
 $(BUILD)/obj/tools/lab/trials/%.o: tools/lab/trials/%.c
 	@mkdir -p $(@D)

@@ -3,11 +3,12 @@
 # UndefinedBehaviorSanitizer, and the daemon under valgrind
 # (docs/results/reliability.md, "Sanitizers and valgrind"):
 #   1. houghlocd, houghloc-sim, houghloc-goto, houghloc-ctl, hl-eval and hl-forge (which
-#      test_goto.sh's forged replies come from) built with ASan+UBSan into SAN_BUILD
+#      test_forged_replies.sh's forged replies come from) built with ASan+UBSan into SAN_BUILD
 #      (default $BUILD-san). The top Makefile puts OPT on the compile lines only, not on
 #      the link lines, so the sanitizers go in through CC and CXX, which both use.
-#   2. tests/integration/test_robot.sh, test_daemon.sh, test_goto.sh, test_ctl.sh and
-#      test_link_loss.sh (the link lost to silence, its reason formatted) run against
+#   2. tests/integration/test_robot.sh, test_daemon.sh, test_goto.sh, test_ctl.sh,
+#      test_link_loss.sh (the link lost to silence, its reason formatted) and
+#      tools/lab/tests/test_forged_replies.sh (houghloc-goto against forged REPLYs) run against
 #      that build, every sanitizer report written to a file of its own
 #      (ASAN_OPTIONS/UBSAN_OPTIONS log_path, so that the tests' checks of stderr are not
 #      disturbed): the tests must pass and no report be written (LeakSanitizer included).
@@ -58,11 +59,12 @@ say "built in $(($(date +%s) - t0)) s"
 
 # ---- 2. the integration tests against it ----------------------------------------------
 mkdir -p "$T/reports"
-run_test() {    # run_test NAME: tests/integration/NAME.sh with the sanitized programs
+run_test() {    # run_test NAME [DIR]: DIR/NAME.sh (default tests/integration) with the
+                # sanitized programs
     t=$(date +%s)
     ASAN_OPTIONS="log_path=$T/reports/asan:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1" \
     UBSAN_OPTIONS="log_path=$T/reports/ubsan:print_stacktrace=1:halt_on_error=1" \
-        BUILD="$SAN_BUILD" sh "tests/integration/$1.sh" >"$T/$1.out" 2>&1
+        BUILD="$SAN_BUILD" sh "${2:-tests/integration}/$1.sh" >"$T/$1.out" 2>&1
     rc=$?
     oks=$(grep -c '^ok:' "$T/$1.out")
     fails=$(grep -c '^FAIL' "$T/$1.out")
@@ -78,6 +80,7 @@ run_test test_daemon
 run_test test_goto
 run_test test_ctl
 run_test test_link_loss
+run_test test_forged_replies tools/lab/tests
 nrep=$(find "$T/reports" -type f | wc -l)
 if [ "$nrep" -ne 0 ]; then
     say "$nrep sanitizer reports:"

@@ -5,8 +5,8 @@
  * can be compared one to one) and is used by the tests and the benchmark to check the
  * fixed-point implementation. No odometry prior.
  */
-#ifndef HOUGHLOC_TESTKIT_REF_LOCALIZE_H
-#define HOUGHLOC_TESTKIT_REF_LOCALIZE_H
+#ifndef HOUGHLOC_TEST_SUPPORT_REF_LOCALIZE_H
+#define HOUGHLOC_TEST_SUPPORT_REF_LOCALIZE_H
 
 #include <stddef.h>
 

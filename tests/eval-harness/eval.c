@@ -1,5 +1,7 @@
 /*
- * hl-eval - scores and compares houghlocd's recorded output.
+ * hl-eval - scores and compares houghlocd's recorded output: the harness of the tests
+ * (the goldens, the integration tests), of make demo and of the laboratory's scripts. Not
+ * installed; houghloc-eval (tools/eval) is the installed scorer.
  *
  *   hl-eval start IN.lcmlog             the first scan's true pose: "X_M Y_M HEADING_DEG"
  *   hl-eval score IN.lcmlog OUT.lcmlog  error of every POSE against GROUND_TRUTH, the
@@ -14,6 +16,9 @@
  *   hl-eval extract LOG CHANNEL FILE    the payloads of every event on CHANNEL, each as
  *                                       a 4-byte big-endian length and the bytes, so that
  *                                       two runs compare with cmp(1)
+ *   hl-eval text LOG CHANNEL FILE       the messages on CHANNEL (POSE, GROUND_TRUTH,
+ *                                       SONAR, ODOMETRY) as text, one line each, every
+ *                                       field (golden_text.h; the goldens' format)
  *   hl-eval status LOG                  the last STATUS in LOG as one line of key=value
  *   hl-eval truth LOG                   the last GROUND_TRUTH pose in LOG as X,Y,DEG
  *   hl-eval latency IN OUT              each POSE's time after its scan, by the
@@ -25,8 +30,8 @@
  *                                       scans and messages of the wrong type, on every
  *                                       input channel
  *
- * Every log is checked with hl_log_check before liblcm reads it (runlog.h, shared with
- * houghloc-eval and houghloc-map).
+ * Every log is checked with hl_log_check before liblcm reads it (tools/eval/runlog.h,
+ * shared with houghloc-eval and houghloc-map).
  */
 #include <errno.h>
 #include <inttypes.h>
@@ -41,6 +46,7 @@
 #include "houghloc/logcheck.h"
 #include "houghloc/slam.h"
 #include "houghloc/version.h"
+#include "golden_text.h"
 #include "latency.h"
 #include "runlog.h"
 #include "truth_frame.h"
@@ -50,13 +56,16 @@ static const char usage[] =
     "       hl-eval score [--quiet] [--start X,Y,DEG] IN.lcmlog OUT.lcmlog\n"
     "       hl-eval live [--quiet] [--start X,Y,DEG] LOG [OUT.lcmlog]\n"
     "       hl-eval extract LOG CHANNEL FILE\n"
+    "       hl-eval text LOG CHANNEL FILE\n"
     "       hl-eval status LOG\n"
     "       hl-eval truth LOG\n"
     "       hl-eval latency IN.lcmlog OUT.lcmlog\n"
     "       hl-eval split LOG N FIRST REST\n"
     "       hl-eval garble LOG OUT\n"
     "Scores houghlocd's POSE output (OUT) against the GROUND_TRUTH of its input (IN),\n"
-    "or extracts one channel's payloads for a byte-for-byte comparison.\n"
+    "or extracts one channel's payloads for a byte-for-byte comparison (extract), or its\n"
+    "messages as text, one line each with every field (text: POSE, GROUND_TRUTH, SONAR,\n"
+    "ODOMETRY).\n"
     "score prints the error at every stop and ends with the line\n"
     "  demo stops=<n> rmse_mm=<x> max_mm=<y> odometry_rmse_mm=<z> wild_accepted=<k>\n"
     "where the odometry error integrates the scans' odometry from the first true pose and\n"
@@ -438,6 +447,8 @@ int main(int argc, char **argv)
         return cmd_scoring(argc, argv);
     if (argc == 5 && strcmp(argv[1], "extract") == 0)
         return cmd_extract(argv[2], argv[3], argv[4]);
+    if (argc == 5 && strcmp(argv[1], "text") == 0)
+        return hl_eval_text("hl-eval", argv[2], argv[3], argv[4]);
     if (argc == 3 && strcmp(argv[1], "status") == 0)
         return cmd_status(argv[2]);
     if (argc == 3 && strcmp(argv[1], "truth") == 0)
@@ -459,7 +470,7 @@ int main(int argc, char **argv)
         writer_t w = { .rng = 12345 };
         return cmd_write(argv[2], on_garble, &w, argv[3], NULL);
     }
-    fprintf(stderr, "hl-eval: expected start, score, live, extract, status, truth, latency, split or garble with their "
-            "arguments (try --help)\n");
+    fprintf(stderr, "hl-eval: expected start, score, live, extract, text, status, truth, latency, split "
+            "or garble with their arguments (try --help)\n");
     return 2;
 }

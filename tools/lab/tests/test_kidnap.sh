@@ -11,7 +11,7 @@ BIN=$BUILD/bin
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 . tests/integration/lib.sh
-# A make inside make test: not the outer make's jobserver.
+# A make inside make lab-test: not the outer make's jobserver.
 unset MAKEFLAGS MFLAGS MAKELEVEL
 
 out=$tmp/kidnap

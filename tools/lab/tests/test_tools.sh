@@ -1,8 +1,8 @@
 #!/bin/sh
-# Integration test of the offline tools, as a user runs them: the data sets regenerate
-# byte-identically, the experiments run end to end on them and write their tables, the
-# benchmark prints its parseable lines, and bad input gets a one-line error and a
-# non-zero exit, never a crash.
+# Integration test of the laboratory's programs, as a user runs them: the data sets
+# regenerate byte-identically, the experiments run end to end on them and write their
+# tables, the benchmark prints its parseable lines, and bad input gets a one-line error
+# and a non-zero exit, never a crash. (The product's programs: tests/integration/test_usage.sh.)
 set -u
 BIN=${BUILD:-build}/bin
 tmp=$(mktemp -d)
@@ -195,10 +195,8 @@ cat "$tmp/rest.lcmlog" "$tmp/first10.lcmlog" >"$tmp/dup/lab28.lcmlog"
 rejects "decreasing scan seq in a log" "SONAR: seq 0 after seq " \
     "$BIN/hl-experiments" --logs "$tmp/dup" --only table1 --out "$tmp/x" --no-figures
 
-# Every program answers --help on stdout with exit 0 (gen_trig_table, a build step, takes
-# no options).
-for p in hl-bench hl-bench-cycle hl-bench-posegraph hl-calibrate hl-eval hl-experiments hl-pose-bytes hl-sim-draw hl-sim-logs \
-         houghloc-ctl houghloc-eval houghloc-goto houghloc-import-carmen houghloc-map houghlocd; do
+# Every program answers --help on stdout with exit 0.
+for p in hl-bench hl-bench-cycle hl-bench-posegraph hl-calibrate hl-experiments hl-sim-draw hl-sim-logs; do
     "$BIN/$p" --help >"$tmp/out" 2>"$tmp/err"
     check "$p --help: exit 0, usage on stdout" sh -c '[ "$1" -eq 0 ] && [ ! -s "$3" ] &&
         grep -qi "usage" "$2"' - $? "$tmp/out" "$tmp/err"
@@ -225,20 +223,8 @@ usage_error "hl-bench-cycle --reps 5x" "--reps wants a whole number 1..1000, not
 usage_error "hl-bench-cycle --start with trailing junk" "'1,2,3abc'" "$BIN/hl-bench-cycle" --start 1,2,3abc
 usage_error "hl-bench-cycle --start out of range" "'99999999999999999999,0,0'" \
     "$BIN/hl-bench-cycle" --start 99999999999999999999,0,0
-usage_error "hl-eval split count out of range" "split: '99999999999999999999'" \
-    "$BIN/hl-eval" split logs/lab28.lcmlog 99999999999999999999 "$tmp/a.lcmlog" "$tmp/b.lcmlog"
 usage_error "hl-experiments --reps ' 5'" "--reps must be a whole number 1..100, not ' 5'" \
     "$BIN/hl-experiments" --reps " 5" --logs "$tmp/nowhere" --out "$tmp/x"
 usage_error "hl-experiments unknown option" "unknown option '--bogus'" "$BIN/hl-experiments" --bogus
 usage_error "hl-experiments --reps without a value" "--reps needs a value" "$BIN/hl-experiments" --reps
-usage_error "houghloc-eval --delta 0x1" "--delta '0x1'" "$BIN/houghloc-eval" --delta 0x1 "$tmp/none" "$tmp/none"
-usage_error "houghloc-map --resolution ' 1'" "--resolution ' 1'" "$BIN/houghloc-map" --resolution " 1" "$tmp/none" "$tmp/map"
-# (on a port of their own, so that even a client that took the value disturbs no daemon)
-quiet_url='udpm://239.255.76.67:7611?ttl=0'
-usage_error "houghloc-goto --timeout ' 0.2'" "--timeout \" 0.2\"" \
-    "$BIN/houghloc-goto" --lcm-url "$quiet_url" --timeout " 0.2" 1 1
-usage_error "houghloc-ctl --timeout 0x0.4" "--timeout \"0x0.4\"" \
-    "$BIN/houghloc-ctl" --lcm-url "$quiet_url" --timeout 0x0.4 save
-usage_error "houghloc-import-carmen --fov-deg 5x" "--fov-deg '5x'" "$BIN/houghloc-import-carmen" --fov-deg 5x "$tmp/none" "$tmp/none.lcmlog"
-
 exit $fail

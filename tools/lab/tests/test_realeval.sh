@@ -2,18 +2,20 @@
 # Integration test of `make eval-real` (tools/lab/realeval/) without the real data: two small
 # buildings written here (a laser going twice round a pillar in a rectangular room, with
 # odometry that drifts), run through the whole pipeline with DATA= and BUILDINGS=, two
-# jobs at a time. Checks real.tsv's header, its 24 rows in order, the `-` cells of the
-# odometry rows and the numbers everywhere else, the scan counts of both selections,
-# real.md's two tables with the peers' figures, the maps, that a second make reruns
-# nothing, that a bad log and a missing building stop it with one line naming the
-# building and the step, and what the configuration files set.
+# jobs at a time. Checks real.tsv's header, its 72 rows in order with their starts
+# (origin, turned30, turned45, truth; odometry origin only), that each start is the one
+# the daemon ran from (its first POSE), the `-` cells of the odometry rows and the numbers
+# everywhere else, the scan counts of both selections, real.md's tables (the origin rows
+# with the peers' figures, every start with the three start frames' spread), the maps,
+# that a second make reruns nothing, that a bad log and a missing building stop it with
+# one line naming the building and the step, and what the configuration files set.
 set -u
 BUILD=${BUILD:-build}
 BIN=$BUILD/bin
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 . tests/integration/lib.sh
-# A make inside make test: not the outer make's jobserver.
+# A make inside make lab-test: not the outer make's jobserver.
 unset MAKEFLAGS MFLAGS MAKELEVEL
 
 # room NAME HALF_X HALF_Y LOOPS: DATA/raw/NAME-raw.log.gz and NAME-groundtruth.tum.
@@ -108,15 +110,38 @@ check "make eval-real on two small buildings exits 0" test $rc -eq 0
 [ $rc -eq 0 ] || head -c 2000 "$tmp/make.err"
 tsv=$out/real.tsv
 
-check "real.tsv's header" test "$(head -n 1 "$tsv")" = "$(printf 'dataset\tinput\tmode\tselection\tscans\tate_rmse_m\trpe_trans_rmse_m\trpe_trans_mean_m\tmax_err_m\tms_per_scan\twall_ms_per_scan\trejected')"
-check "real.tsv: 24 rows (2 buildings x 2 inputs x 3 modes x 2 selections)" \
-    test "$(wc -l <"$tsv")" -eq 25
-# The order: building as given, input, mode, selection.
-awk -F '\t' 'NR > 1 { print $1, $2, $3, $4 }' "$tsv" >"$tmp/keys"
+check "real.tsv's header: the columns as before, start last" test "$(head -n 1 "$tsv")" = "$(printf 'dataset\tinput\tmode\tselection\tscans\tate_rmse_m\trpe_trans_rmse_m\trpe_trans_mean_m\tmax_err_m\tms_per_scan\twall_ms_per_scan\trejected\tstart')"
+check "real.tsv: 72 rows (2 buildings x 2 inputs x 2 selections x (odometry + 2 modes x 4 starts))" \
+    test "$(wc -l <"$tsv")" -eq 73
+# The order: building as given, input, mode, selection, start.
+awk -F '\t' 'NR > 1 { print $1, $2, $3, $4, $13 }' "$tsv" >"$tmp/keys"
 for b in room hall; do for i in laser sonar; do for m in odometry paper improved; do
-    for s in every moved; do echo "$b $i $m $s"; done; done; done; done >"$tmp/keys.want"
-check "rows in the order building, input, mode, selection" cmp -s "$tmp/keys" "$tmp/keys.want"
-check "every row has 12 cells" awk -F '\t' 'NF != 12 { bad = 1 } END { exit bad }' "$tsv"
+    starts="origin turned30 turned45 truth"
+    [ $m = odometry ] && starts=origin
+    for s in every moved; do for t in $starts; do echo "$b $i $m $s $t"; done; done
+done; done; done >"$tmp/keys.want"
+check "rows in the order building, input, mode, selection, start (odometry: origin only)" \
+    cmp -s "$tmp/keys" "$tmp/keys.want"
+check "every row has 13 cells" awk -F '\t' 'NF != 13 { bad = 1 } END { exit bad }' "$tsv"
+check "start is origin, turned30, turned45 or truth" awk -F '\t' '
+    NR > 1 && $13 !~ /^(origin|turned30|turned45|truth)$/ { bad = 1 } END { exit bad }' "$tsv"
+# Each start is where the daemon began: its first POSE (the first scan, on an empty map,
+# follows the odometry from the start pose) is 0, 0 and 0 / 30 / 45 degrees, or the
+# first true pose; only the truth row takes anything from the ground truth.
+first_est() {   # first_est RUN: the run's first POSE as "X Y DEG"
+    "$BIN/houghloc-eval" --tsv --tum-est "$tmp/est.tum" "$out/input/room_laser_every.lcmlog" \
+        "$out/runs/$1/out.lcmlog" >/dev/null 2>&1 &&
+        awk 'NR == 1 { printf "%.3f %.3f %.1f\n", $2, $3, atan2($7, $8) * 360 / atan2(0, -1) }' "$tmp/est.tum"
+}
+"$BIN/houghloc-eval" --odometry --tsv --tum-gt "$tmp/gt.tum" "$out/input/room_laser_every.lcmlog" >/dev/null
+gt0=$(awk 'NR == 1 { printf "%.3f %.3f %.1f\n", $2, $3, atan2($7, $8) * 360 / atan2(0, -1) }' "$tmp/gt.tum")
+check "the room's first true pose is not the origin ($gt0)" test "$gt0" != "0.000 0.000 0.0"
+for pair in "origin:0.000 0.000 0.0" "turned30:0.000 0.000 30.0" "turned45:0.000 0.000 45.0" \
+    "truth:$gt0"; do
+    t=${pair%%:*}
+    check "room laser every improved $t: the first POSE is ${pair#*:}" \
+        test "$(first_est "room_laser_improved_every_$t")" = "${pair#*:}"
+done
 check "odometry rows: ms_per_scan, wall_ms_per_scan and rejected are -" awk -F '\t' '
     NR > 1 && $3 == "odometry" && ($10 != "-" || $11 != "-" || $12 != "-") { bad = 1 }
     END { exit bad }' "$tsv"
@@ -144,24 +169,45 @@ ate=$("$BIN/houghloc-eval" --odometry --tsv "$out/input/room_laser_every.lcmlog"
 check "odometry row = houghloc-eval --odometry on the import ($ate)" awk -F '\t' -v a="$ate" '
     $1 == "room" && $2 == "laser" && $3 == "odometry" && $4 == "every" { found = ($6 == a) }
     END { exit !found }' "$tsv"
-# A clean room and a laser: the improved mode must beat the drifting odometry by far (a
-# wiring fault, such as the POSE of another run or the wrong start, would not).
-check "room, laser, every: improved ATE below a quarter of the odometry's" awk -F '\t' '
-    $1 == "room" && $2 == "laser" && $4 == "every" { a[$3] = $6 }
-    END { exit !(("improved" in a) && a["improved"] < a["odometry"] / 4) }' "$tsv"
-check "rejected = the daemon's rejected_wild (room laser every improved)" sh -c '
-    w=$(tr " " "\n" <"$1/runs/room_laser_improved_every/status.txt" | sed -n "s/^rejected_wild=//p")
-    awk -F "\t" -v w="$w" "\$1 == \"room\" && \$2 == \"laser\" && \$3 == \"improved\" && \$4 == \"every\" { f = (\$12 == w) } END { exit !f }" "$2"' \
+# A clean room and a laser: the improved mode must beat the drifting odometry by far from
+# every start (a wiring fault, such as the POSE of another run, would not).
+check "room, laser, every: improved ATE below a quarter of the odometry's from each start" awk -F '\t' '
+    $1 == "room" && $2 == "laser" && $4 == "every" && $3 == "odometry" { odo = $6 }
+    $1 == "room" && $2 == "laser" && $4 == "every" && $3 == "improved" { a[$13] = $6; n++ }
+    END { if (n != 4 || odo == "") exit 1; for (t in a) if (a[t] >= odo / 4) exit 1 }' "$tsv"
+check "rejected = the daemon's rejected_wild (room laser every improved turned30)" sh -c '
+    w=$(tr " " "\n" <"$1/runs/room_laser_improved_every_turned30/status.txt" | sed -n "s/^rejected_wild=//p")
+    awk -F "\t" -v w="$w" "\$1 == \"room\" && \$2 == \"laser\" && \$3 == \"improved\" && \$4 == \"every\" && \$13 == \"turned30\" { f = (\$12 == w) } END { exit !f }" "$2"' \
     - "$out" "$tsv"
 check "progress on stderr, one line per row" \
-    test "$(grep -c '^eval-real: .*: done, ATE .* rows)$' "$tmp/make.err")" -eq 24
+    test "$(grep -c '^eval-real: .*: done, ATE .* rows)$' "$tmp/make.err")" -eq 72
 
 md=$out/real.md
 check "real.md exists" test -s "$md"
 check "real.md: a laser and a pseudo-sonar table" \
     sh -c 'grep -q "^## Laser input" "$1" && grep -q "^## Pseudo-sonar input" "$1"' - "$md"
-check "real.md: 2 x (3 peers + 12 of ours) table rows" \
-    test "$(grep -c '^| \(room\|hall\) |' "$md")" -eq 30
+check "real.md: the origin tables, 2 x (3 peers + 12 of ours) rows, then the starts', 2 x 8" sh -c '
+    sed "/^## Start frames/q" "$2" >"$1.methods"
+    test "$(grep -c "^| \(room\|hall\) |" "$1.methods")" -eq 30 &&
+    test "$(grep -c "^## Start frames, " "$2")" -eq 2 &&
+    test "$(sed -n "/^## Start frames/,\$p" "$2" | grep -c "^| \(room\|hall\) |")" -eq 16' \
+    - "$tmp/md" "$md"
+# The headline rows are the origin's: real.md's improved row for room, laser, every, up
+# to its times (which differ from run to run).
+head0=$(awk -F '\t' '$1 == "room" && $2 == "laser" && $3 == "improved" && $4 == "every" && $13 == "origin" {
+    printf "| room | houghloc, improved mode, every | %s | %.3f | %.3f / %.3f | %.3f | %.2f / %.2f | %s / ",
+        $5, $6, $7, $8, $9, $10, $11, $12 }' "$tsv")
+check "real.md: the headline improved row is the origin run's ($head0)" \
+    grep -q -F -- "$head0" "$md"
+# The spread of the three start frames, from real.tsv: max - min and over the median.
+want=$(awk -F '\t' '$1 == "hall" && $2 == "laser" && $3 == "improved" && $4 == "every" && $13 != "truth" {
+        x[++n] = $6 } END {
+        lo = x[1]; hi = x[1]; for (k = 2; k <= 3; k++) { if (x[k] < lo) lo = x[k]; if (x[k] > hi) hi = x[k] }
+        printf "%.3f (%.0f %%)", hi - lo, 100 * (hi - lo) / (x[1] + x[2] + x[3] - hi - lo) }' "$tsv")
+check "real.md: hall, laser, improved, every: the spread of the start frames is $want" sh -c '
+    sed -n "/^## Start frames, laser/,/^## /p" "$1" |
+        grep -q "^| hall | houghloc, improved mode, every | [0-9.]* | [0-9.]* | [0-9.]* | $2 | [0-9.]* |$"' \
+    - "$md" "$want"
 check "real.md: the peers' CSM and BreezySLAM figures beside ours" sh -c '
     grep -q "^| room | CSM (peers, every) | 44 | 0.444 | 0.055 / 0.066 | – | – / 7.7 | – |$" "$1" &&
     grep -q "^| room | BreezySLAM (peers, every) | 44 | 0.888 (other seeds 1–2) |" "$1" &&
@@ -217,5 +263,16 @@ check "laser.conf in improved mode: echo bearings off, fitted normals keeping th
 "$BIN/houghlocd" --config tools/lab/realeval/sonar.conf --print-config=all >"$tmp/sonar.improved" 2>&1
 check "sonar.conf in improved mode: echo bearings on" sh -c '
     grep -q "^mode = improved$" "$1" && grep -q "^echo_bearings = true$" "$1"' - "$tmp/sonar.improved"
+
+# The real-data evaluation runs the product's profiles: its improved-mode files name them.
+check "make eval-real's laser and pseudo-sonar rows run slam.profile = laser / sonar-continuous" \
+    sh -c "grep -qx 'profile = laser' tools/lab/realeval/laser.conf &&
+           grep -qx 'profile = sonar-continuous' tools/lab/realeval/sonar.conf"
+for pair in laser:laser sonar-continuous:sonar; do
+    "$BIN/houghlocd" --config /dev/null --set slam.profile=${pair%%:*} --print-config=all >"$tmp/prof.a"
+    "$BIN/houghlocd" --config "tools/lab/realeval/${pair#*:}.conf" --print-config=all >"$tmp/prof.b"
+    check "tools/lab/realeval/${pair#*:}.conf is slam.profile=${pair%%:*}, nothing else changed" \
+        cmp -s "$tmp/prof.a" "$tmp/prof.b"
+done
 
 exit $fail

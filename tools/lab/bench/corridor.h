@@ -5,8 +5,8 @@
  * within HL_CLOSURE_RADIUS_MM (closure.h's rules at their most), every one measured with
  * 30 mm and 1.1 degrees of noise, a share of the matches 2 m and 29 degrees wrong. A
  * function of N and that share alone (a fixed seed). */
-#ifndef HOUGHLOC_TESTKIT_CORRIDOR_H
-#define HOUGHLOC_TESTKIT_CORRIDOR_H
+#ifndef HOUGHLOC_BENCH_CORRIDOR_H
+#define HOUGHLOC_BENCH_CORRIDOR_H
 
 #include <stdint.h>
 

@@ -5,8 +5,8 @@
  * Not a sonar model (tools/sim is); this is the minimal world in which the true pose is
  * known exactly.
  */
-#ifndef HOUGHLOC_TESTKIT_SYNTHROOM_H
-#define HOUGHLOC_TESTKIT_SYNTHROOM_H
+#ifndef HOUGHLOC_TEST_SUPPORT_SYNTHROOM_H
+#define HOUGHLOC_TEST_SUPPORT_SYNTHROOM_H
 
 #include <stdint.h>
 

@@ -1,7 +1,7 @@
 /* latency.h - hl-eval latency (latency.c): each POSE's time after its scan, from the
  * recorded input and output logs of a live run. */
-#ifndef HOUGHLOC_TOOLS_LATENCY_H
-#define HOUGHLOC_TOOLS_LATENCY_H
+#ifndef HOUGHLOC_TESTS_LATENCY_H
+#define HOUGHLOC_TESTS_LATENCY_H
 
 /**
  * Pairs the SONAR scans of the log @p in with the POSE of the log @p out by seq and prints
