@@ -73,8 +73,10 @@ struct hl_slam {
     hl_scan_t *search_echoed, *search_fitted;   /* HL_RELOC_MAX_SCANS each, as echoed and
                                fitted: the scans of hl_slam_relocalize_scans prepared */
     uint64_t scans;         /* hl_slam_update calls taken (search_every counts them) */
-    bool restored;          /* restored (hl_slam_restore) and no scan taken since: the
-                               robot may have moved while nothing watched (slam_lost.c) */
+    uint32_t unconfirmed;   /* after hl_slam_restore, the scans left in which the watch
+                               searches every scan until its search puts the robot where
+                               tracking does: the robot may have moved while nothing
+                               watched (slam_lost.c); 0 otherwise */
     hl_slam_memo_t memo;
 };
 

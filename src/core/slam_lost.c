@@ -73,6 +73,7 @@ static void enter_lost(hl_slam_t *s)
     s->recovery.epoch++;
     clear_lost(s);
     s->recovery.lost = true;
+    s->unconfirmed = 0;     /* the lost state's searches take over */
 }
 
 bool hl_slam_lost(const hl_slam_t *s)
@@ -299,8 +300,10 @@ static bool kidnapped(cycle_t *c, hl_pose_t local)
     c->found = (hl_reloc_result_t){ 0 };
     if (hl_slam_search_global(s, &c->scan, NULL, 1, &c->found) != HL_OK || !c->found.found)
         return false;
-    if (agree(s, local, c->found.pose))
+    if (agree(s, local, c->found.pose)) {
+        s->unconfirmed = 0;     /* the search puts the robot where tracking does */
         return false;
+    }
     uint32_t here = hl_slam_judge_ready(s, c->scan, local);
     if (here > s->p.reloc.max_ratio * c->found.score)
         return false;   /* tracking's pose explains the scan about as well: keep it */
@@ -315,16 +318,17 @@ static bool kidnapped(cycle_t *c, hl_pose_t local)
 }
 
 /* Whether the watch searches this scan (search_every > 0): every search_every-th scan,
- * and every scan tracking is in doubt about: the first since a restore (the robot may
- * have moved while nothing watched), one tracking could not localize against a map that
- * holds something, or a doubtful one (@p doubt: rejected, or a peak far below the recent
- * ones). A scan tracked well between the periodic ones is not searched. */
+ * and every scan tracking is in doubt about: one after a restore until a search confirms
+ * tracking's pose (the robot may have moved while nothing watched; at most search_every
+ * scans), one tracking could not localize against a map that holds something, or a
+ * doubtful one (@p doubt: rejected, or a peak far below the recent ones). A scan tracked
+ * well between the periodic ones is not searched. */
 static bool watch_due(const cycle_t *c, uint64_t scan_index, hl_status_t tracked, bool doubt)
 {
     const hl_slam_t *s = c->s;
     if (s->p.search_every == 0)
         return false;
-    return scan_index % (uint64_t)s->p.search_every == 0 || s->restored || doubt ||
+    return scan_index % (uint64_t)s->p.search_every == 0 || s->unconfirmed > 0 || doubt ||
            (tracked != HL_OK && hl_map_count(s->map) > 0);
 }
 
@@ -368,7 +372,8 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
     hl_slam_status_t status = s->recovery.lost ? lost_scan(&c, false)
                                                : tracking_scan(&c, scan_index);
     s->memo = (hl_slam_memo_t){ 0 };
-    s->restored = false;
+    if (s->unconfirmed > 0)
+        s->unconfirmed--;
     *out = c.step;
     out->status = status;
     if (status == HL_SLAM_RELOCALIZED || status == HL_SLAM_LOST)

@@ -206,6 +206,7 @@ hl_status_t __wrap_hl_reloc_run_scans_valid(hl_reloc_t *r, const hl_vector_t *ma
 
 typedef struct run {
     walk_run_t walk;
+    bool echo;              /* echo bearings on: one echo correction a scan */
     counts_t total;         /* over every scan so far */
 } run_t;
 
@@ -218,7 +219,7 @@ static run_t start(uint64_t seed, int32_t search_every)
     p.echo_bearings = true;
     p.lost_after = 2;
     p.search_every = search_every;
-    return (run_t){ .walk = walk_run_start(seed, &p) };
+    return (run_t){ .walk = walk_run_start(seed, &p), .echo = p.echo_bearings };
 }
 
 static void finish(run_t *r)
@@ -235,7 +236,7 @@ static hl_slam_step_t sound(run_t *r, hl_pose_t truth, hl_pose_t odometry, count
     hl_slam_step_t step;
     assert_int_equal(hl_slam_update(r->walk.s, r->walk.scan, odometry, &step), HL_OK);
     assert_int_equal(n.checks, 1);
-    assert_int_equal(n.echoes, 1);
+    assert_int_equal(n.echoes, r->echo ? 1 : 0);
     assert_int_equal(n.repeated_local, 0);
     assert_int_equal(n.repeated_global, 0);
     assert_int_equal(n.in_global, 0);
@@ -345,30 +346,71 @@ static void test_lost_by_doubt_one_pass(void **state)
     finish(&r);
 }
 
-/* A tracker restored from a saved state searches its first scan (the robot may have moved
- * while nothing watched), though the period would not; the scans after, tracked well, are
- * not searched. */
+/* A tracker restored from a saved state searches its scans (the robot may have moved
+ * while nothing watched), though the period would not, until a search puts the robot
+ * where tracking does; the scans after, tracked well, are not searched. */
 static void test_restored_tracker_searches_first_scan(void **state)
 {
     (void)state;
-    run_t a = start(31, 1000);
+    hl_slam_params_t p;
+    ray_sensor_defaults(&p);
+    p.echo_bearings = false;   /* the thin ray tracks closest without them */
+    p.lost_after = 2;
+    p.search_every = 1000;
+    run_t a = { .walk = walk_run_start(32, &p), .echo = p.echo_bearings };
     for (int i = 0; i < 20; i++)
         sound(&a, a.walk.w->truth[i], a.walk.w->odom[i], NULL);
     hl_slam_state_t st;
     hl_slam_get_state(a.walk.s, &st);
     hl_map_t *m = hl_slam_map(a.walk.s);
 
-    run_t b = start(31, 1000);
+    run_t b = { .walk = walk_run_start(32, &p), .echo = p.echo_bearings };
     sound(&b, b.walk.w->truth[0], b.walk.w->odom[0], NULL);   /* its period's first scan behind it */
     assert_int_equal(hl_slam_restore(b.walk.s, &st, hl_map_vectors(m), hl_map_count(m)), HL_OK);
     counts_t c;
     hl_slam_step_t out = sound(&b, b.walk.w->truth[20], b.walk.w->odom[20], &c);
     assert_true(out.watched);
     assert_int_equal(c.global, 1);
-    assert_int_equal(out.status, HL_SLAM_ACCEPTED);
+    assert_int_equal(out.status, HL_SLAM_ACCEPTED);     /* the search agreed: confirmed
+                                                           (a room whose search is not
+                                                           ambiguous here) */
     out = sound(&b, b.walk.w->truth[21], b.walk.w->odom[21], &c);
     assert_false(out.watched);
     assert_int_equal(c.global, 0);
+    finish(&a);
+    finish(&b);
+}
+
+/* ... and while no search confirms it (here none ever answers: a bar no pose clears), it
+ * searches every scan for search_every scans after the restore, then the period alone. */
+static void test_restored_tracker_unconfirmed_window(void **state)
+{
+    (void)state;
+    hl_slam_params_t p;
+    ray_sensor_defaults(&p);
+    p.echo_bearings = true;
+    p.lost_after = 2;
+    p.search_every = 5;
+    p.reloc.min_explained_pct = 100.0;
+    p.reloc.max_ratio = 0.01;
+    run_t a = { .walk = walk_run_start(33, &p), .echo = p.echo_bearings };
+    for (int i = 0; i < 20; i++)
+        sound(&a, a.walk.w->truth[i], a.walk.w->odom[i], NULL);
+    hl_slam_state_t st;
+    hl_slam_get_state(a.walk.s, &st);
+    hl_map_t *m = hl_slam_map(a.walk.s);
+
+    run_t b = { .walk = walk_run_start(33, &p), .echo = p.echo_bearings };
+    sound(&b, b.walk.w->truth[0], b.walk.w->odom[0], NULL);    /* scan 0: periodic */
+    assert_int_equal(hl_slam_restore(b.walk.s, &st, hl_map_vectors(m), hl_map_count(m)), HL_OK);
+    for (int i = 1; i <= 6; i++) {     /* scans 1 .. 6 of this tracker */
+        counts_t c;
+        hl_slam_step_t out = sound(&b, b.walk.w->truth[19 + i], b.walk.w->odom[19 + i], &c);
+        assert_int_equal(out.status, HL_SLAM_ACCEPTED);
+        assert_false(out.search.found);
+        assert_int_equal(out.watched, i <= 5);     /* the window; scan 5 is periodic too */
+        assert_int_equal(c.global, i <= 5);
+    }
     finish(&a);
     finish(&b);
 }
@@ -380,6 +422,7 @@ int main(void)
         cmocka_unit_test(test_carried_away_searched_when_in_doubt),
         cmocka_unit_test(test_lost_by_doubt_one_pass),
         cmocka_unit_test(test_restored_tracker_searches_first_scan),
+        cmocka_unit_test(test_restored_tracker_unconfirmed_window),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -207,10 +207,12 @@ typedef struct hl_slam_params {
                                    row; 0..1000000, 0 (the default): never lost by doubt */
     double lost_peak_ratio;     /* 0..1; default 0.5 */
     int32_t search_every;       /* the watch: while tracking, every this many scans, and
-                                   on every scan tracking is in doubt about (the first
-                                   after hl_slam_restore, one it cannot localize against
-                                   a map that holds something, one rejected or with a
-                                   peak below lost_peak_ratio of the recent average),
+                                   on every scan tracking is in doubt about (after
+                                   hl_slam_restore, each until the search puts the robot
+                                   where tracking does, at most this many; one it cannot
+                                   localize against a map that holds something; one
+                                   rejected or with a peak below lost_peak_ratio of the
+                                   recent average),
                                    also run the global search: a robot carried away is
                                    lost when it finds the scan clearly better explained
                                    elsewhere; 0..1000000, 0 (the default): never */
