@@ -44,10 +44,10 @@ static void paper_preset(hl_slam_params_t *p)
  * answers wrong on at most 1 % of the kidnap trials of every row
  * (docs/results/relocalization.md), so that a robot moved while the daemon was down, or
  * carried while it ran, is found rather than driven from where it was. The watch
- * searches every scan tracking is in doubt about (the first after a restart, a rejected
- * one, one matched far worse than the recent ones) and every 10th scan besides (about
- * 30 ms a search against 1 ms of tracking; the continuous profiles turn it off,
- * profiles.c), and two doubtful scans in a row make it lost.
+ * searches every scan tracking is in doubt about (after a restart until a search
+ * confirms the pose, a rejected one, one matched far worse than the recent ones) and
+ * every 10th scan besides (about 30 ms a search against 1 ms of tracking; the continuous
+ * profiles turn it off, profiles.c), and two doubtful scans in a row make it lost.
  * The library's tracker leaves it to its caller (hl_slam_params_default); the paper's
  * method had none. */
 static void daemon_preset(hl_slam_params_t *p)
