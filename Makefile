@@ -211,7 +211,7 @@ $(LCM_LIB): $(LCM_OBJS)
 $(BUILD)/tests/core/%: $(BUILD)/asan/tests/core/%.o $(TEST_SUPPORT_ASAN_LIB) $(CORE_ASAN_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD-SAN  $@"
-	$(Q)$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(SYS_LIBS)
+	$(Q)$(CC) $(SAN) -o $@ $^ $(TEST_LDFLAGS) $(CMOCKA_LIBS) $(SYS_LIBS)
 
 unit-test: $(TEST_BINS)
 	$(Q)sh tests/run-unit.sh $(TEST_BINS)

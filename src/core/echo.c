@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "houghloc-internal/params.h"
+#include "valid_scan.h"
 
 void hl_echo_params_default(hl_echo_params_t *p)
 {
@@ -113,11 +114,27 @@ static uint32_t neighbours(const hl_scan_t *in, const uint32_t *order, uint32_t 
     return m;
 }
 
+static hl_status_t correct(const hl_echo_params_t *p, const hl_scan_t *in, bool check,
+                           hl_scan_t *out);
+
 hl_status_t hl_echo_correct(const hl_echo_params_t *p, const hl_scan_t *in, hl_scan_t *out)
+{
+    return correct(p, in, true, out);
+}
+
+hl_status_t hl_echo_correct_valid(const hl_echo_params_t *p, const hl_scan_t *in,
+                                  hl_scan_t *out)
+{
+    return correct(p, in, false, out);
+}
+
+/* hl_echo_correct; the scan checked only when @p check. */
+static hl_status_t correct(const hl_echo_params_t *p, const hl_scan_t *in, bool check,
+                           hl_scan_t *out)
 {
     if (!in || !out || in == out || hl_echo_params_error(p))
         return HL_ERR_ARG;
-    if (hl_scan_check(in) != HL_OK)
+    if (check && hl_scan_check(in) != HL_OK)
         return HL_ERR_RANGE;
     uint32_t order[HL_SCAN_MAX_READINGS];
     uint32_t n = 0;

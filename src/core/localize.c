@@ -15,6 +15,7 @@
 #include "peak.h"
 
 #include "loc_params.h"
+#include "valid_scan.h"
 #include "vgroup.h"
 
 struct hl_localizer {
@@ -397,14 +398,33 @@ static int32_t axis_offset(const hl_grid_t *g, const hl_peak_t *pk, int axis, in
                           hl_grid_score(g, hi[0], hi[1], hi[2]), step);
 }
 
+static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
+                       const hl_scan_t *scan, const hl_loc_query_t *query, bool check,
+                       hl_loc_result_t *result);
+
 hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
                        const hl_scan_t *scan, const hl_loc_query_t *query,
+                       hl_loc_result_t *result)
+{
+    return run(loc, map, n, scan, query, true, result);
+}
+
+hl_status_t hl_loc_run_valid(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
+                             const hl_scan_t *scan, const hl_loc_query_t *query,
+                             hl_loc_result_t *result)
+{
+    return run(loc, map, n, scan, query, false, result);
+}
+
+/* hl_loc_run; the scan checked only when @p check. */
+static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
+                       const hl_scan_t *scan, const hl_loc_query_t *query, bool check,
                        hl_loc_result_t *result)
 {
     if (!loc || (!map && n > 0) || !scan || !query || !result)
         return HL_ERR_ARG;
     memset(result, 0, sizeof *result);
-    if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(query->predicted) ||
+    if ((check && hl_scan_check(scan) != HL_OK) || !hl_pose_in_range(query->predicted) ||
         query->window_mm < 0 || query->window_mm > HL_LOC_MAX_SIDE_MM / 2)
         return HL_ERR_RANGE;
     if (n > loc->p.max_map_vectors)

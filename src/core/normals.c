@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "houghloc-internal/params.h"
+#include "valid_scan.h"
 
 void hl_normals_params_default(hl_normals_params_t *p)
 {
@@ -89,13 +90,29 @@ static bool fit_one(const hl_normals_params_t *p, const hl_scan_t *in, uint32_t 
     return true;
 }
 
+static hl_status_t fit(const hl_normals_params_t *p, const hl_scan_t *in, bool check,
+                       hl_scan_t *out);
+
 hl_status_t hl_normals_fit(const hl_normals_params_t *p, const hl_scan_t *in, hl_scan_t *out)
+{
+    return fit(p, in, true, out);
+}
+
+hl_status_t hl_normals_fit_valid(const hl_normals_params_t *p, const hl_scan_t *in,
+                                 hl_scan_t *out)
+{
+    return fit(p, in, false, out);
+}
+
+/* hl_normals_fit; the scan checked only when @p check. */
+static hl_status_t fit(const hl_normals_params_t *p, const hl_scan_t *in, bool check,
+                       hl_scan_t *out)
 {
     if (!p || !in || !out || hl_normals_params_error(p))
         return HL_ERR_ARG;
     if ((const void *)in < (const void *)(out + 1) && (const void *)out < (const void *)(in + 1))
         return HL_ERR_ARG;
-    if (hl_scan_check(in) != HL_OK)
+    if (check && hl_scan_check(in) != HL_OK)
         return HL_ERR_RANGE;
     double px[HL_SCAN_MAX_READINGS], py[HL_SCAN_MAX_READINGS];     /* 16 KiB */
     for (uint32_t i = 0; i < in->count; i++)

@@ -127,14 +127,16 @@ const hl_param_entry_t hl_param_table[] = {
     /* The LOST state is on: the global search answers wrong on at most 1 % of the kidnap
      * trials of every row (docs/results/relocalization.md), so that a robot moved while
      * the program was down, or carried while it ran, is found rather than driven from
-     * where it was. Every scan is searched besides tracking (a sonar sounded at stops:
-     * about 30 ms a sounding; the continuous profiles turn it off). */
+     * where it was. The watch searches every scan tracking is in doubt about (after a
+     * restart until a search confirms the pose, a rejected one, one matched far worse
+     * than the recent ones) and every 10th scan besides (about 30 ms a search against
+     * 1 ms of tracking; the continuous profiles turn it off). */
     INT("slam.lost_after", O, I32, lost_after, 0, 1000000, "2",
         "doubtful scans in a row (rejected, or matched far worse than recent ones) that make "
         "the tracker LOST: each scan then searches the whole map; 0: never"),
-    INT("slam.search_every", O, I32, search_every, 0, 1000000, "1",
-        "while tracking, also search the whole map every this many scans, to notice a robot "
-        "carried away (a sonar's scans are seconds apart); 0: never"),
+    INT("slam.search_every", O, I32, search_every, 0, 1000000, "10",
+        "while tracking, also search the whole map every this many scans and on every scan "
+        "tracking is in doubt about, to notice a robot carried away; 0: never"),
 
     /* ---- [localize]: the Hough search ---- */
     INT("localize.cell_mm", E, I32, loc.cell_mm, 1, 1000, "24",

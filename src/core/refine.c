@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cellhash.h"
+#include "valid_scan.h"
 
 #define TWO_PI 6.28318530717958647692
 
@@ -327,16 +328,35 @@ static uint32_t gather_readings(hl_refiner_t *r, const hl_scan_t *scan)
     return n;
 }
 
+static hl_status_t run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
+                       const hl_scan_t *scan, hl_pose_t start, bool heading, bool check,
+                       hl_pose_t *out);
+
 hl_status_t hl_refine_run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
                           const hl_scan_t *scan, hl_pose_t start, bool heading,
                           hl_pose_t *out)
+{
+    return run(r, map, n, scan, start, heading, true, out);
+}
+
+hl_status_t hl_refine_run_valid(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
+                                const hl_scan_t *scan, hl_pose_t start, bool heading,
+                                hl_pose_t *out)
+{
+    return run(r, map, n, scan, start, heading, false, out);
+}
+
+/* hl_refine_run; the scan checked only when @p check. */
+static hl_status_t run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
+                       const hl_scan_t *scan, hl_pose_t start, bool heading, bool check,
+                       hl_pose_t *out)
 {
     if (!r || !scan || !out || (n > 0 && !map))
         return HL_ERR_ARG;
     *out = start;
     if (n > r->capacity)
         return HL_ERR_CAPACITY;
-    if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(start))
+    if ((check && hl_scan_check(scan) != HL_OK) || !hl_pose_in_range(start))
         return HL_ERR_RANGE;
     if (n == 0)
         return HL_ERR_EMPTY;

@@ -13,6 +13,7 @@
 #include "judge.h"
 #include "loc_params.h"
 #include "reloc_headings.h"
+#include "valid_scan.h"
 #include "votesum.h"
 
 
@@ -286,7 +287,7 @@ static hl_status_t coarse_vote(hl_reloc_t *r, const hl_vector_t *map, uint32_t n
         hl_loc_query_t q = { .predicted = { 0, 0, (hl_bam_t)(heading + set->offset[k].theta) },
                              .window_mm = 0, .search_theta = true, .use_prior = false };
         hl_loc_result_t lr;
-        hl_status_t st = hl_loc_run(r->coarse, map, n, set->scans[k], &q, &lr);
+        hl_status_t st = hl_loc_run_valid(r->coarse, map, n, set->scans[k], &q, &lr);
         if (st == HL_ERR_EMPTY)
             continue;
         if (st != HL_OK)
@@ -318,7 +319,7 @@ static bool fine_search(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
         hl_loc_query_t q = { .predicted = at, .window_mm = r->p.fine_window_mm,
                              .search_theta = true, .use_prior = false };
         hl_loc_result_t lr;
-        hl_status_t st = hl_loc_run(r->fine, map, n, set->scans[k], &q, &lr);
+        hl_status_t st = hl_loc_run_valid(r->fine, map, n, set->scans[k], &q, &lr);
         if (st != HL_OK && st != HL_ERR_EMPTY) {
             *error = st;
             return false;
@@ -335,10 +336,11 @@ static bool fine_search(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
     return any;
 }
 
-/* Checks the arguments and gathers the scans with their poses in the first's frame. */
+/* Checks the arguments (the scans too when @p check) and gathers the scans with their
+ * poses in the first's frame. */
 static hl_status_t make_set(const hl_reloc_t *r, uint32_t n, const hl_scan_t *const *scans,
-                            const hl_pose_t *odometry, uint32_t count, scan_set_t *set,
-                            uint32_t *nvalid)
+                            const hl_pose_t *odometry, uint32_t count, bool check,
+                            scan_set_t *set, uint32_t *nvalid)
 {
     if (count < 1 || count > HL_RELOC_MAX_SCANS || !scans || (count > 1 && !odometry))
         return HL_ERR_ARG;
@@ -348,7 +350,7 @@ static hl_status_t make_set(const hl_reloc_t *r, uint32_t n, const hl_scan_t *co
     for (uint32_t k = 0; k < count; k++) {
         if (!scans[k])
             return HL_ERR_ARG;
-        if (hl_scan_check(scans[k]) != HL_OK)
+        if (check && hl_scan_check(scans[k]) != HL_OK)
             return HL_ERR_RANGE;
         set->offset[k] = (hl_pose_t){ 0, 0, 0 };
         if (k > 0) {
@@ -361,16 +363,16 @@ static hl_status_t make_set(const hl_reloc_t *r, uint32_t n, const hl_scan_t *co
     return n > r->fine_p.max_map_vectors ? HL_ERR_CAPACITY : HL_OK;
 }
 
-hl_status_t hl_reloc_run_scans(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
-                               const hl_scan_t *const *scans, const hl_pose_t *odometry,
-                               uint32_t count, hl_reloc_result_t *result)
+static hl_status_t run_scans(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                             const hl_scan_t *const *scans, const hl_pose_t *odometry,
+                             uint32_t count, bool check, hl_reloc_result_t *result)
 {
     if (!r || (!map && n > 0) || !result)
         return HL_ERR_ARG;
     memset(result, 0, sizeof *result);
     scan_set_t set;
     uint32_t nvalid;
-    hl_status_t st = make_set(r, n, scans, odometry, count, &set, &nvalid);
+    hl_status_t st = make_set(r, n, scans, odometry, count, check, &set, &nvalid);
     if (st != HL_OK)
         return st;
     result->readings = nvalid;
@@ -432,6 +434,20 @@ hl_status_t hl_reloc_run_scans(hl_reloc_t *r, const hl_vector_t *map, uint32_t n
     return HL_OK;
 }
 
+hl_status_t hl_reloc_run_scans(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                               const hl_scan_t *const *scans, const hl_pose_t *odometry,
+                               uint32_t count, hl_reloc_result_t *result)
+{
+    return run_scans(r, map, n, scans, odometry, count, true, result);
+}
+
+hl_status_t hl_reloc_run_scans_valid(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                                     const hl_scan_t *const *scans, const hl_pose_t *odometry,
+                                     uint32_t count, hl_reloc_result_t *result)
+{
+    return run_scans(r, map, n, scans, odometry, count, false, result);
+}
+
 hl_status_t hl_reloc_run(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
                          const hl_scan_t *scan, hl_reloc_result_t *result)
 {
@@ -444,11 +460,22 @@ void hl_reloc_judge_poses(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
                           const hl_scan_t *scan, const hl_pose_t *poses, uint32_t count,
                           uint32_t *scores)
 {
+    if (scan && hl_scan_check(scan) != HL_OK) {
+        if (scores)
+            memset(scores, 0, (size_t)count * sizeof *scores);
+        return;
+    }
+    hl_reloc_judge_poses_valid(r, map, n, scan, poses, count, scores);
+}
+
+void hl_reloc_judge_poses_valid(hl_reloc_t *r, const hl_vector_t *map, uint32_t n,
+                                const hl_scan_t *scan, const hl_pose_t *poses, uint32_t count,
+                                uint32_t *scores)
+{
     if (!scores)
         return;
     memset(scores, 0, (size_t)count * sizeof *scores);
-    if (!r || !map || !scan || !poses || n == 0 || n > r->fine_p.max_map_vectors ||
-        hl_scan_check(scan) != HL_OK)
+    if (!r || !map || !scan || !poses || n == 0 || n > r->fine_p.max_map_vectors)
         return;
     hl_judge_build(&r->judge, map, n);
     for (uint32_t i = 0; i < count; i++)

@@ -81,3 +81,11 @@ bool hl_pose_in_range(hl_pose_t p)
     return p.x_mm >= -HL_COORD_MAX_MM && p.x_mm <= HL_COORD_MAX_MM &&
            p.y_mm >= -HL_COORD_MAX_MM && p.y_mm <= HL_COORD_MAX_MM;
 }
+
+bool hl_pose_predict(hl_pose_t pose, hl_pose_t odom_then, hl_pose_t odom_now, hl_pose_t *out)
+{
+    hl_pose_t moved = hl_pose_compose(pose, hl_pose_between(odom_then, odom_now));
+    bool in_range = hl_pose_in_range(moved);
+    *out = in_range ? moved : pose;
+    return in_range;
+}

@@ -9,6 +9,7 @@
 #include "houghloc-internal/closure.h"
 #include "houghloc-internal/params.h"
 #include "slam_internal.h"
+#include "valid_scan.h"
 
 hl_slam_t *hl_slam_create(const hl_params_t *p)
 {
@@ -144,43 +145,81 @@ static hl_bam_t blend_heading(hl_bam_t predicted, hl_bam_t found, double gain)
     return (hl_bam_t)(predicted + (int32_t)lround(gain * d));
 }
 
-const hl_scan_t *hl_slam_prepare(const hl_slam_params_t *p, const hl_scan_t *scan,
-                                 hl_scan_t *echoed, hl_scan_t *fitted)
+/* hl_slam_prepare of a checked scan. */
+static const hl_scan_t *prepare_valid(const hl_slam_params_t *p, const hl_scan_t *scan,
+                                      hl_scan_t *echoed, hl_scan_t *fitted)
 {
-    if (p->echo_bearings && hl_echo_correct(&p->echo, scan, echoed) == HL_OK)
+    if (p->echo_bearings && hl_echo_correct_valid(&p->echo, scan, echoed) == HL_OK)
         scan = echoed;
-    if (p->fit_normals && hl_normals_fit(&p->normals, scan, fitted) == HL_OK)
+    if (p->fit_normals && hl_normals_fit_valid(&p->normals, scan, fitted) == HL_OK)
         scan = fitted;
     return scan;
 }
 
-/* The scan as the localizer and the map see it. */
-static const hl_scan_t *prepared(hl_slam_t *s, const hl_scan_t *scan)
+const hl_scan_t *hl_slam_prepare(const hl_slam_params_t *p, const hl_scan_t *scan,
+                                 hl_scan_t *echoed, hl_scan_t *fitted)
 {
-    return hl_slam_prepare(&s->p, scan, s->echoed, s->fitted);
+    /* every step refuses a scan hl_scan_check refuses, and leaves its input */
+    return hl_scan_check(scan) == HL_OK ? prepare_valid(p, scan, echoed, fitted) : scan;
+}
+
+const hl_scan_t *hl_slam_ready(hl_slam_t *s, const hl_scan_t *scan)
+{
+    return prepare_valid(&s->p, scan, s->echoed, s->fitted);
+}
+
+bool hl_slam_predict(const hl_slam_t *s, hl_pose_t odometry, hl_pose_t *out)
+{
+    if (!s->started) {
+        *out = s->pose;
+        return hl_pose_in_range(s->pose);
+    }
+    return hl_pose_predict(s->pose, s->odom, odometry, out);
 }
 
 /* Hough, then the optional refinement, against @p map (the slam's, or a loop closure's
- * map of one earlier stop). */
+ * map of one earlier stop); @p scan is checked (closure's stops are scans the map took). */
 hl_status_t hl_slam_localize_in(hl_slam_t *s, const hl_map_t *map, const hl_scan_t *scan,
                                 hl_pose_t predicted, hl_loc_result_t *loc, hl_pose_t *pose)
 {
     hl_loc_query_t q = { .predicted = predicted, .window_mm = s->p.window_mm,
                          .search_theta = true, .use_prior = s->p.use_prior };
-    hl_status_t st = hl_loc_run(s->loc, hl_map_vectors(map), hl_map_count(map), scan, &q, loc);
+    hl_status_t st = hl_loc_run_valid(s->loc, hl_map_vectors(map), hl_map_count(map), scan,
+                                      &q, loc);
     if (st != HL_OK)
         return st;
     *pose = s->p.interpolate ? loc->pose : loc->cell_pose;
     if (s->refiner)  /* a refused refinement leaves the Hough pose */
-        hl_refine_run(s->refiner, hl_map_vectors(map), hl_map_count(map), scan, *pose,
-                      s->p.refine_heading, pose);
+        hl_refine_run_valid(s->refiner, hl_map_vectors(map), hl_map_count(map), scan, *pose,
+                            s->p.refine_heading, pose);
     return HL_OK;
 }
 
-static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predicted,
-                            hl_loc_result_t *loc, hl_pose_t *pose)
+static bool same_pose(hl_pose_t a, hl_pose_t b)
 {
-    return hl_slam_localize_in(s, s->map, scan, predicted, loc, pose);
+    return a.x_mm == b.x_mm && a.y_mm == b.y_mm && a.theta == b.theta;
+}
+
+hl_status_t hl_slam_search_local(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t predicted,
+                                 hl_loc_result_t *loc, hl_pose_t *pose)
+{
+    hl_slam_memo_t *m = &s->memo;
+    if (m->active && m->have_local && same_pose(m->local_from, predicted)) {
+        *loc = m->local_loc;
+        if (m->local_status == HL_OK)
+            *pose = m->local_pose;
+        return m->local_status;
+    }
+    hl_status_t st = hl_slam_localize_in(s, s->map, ready, predicted, loc, pose);
+    if (m->active) {
+        m->have_local = true;
+        m->local_from = predicted;
+        m->local_status = st;
+        m->local_loc = *loc;
+        if (st == HL_OK)
+            m->local_pose = *pose;
+    }
+    return st;
 }
 
 /* A turned drive is taken only when the judge (reloc.h) explains this many times as many
@@ -194,12 +233,13 @@ static hl_status_t localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t predi
  * of HL_SLAM_DRIVE_TURN_DEG up to HL_SLAM_DRIVE_TURNS each way (odometry's heading error
  * swings the whole drive, so the position moves with the heading), and the judge picks.
  * When a turned drive wins, *found and *loc become its. @return whether one did. */
-static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
+static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
                        hl_loc_result_t *loc, hl_pose_t *found)
 {
     const hl_pose_t origin = { 0, 0, 0 };
     if (s->p.long_drive_mm == 0 || !s->started ||
-        hl_slam_dist2(drive, origin) < (int64_t)s->p.long_drive_mm * s->p.long_drive_mm)
+        hl_slam_dist2(hl_pose_between(s->odom, odometry), origin) <
+            (int64_t)s->p.long_drive_mm * s->p.long_drive_mm)
         return false;
     enum { MAX = 1 + 2 * HL_SLAM_DRIVE_TURNS };
     const int32_t turn = hl_bam_from_deg(HL_SLAM_DRIVE_TURN_DEG);
@@ -210,13 +250,13 @@ static bool turn_drive(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t drive,
     for (int k = -HL_SLAM_DRIVE_TURNS; k <= HL_SLAM_DRIVE_TURNS; k++) {
         hl_pose_t from = s->pose;
         from.theta = (hl_bam_t)(from.theta + k * turn);
-        hl_pose_t pred = hl_pose_compose(from, drive);
-        if (k != 0 && hl_pose_in_range(pred) &&
-            localize(s, scan, pred, &res[n], &pose[n]) == HL_OK)
+        hl_pose_t pred;
+        if (k != 0 && hl_pose_predict(from, s->odom, odometry, &pred) &&
+            hl_slam_localize_in(s, s->map, scan, pred, &res[n], &pose[n]) == HL_OK)
             n++;
     }
-    hl_reloc_judge_poses(s->reloc, hl_map_vectors(s->map), hl_map_count(s->map), scan, pose, n,
-                         score);
+    hl_reloc_judge_poses_valid(s->reloc, hl_map_vectors(s->map), hl_map_count(s->map), scan,
+                               pose, n, score);
     uint32_t best = 0;
     for (uint32_t i = 1; i < n; i++)
         if (score[i] > score[best])
@@ -235,7 +275,7 @@ hl_status_t hl_slam_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pred
         return HL_ERR_ARG;
     if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(predicted))
         return HL_ERR_RANGE;
-    return localize(s, prepared(s, scan), predicted, loc, pose);
+    return hl_slam_localize_in(s, s->map, hl_slam_ready(s, scan), predicted, loc, pose);
 }
 
 hl_status_t hl_slam_relocalize(hl_slam_t *s, const hl_scan_t *scan, hl_reloc_result_t *out)
@@ -255,17 +295,43 @@ hl_status_t hl_slam_relocalize_scans(hl_slam_t *s, const hl_scan_t *const *scans
             return HL_ERR_ARG;
         if (hl_scan_check(scans[k]) != HL_OK)
             return HL_ERR_RANGE;
-        ready[k] = hl_slam_prepare(&s->p, scans[k],
-                                   s->search_echoed ? &s->search_echoed[k] : NULL,
-                                   s->search_fitted ? &s->search_fitted[k] : NULL);
+        ready[k] = prepare_valid(&s->p, scans[k],
+                                 s->search_echoed ? &s->search_echoed[k] : NULL,
+                                 s->search_fitted ? &s->search_fitted[k] : NULL);
+    }
+    return hl_slam_search_global(s, ready, odometry, count, out);
+}
+
+hl_status_t hl_slam_search_global(hl_slam_t *s, const hl_scan_t *const *ready,
+                                  const hl_pose_t *odometry, uint32_t count,
+                                  hl_reloc_result_t *out)
+{
+    hl_slam_memo_t *m = &s->memo;
+    bool alone = count == 1;
+    if (alone && m->active && m->have_search) {
+        *out = m->search;
+        return m->search_status;
     }
     const hl_vector_t *map = hl_map_vectors(s->map);
     uint32_t n = hl_map_count(s->map);
-    hl_status_t st = hl_reloc_run_scans(s->reloc, map, n, ready, odometry, count, out);
+    hl_status_t st = hl_reloc_run_scans_valid(s->reloc, map, n, ready, odometry, count, out);
     if (st == HL_OK && s->refiner)  /* a refused refinement leaves the search's pose */
-        hl_refine_run(s->refiner, map, n, ready[0], out->pose, s->p.refine_heading,
-                      &out->pose);
+        hl_refine_run_valid(s->refiner, map, n, ready[0], out->pose, s->p.refine_heading,
+                            &out->pose);
+    if (alone && m->active) {
+        m->have_search = true;
+        m->search_status = st;
+        m->search = *out;
+    }
     return st;
+}
+
+uint32_t hl_slam_judge_ready(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t pose)
+{
+    uint32_t score;
+    hl_reloc_judge_poses_valid(s->reloc, hl_map_vectors(s->map), hl_map_count(s->map), ready,
+                               &pose, 1, &score);
+    return score;
 }
 
 void hl_slam_judge_poses(hl_slam_t *s, const hl_scan_t *scan, const hl_pose_t *poses,
@@ -276,8 +342,8 @@ void hl_slam_judge_poses(hl_slam_t *s, const hl_scan_t *scan, const hl_pose_t *p
             memset(scores, 0, (size_t)count * sizeof *scores);
         return;
     }
-    hl_reloc_judge_poses(s->reloc, hl_map_vectors(s->map), hl_map_count(s->map),
-                         prepared(s, scan), poses, count, scores);
+    hl_reloc_judge_poses_valid(s->reloc, hl_map_vectors(s->map), hl_map_count(s->map),
+                               hl_slam_ready(s, scan), poses, count, scores);
 }
 
 uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose)
@@ -289,32 +355,18 @@ uint32_t hl_slam_judge(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t pose)
 
 /* ---- tracking: the stages of one scan ------------------------------------------------- */
 
-/* Prepare: the prediction from the odometry, and the scan as the localizer and the map
- * see it. */
-static hl_status_t stage_prepare(hl_slam_t *s, const hl_scan_t **scan, hl_pose_t odometry,
-                                 hl_slam_step_t *step)
-{
-    hl_pose_t predicted = s->pose;
-    if (s->started)
-        predicted = hl_pose_compose(s->pose, hl_pose_between(s->odom, odometry));
-    if (!hl_pose_in_range(predicted))
-        return HL_ERR_RANGE;
-    *step = (hl_slam_step_t){ .pose = predicted, .predicted = predicted,
-                              .status = HL_SLAM_ODOMETRY_ONLY };
-    *scan = prepared(s, *scan);
-    return HL_OK;
-}
-
 /* Localize: the Hough vote around the prediction, refined, and after a long drive the
  * drive turned about its start. HL_ERR_EMPTY: nothing to vote against. */
 static hl_status_t stage_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
-                                  hl_slam_step_t *step, hl_pose_t *found)
+                                  hl_slam_proposal_t *p, hl_pose_t *found)
 {
-    hl_status_t st = localize(s, scan, step->predicted, &step->loc, found);
-    if (st == HL_OK)
-        step->turned = turn_drive(s, scan, hl_pose_between(s->odom, odometry), &step->loc,
-                                  found);
-    return st;
+    hl_slam_step_t *step = &p->step;
+    hl_status_t st = hl_slam_search_local(s, scan, step->predicted, &step->loc, found);
+    if (st != HL_OK)
+        return st;
+    p->local = *found;
+    step->turned = turn_drive(s, scan, odometry, &step->loc, found);
+    return HL_OK;
 }
 
 /* Guard: accept or reject the pose found (guarded mode), the recent-peak average moved
@@ -348,22 +400,24 @@ static hl_status_t stage_integrate(hl_slam_t *s, const hl_scan_t *scan, hl_slam_
     return hl_map_add_scan(s->map, scan, step->pose, &step->added);
 }
 
-/* Computes the stages into locals first and commits at the end, so that every error
- * return leaves the tracker as it was (slam_internal.h). The scratch buffers (s->echoed,
- * the localizer's raster, the refiner's hash) are not state: each use rewrites them. */
-hl_status_t hl_slam_track(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometry,
-                          hl_slam_step_t *out)
+/* The stages that compute (predict, localize, guard) go into the proposal, and only
+ * hl_slam_commit changes the tracker, so that every error return leaves it as it was
+ * (slam_internal.h). The scratch buffers (s->echoed, the localizer's raster, the
+ * refiner's hash) are not state: each use rewrites them. */
+hl_status_t hl_slam_propose(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odometry,
+                            hl_slam_proposal_t *p)
 {
-    hl_slam_step_t step;
-    hl_status_t st = stage_prepare(s, &scan, odometry, &step);
-    if (st != HL_OK)
-        return st;
-    uint32_t peak_avg = s->peak_avg;
+    hl_pose_t predicted;
+    bool in_range = hl_slam_predict(s, odometry, &predicted);
+    *p = (hl_slam_proposal_t){ .local = predicted, .extend = true, .peak_avg = s->peak_avg };
+    if (!in_range)
+        return HL_ERR_RANGE;
+    p->step = (hl_slam_step_t){ .pose = predicted, .predicted = predicted,
+                                .status = HL_SLAM_ODOMETRY_ONLY };
     hl_pose_t found;
-    bool extend = true;
-    st = stage_localize(s, scan, odometry, &step, &found);
+    hl_status_t st = stage_localize(s, ready, odometry, p, &found);
     if (st == HL_OK)
-        extend = stage_guard(s, found, &step, &peak_avg);
+        p->extend = stage_guard(s, found, &p->step, &p->peak_avg);
     else if (st != HL_ERR_EMPTY)
         return st;
     /* HL_ERR_EMPTY: nothing to vote against. The first scan, or a scan that overlaps
@@ -373,25 +427,41 @@ hl_status_t hl_slam_track(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odometr
 
     /* A local window at the edge of the coordinate range can put the peak (or the
      * refinement) outside it. */
-    if (extend && !hl_pose_in_range(step.pose))
+    if (p->extend && !hl_pose_in_range(p->step.pose))
         return HL_ERR_RANGE;
+    return HL_OK;
+}
 
-    /* Commit. */
+hl_status_t hl_slam_commit(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odometry,
+                           hl_slam_proposal_t *p, hl_slam_step_t *out)
+{
     hl_rng_t rng_before = hl_map_rng(s->map);
     bool stop = false;      /* a stop of its own for loop closure, or joins the last */
-    if (extend && (st = stage_integrate(s, scan, &step, &stop)) != HL_OK)
+    hl_status_t st;
+    if (p->extend && (st = stage_integrate(s, ready, &p->step, &stop)) != HL_OK)
         return st;
     /* Closure: cannot fail (its memory is its own, from create). A rejected scan is not
      * remembered: its pose is odometry's alone. */
     if (s->closure)
-        step.loops = hl_slam_closure_stage(s, extend ? scan : NULL, stop, rng_before,
-                                           &step.pose);
+        p->step.loops = hl_slam_closure_stage(s, p->extend ? ready : NULL, stop, rng_before,
+                                              &p->step.pose);
+    /* the map may have changed: what was searched against it no longer holds */
+    if (p->extend || s->closure)
+        s->memo = (hl_slam_memo_t){ .active = s->memo.active };
     s->started = true;
     s->odom = odometry;
-    s->pose = step.pose;
-    s->peak_avg = peak_avg;
-    *out = step;
+    s->pose = p->step.pose;
+    s->peak_avg = p->peak_avg;
+    *out = p->step;
     return HL_OK;
+}
+
+hl_status_t hl_slam_track(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odometry,
+                          hl_slam_step_t *out)
+{
+    hl_slam_proposal_t p;
+    hl_status_t st = hl_slam_propose(s, ready, odometry, &p);
+    return st == HL_OK ? hl_slam_commit(s, ready, odometry, &p, out) : st;
 }
 
 void hl_slam_place(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry)
@@ -450,6 +520,8 @@ hl_status_t hl_slam_restore(hl_slam_t *s, const hl_slam_state_t *state,
     s->pose = state->pose;
     s->odom = state->odom;
     s->peak_avg = state->peak_avg;
+    /* unconfirmed until the watch's search agrees, at most until its next period */
+    s->unconfirmed = s->p.search_every > 0 ? (uint32_t)s->p.search_every : 0;
     if (s->closure)     /* the stops are not saved: the restored vectors stay put */
         hl_slam_closure_reset(s);
     return HL_OK;

@@ -1,10 +1,17 @@
 /*
  * slam_lost.c - hl_slam_update: tracking, and the recovery of a robot whose pose is lost.
  *
- * The tracker is lost when the global search, run on every search_every-th scan while
- * tracking, finds the robot clearly elsewhere (it was carried away: tracking may match a
- * wrong place of a corridor well enough); after lost_after doubtful scans in a row
- * (rejected, or accepted with a peak below lost_peak_ratio of the recent average: the
+ * One pass: hl_slam_update checks and prepares the scan once; tracking's answer is
+ * computed first (hl_slam_propose) and committed only after the watch has decided, so the
+ * watch compares the search with the very local search tracking takes; the searches made
+ * to confirm or compare are memoized for the scan (slam_internal.h), so none runs twice
+ * with the same inputs.
+ *
+ * The tracker is lost when the watch's global search (search_every > 0: on every scan
+ * tracking is in doubt about, and every search_every-th scan) finds the robot clearly
+ * elsewhere (it was carried away: tracking may match a wrong place of a corridor well
+ * enough); after lost_after doubtful scans in a row
+ * (rejected, or accepted with a peak below HL_SLAM_LOST_PEAK_RATIO of the recent average: the
  * estimate drifted off the map, or the robot entered unmapped space); or when told
  * (hl_slam_lose). While lost:
  *  - a scan with no candidate runs the global search. A pose found (distinct from the
@@ -39,7 +46,7 @@
 /* One scan through the recovery: its inputs, and what the stages found so far. */
 typedef struct cycle {
     hl_slam_t *s;
-    const hl_scan_t *scan;
+    const hl_scan_t *scan;  /* checked and prepared once (hl_slam_ready) */
     hl_pose_t odometry;
     hl_pose_t prediction;   /* the pose a scan tracking cannot localize gets */
     hl_slam_step_t step;
@@ -51,7 +58,7 @@ typedef struct cycle {
     hl_pose_t tracked;
     uint32_t tracked_score;
     hl_slam_found_how_t found_how;
-    bool dropped_candidate, searched_lost;
+    bool dropped_candidate, searched_lost, watched;
     hl_status_t search_status;
 } cycle_t;
 
@@ -66,6 +73,7 @@ static void enter_lost(hl_slam_t *s)
     s->recovery.epoch++;
     clear_lost(s);
     s->recovery.lost = true;
+    s->unconfirmed = 0;     /* the lost state's searches take over */
 }
 
 bool hl_slam_lost(const hl_slam_t *s)
@@ -98,34 +106,38 @@ static bool agree(const hl_slam_t *s, hl_pose_t a, hl_pose_t b)
            (dt < 0 ? -dt : dt) < s->p.reloc.distinct_theta;
 }
 
-/* The last estimate moved by the odometry since (the start pose before the first scan;
- * the last estimate when the move leaves the coordinate range). */
-static hl_pose_t prediction(const hl_slam_t *s, hl_pose_t odometry)
+/* The recovery's doubt about a tracked scan: rejected, or accepted with a peak far below
+ * the recent ones (@p peak_avg, the average before it). */
+static bool doubtful(const hl_slam_step_t *step, uint32_t peak_avg)
 {
-    if (!s->started)
-        return s->pose;
-    hl_pose_t p = hl_pose_compose(s->pose, hl_pose_between(s->odom, odometry));
-    return hl_pose_in_range(p) ? p : s->pose;
+    /* A robot carried away matches the map far worse at its predicted pose; the guard
+     * rejects the first such scans, but its recent-peak average falls with each (slam.h,
+     * so that the map can follow a robot into unmapped space), and it soon accepts them */
+    bool low = peak_avg > 0 && step->loc.peak < HL_SLAM_LOST_PEAK_RATIO * (double)peak_avg;
+    return step->status == HL_SLAM_REJECTED_WILD || (step->status == HL_SLAM_ACCEPTED && low);
 }
 
-/* Tracking on this scan (a failure answers the prediction). @return true when the scan
- * is doubtful: rejected, or accepted with a peak far below the recent ones. */
-static bool track(cycle_t *c)
+/* Tracking on this scan: @p p, which hl_slam_propose made (@p st its answer), committed;
+ * a failure answers the prediction. @return true when the scan is doubtful. */
+static bool track_proposed(cycle_t *c, hl_status_t st, hl_slam_proposal_t *p)
 {
     hl_slam_t *s = c->s;
     uint32_t peak_avg = s->peak_avg;
-    hl_status_t st = hl_slam_track(s, c->scan, c->odometry, &c->step);
+    if (st == HL_OK)
+        st = hl_slam_commit(s, c->scan, c->odometry, p, &c->step);
     if (st != HL_OK) {
         c->error = st;
         c->step = (hl_slam_step_t){ .pose = c->prediction, .status = HL_SLAM_ODOMETRY_ONLY };
         return false;
     }
-    /* A robot carried away matches the map far worse at its predicted pose; the guard
-     * rejects the first such scans, but its recent-peak average falls with each (slam.h,
-     * so that the map can follow a robot into unmapped space), and it soon accepts them */
-    bool low = peak_avg > 0 && c->step.loc.peak < HL_SLAM_LOST_PEAK_RATIO * (double)peak_avg;
-    return c->step.status == HL_SLAM_REJECTED_WILD ||
-           (c->step.status == HL_SLAM_ACCEPTED && low);
+    return doubtful(&c->step, peak_avg);
+}
+
+static bool track(cycle_t *c)
+{
+    hl_slam_proposal_t p;
+    hl_status_t st = hl_slam_propose(c->s, c->scan, c->odometry, &p);
+    return track_proposed(c, st, &p);
 }
 
 /* Where tracking's local search would put this scan from @p from, without changing
@@ -133,7 +145,7 @@ static bool track(cycle_t *c)
 static bool tracked_pose(cycle_t *c, hl_pose_t from, hl_pose_t *out)
 {
     hl_loc_result_t loc;
-    if (hl_slam_localize(c->s, c->scan, from, &loc, out) == HL_OK)
+    if (hl_slam_search_local(c->s, c->scan, from, &loc, out) == HL_OK)
         return true;
     *out = from;
     return false;
@@ -173,7 +185,7 @@ static hl_status_t relocalize(cycle_t *c)
 {
     hl_slam_t *s = c->s;
     keep_scan(s, c->scan, c->odometry);
-    hl_status_t alone = hl_slam_relocalize(s, c->scan, &c->found);
+    hl_status_t alone = hl_slam_search_global(s, &c->scan, NULL, 1, &c->found);
     if (s->recovery.kept < 2 || (alone == HL_OK && c->found.found))
         return alone;
     const hl_scan_t *scans[HL_RELOC_MAX_SCANS];
@@ -183,7 +195,7 @@ static hl_status_t relocalize(cycle_t *c)
         scans[i] = &s->kept_scans[n - 1 - i];
         odometry[i] = s->recovery.kept_odometry[n - 1 - i];
     }
-    return hl_slam_relocalize_scans(s, scans, odometry, n, &c->found);
+    return hl_slam_search_global(s, scans, odometry, n, &c->found);
 }
 
 static void set_candidate(cycle_t *c, hl_pose_t pose)
@@ -197,14 +209,13 @@ static void set_candidate(cycle_t *c, hl_pose_t pose)
  * scan agree with it? */
 static bool confirms(cycle_t *c, hl_pose_t *predicted)
 {
-    const hl_slam_t *s = c->s;
-    *predicted = hl_pose_compose(s->recovery.candidate,
-                                 hl_pose_between(s->recovery.candidate_odometry, c->odometry));
-    if (!hl_pose_in_range(*predicted))
+    hl_slam_t *s = c->s;
+    if (!hl_pose_predict(s->recovery.candidate, s->recovery.candidate_odometry, c->odometry,
+                         predicted))
         return false;
     hl_loc_result_t loc;
     hl_pose_t pose;
-    if (hl_slam_localize(c->s, c->scan, *predicted, &loc, &pose) != HL_OK)
+    if (hl_slam_search_local(s, c->scan, *predicted, &loc, &pose) != HL_OK)
         return false;
     return hl_slam_dist2(pose, *predicted) <= (int64_t)HL_SLAM_WILD_MM * HL_SLAM_WILD_MM &&
            hl_loc_confidence(&loc) >= HL_SLAM_MIN_CONFIDENCE && loc.votes >= HL_SLAM_MIN_VOTES;
@@ -278,21 +289,22 @@ static hl_slam_status_t lost_scan(cycle_t *c, bool tracked)
     return HL_SLAM_LOST;
 }
 
-/* While tracking (search_every): the global search on this scan, and whether it finds
- * the robot somewhere else that explains the scan clearly better than where tracking
- * would put it. If so the tracker is lost with that candidate, to be confirmed by the
- * next scan, and nothing was tracked. */
-static bool kidnapped(cycle_t *c)
+/* The watch while tracking: the global search on this scan, and whether it finds the
+ * robot somewhere else that explains the scan clearly better than @p local, where
+ * tracking's local search puts it. If so the tracker is lost with that candidate, to be
+ * confirmed by the next scan, and nothing is tracked. */
+static bool kidnapped(cycle_t *c, hl_pose_t local)
 {
     hl_slam_t *s = c->s;
+    c->watched = true;
     c->found = (hl_reloc_result_t){ 0 };
-    if (hl_slam_relocalize(s, c->scan, &c->found) != HL_OK || !c->found.found)
+    if (hl_slam_search_global(s, &c->scan, NULL, 1, &c->found) != HL_OK || !c->found.found)
         return false;
-    hl_pose_t local;
-    tracked_pose(c, c->prediction, &local);
-    if (agree(s, local, c->found.pose))
+    if (agree(s, local, c->found.pose)) {
+        s->unconfirmed = 0;     /* the search puts the robot where tracking does */
         return false;
-    uint32_t here = hl_slam_judge(s, c->scan, local);
+    }
+    uint32_t here = hl_slam_judge_ready(s, c->scan, local);
     if (here > s->p.reloc.max_ratio * c->found.score)
         return false;   /* tracking's pose explains the scan about as well: keep it */
     enter_lost(s);
@@ -305,15 +317,34 @@ static bool kidnapped(cycle_t *c)
     return true;
 }
 
-/* Tracking, with the recovery's watch over it: the periodic search, the doubtful run. */
+/* Whether the watch searches this scan (search_every > 0): every search_every-th scan,
+ * and every scan tracking is in doubt about: one after a restore until a search confirms
+ * tracking's pose (the robot may have moved while nothing watched; at most search_every
+ * scans), one tracking could not localize against a map that holds something, or a
+ * doubtful one (@p doubt: rejected, or a peak far below the recent ones). A scan tracked
+ * well between the periodic ones is not searched. */
+static bool watch_due(const cycle_t *c, uint64_t scan_index, hl_status_t tracked, bool doubt)
+{
+    const hl_slam_t *s = c->s;
+    if (s->p.search_every == 0)
+        return false;
+    return scan_index % (uint64_t)s->p.search_every == 0 || s->unconfirmed > 0 || doubt ||
+           (tracked != HL_OK && hl_map_count(s->map) > 0);
+}
+
+/* Tracking, with the recovery's watch over it: tracking's answer computed once; the
+ * global search when due, which may find the robot elsewhere (then nothing is tracked);
+ * else the answer committed, and the doubtful run. */
 static hl_slam_status_t tracking_scan(cycle_t *c, uint64_t scan_index)
 {
     hl_slam_t *s = c->s;
-    if (s->p.search_every > 0 && scan_index % (uint64_t)s->p.search_every == 0 &&
-        kidnapped(c))
+    hl_slam_proposal_t p;
+    hl_status_t st = hl_slam_propose(s, c->scan, c->odometry, &p);
+    bool doubt = st == HL_OK && doubtful(&p.step, s->peak_avg);
+    if (watch_due(c, scan_index, st, doubt) && kidnapped(c, p.local))
         return HL_SLAM_RELOCALIZED;
-    bool doubtful = track(c);
-    s->recovery.doubtful_run = doubtful ? s->recovery.doubtful_run + 1 : 0;
+    bool doubtful_scan = track_proposed(c, st, &p);
+    s->recovery.doubtful_run = doubtful_scan ? s->recovery.doubtful_run + 1 : 0;
     if (s->p.lost_after == 0 || s->recovery.doubtful_run < s->p.lost_after)
         return c->step.status;
     c->doubtful_run = s->recovery.doubtful_run;
@@ -327,16 +358,22 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
 {
     if (!s || !scan || !out)
         return HL_ERR_ARG;
+    /* the scan's one check: every stage after takes it as checked (valid_scan.h) */
     if (hl_scan_check(scan) != HL_OK || !hl_pose_in_range(odometry)) {
         *out = (hl_slam_step_t){ .pose = s->pose, .predicted = s->pose,
                                  .status = HL_SLAM_ODOMETRY_ONLY };
         return HL_ERR_RANGE;
     }
-    cycle_t c = { .s = s, .scan = scan, .odometry = odometry,
-                  .prediction = prediction(s, odometry) };
+    cycle_t c = { .s = s, .odometry = odometry };
+    hl_slam_predict(s, odometry, &c.prediction);
+    c.scan = hl_slam_ready(s, scan);    /* prepared once: echo bearings, normals */
+    s->memo = (hl_slam_memo_t){ .active = true };
     uint64_t scan_index = s->scans++;
     hl_slam_status_t status = s->recovery.lost ? lost_scan(&c, false)
                                                : tracking_scan(&c, scan_index);
+    s->memo = (hl_slam_memo_t){ 0 };
+    if (s->unconfirmed > 0)
+        s->unconfirmed--;
     *out = c.step;
     out->status = status;
     if (status == HL_SLAM_RELOCALIZED || status == HL_SLAM_LOST)
@@ -348,6 +385,7 @@ hl_status_t hl_slam_update(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t odomet
     out->found_how = c.found_how;
     out->dropped_candidate = c.dropped_candidate;
     out->searched_lost = c.searched_lost;
+    out->watched = c.watched;
     out->search_status = c.search_status;
     return c.error;
 }

@@ -153,8 +153,8 @@ static void place_first_scan(hl_cycle_t *c, hl_pose_t scan_odometry)
     hl_slam_get_state(c->slam, &st);
     if (st.started || c->have_scan || !c->have_odometry)
         return;
-    hl_pose_t first = hl_pose_compose(st.pose, hl_pose_between(c->first_odometry, scan_odometry));
-    if (hl_pose_in_range(first))
+    hl_pose_t first;
+    if (hl_pose_predict(st.pose, c->first_odometry, scan_odometry, &first))
         hl_slam_reset(c->slam, first);
 }
 
@@ -217,7 +217,6 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
                  hl_status_str(st));
         hl_cycle_fault(c, NULL, "sonar update", what);
     }
-    hl_cycle_report_recovery(c, in, &step, now_us);
     hl_slam_status_t status = step.status;
     c->scan_odometry = in->odometry;
     if (!c->have_odometry || in->utime >= c->last_odometry_utime)
@@ -232,6 +231,8 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
     publish_pose(c, in, &step);
     int64_t compute_us = c->io.now_us(c->io.ctx) - t0;
     hl_cycle_record_compute(c, compute_us);
+    /* after its POSE: what the recovery did, logged (the state it causes: below) */
+    hl_cycle_report_recovery(c, in, &step);
     bool changed = hl_map_version(hl_slam_map(c->slam)) != version;
     if (step.turned)    /* slam.long_drive_mm: the odometry's heading had drifted */
         hl_log(HL_LOG_INFO, "scan %llu (seq %d): after a long drive, the drive turned about "
@@ -262,9 +263,7 @@ static void on_sonar(hl_cycle_t *c, const void *data, size_t len, int64_t now_us
         c->since_save++;
     }
     hl_cycle_maybe_publish_map(c);
-    int8_t state = hl_slam_lost(c->slam) ? HL_BUS_STATE_LOST : HL_BUS_STATE_LOCALIZING;
-    if (c->state != state)
-        hl_cycle_set_state(c, state, now_us);
+    hl_cycle_scan_state(c, now_us);
 }
 
 static void on_odometry(hl_cycle_t *c, const void *data, size_t len)

@@ -82,9 +82,14 @@ void hl_cycle_map_input(hl_cycle_t *c, size_t len);
 /** Publishes MAP if the map changed and both bounds allow it (cycle_map.c). */
 void hl_cycle_maybe_publish_map(hl_cycle_t *c);
 
-/** What the tracker's recovery did with scan @p in (hl_slam_update's @p step): each
- *  change of the lost state logged and shown in STATUS (cycle_lost.c). */
+/** What the tracker's recovery did with scan @p in (hl_slam_update's @p step), after its
+ *  POSE: each change of the lost state logged, and kept as STATUS's last error
+ *  (cycle_lost.c). It publishes nothing: the state follows (hl_cycle_scan_state). */
 void hl_cycle_report_recovery(hl_cycle_t *c, const hl_bus_scan_t *in,
-                              const hl_slam_step_t *step, int64_t now_us);
+                              const hl_slam_step_t *step);
+/** The state a scan leaves, derived here alone: LOST while the tracker is lost, else
+ *  LOCALIZING; STATUS is published when it changed. Called last in a scan's handling,
+ *  after its POSE (cycle_lost.c). */
+void hl_cycle_scan_state(hl_cycle_t *c, int64_t now_us);
 
 #endif

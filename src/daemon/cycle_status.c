@@ -39,10 +39,9 @@ static int32_t percentile(const int32_t *sorted, int32_t n, int p)
 hl_pose_t hl_cycle_estimate(const hl_cycle_t *c)
 {
     hl_pose_t est = hl_slam_pose(c->slam);
-    if (!c->have_scan)
-        return est;
-    hl_pose_t p = hl_pose_compose(est, hl_pose_between(c->scan_odometry, c->odometry));
-    return hl_pose_in_range(p) ? p : est;
+    if (c->have_scan)
+        hl_pose_predict(est, c->scan_odometry, c->odometry, &est);
+    return est;
 }
 
 void hl_cycle_publish_status(hl_cycle_t *c)

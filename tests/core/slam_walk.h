@@ -49,9 +49,46 @@ static inline void ray_sensor_defaults(hl_slam_params_t *p)
     p->search_every = 0;
 }
 
+/* A tracker on a walk: the walk, the slam (reset at the walk's first true pose) and a
+ * scan to sound into. */
+typedef struct walk_run {
+    walk_t *w;
+    hl_slam_t *s;
+    hl_scan_t *scan;
+} walk_run_t;
+
+static inline walk_run_t walk_run_start(uint64_t seed, const hl_slam_params_t *p)
+{
+    walk_run_t r = { .w = make_walk(seed), .scan = malloc(sizeof *r.scan) };
+    r.s = hl_slam_create_with(p);
+    assert_non_null(r.s);
+    hl_slam_reset(r.s, r.w->truth[0]);
+    return r;
+}
+
+static inline void walk_run_finish(walk_run_t *r)
+{
+    hl_slam_destroy(r->s);
+    free(r->scan);
+    free(r->w);
+}
+
 static inline double dist(hl_pose_t a, hl_pose_t b)
 {
     return hypot((double)a.x_mm - b.x_mm, (double)a.y_mm - b.y_mm);
+}
+
+/* The step before @p upto - 5 farthest from step @p upto - 1, where the walk stands after
+ * @p upto steps: where a kidnapper sets the robot down, in the part of the room the map
+ * of those steps knows (more than 1.5 m away). */
+static inline int walk_far_step(const walk_t *w, int upto)
+{
+    int best = 0;
+    for (int i = 0; i < upto - 5; i++)
+        if (dist(w->truth[i], w->truth[upto - 1]) > dist(w->truth[best], w->truth[upto - 1]))
+            best = i;
+    assert_true(dist(w->truth[best], w->truth[upto - 1]) > 1500);
+    return best;
 }
 
 static inline void assert_pose_equal(hl_pose_t a, hl_pose_t b)

@@ -19,30 +19,20 @@
 /* Steps of the walk that make the map before anything happens. */
 #define MAPPED 30
 
-typedef struct run {
-    walk_t *w;
-    hl_slam_t *s;
-    hl_scan_t *scan;
-} run_t;
+typedef walk_run_t run_t;
 
 static run_t start(uint64_t seed, int32_t lost_after, int32_t search_every)
 {
-    run_t r = { .w = make_walk(seed), .scan = malloc(sizeof *r.scan) };
     hl_slam_params_t p;
     ray_sensor_defaults(&p);
     p.lost_after = lost_after;
     p.search_every = search_every;
-    r.s = hl_slam_create_with(&p);
-    assert_non_null(r.s);
-    hl_slam_reset(r.s, r.w->truth[0]);
-    return r;
+    return walk_run_start(seed, &p);
 }
 
 static void finish(run_t *r)
 {
-    hl_slam_destroy(r->s);
-    free(r->scan);
-    free(r->w);
+    walk_run_finish(r);
 }
 
 /* One scan sounded at @p truth, the base's odometry saying @p odometry. */
@@ -61,17 +51,10 @@ static void map_the_walk(run_t *r)
     assert_false(hl_slam_lost(r->s));
 }
 
-/* The step of the walk farthest from where it stands after MAPPED steps: where a
- * kidnapper sets the robot down, in the part of the room the map knows. */
+/* Where a kidnapper sets the robot down after MAPPED steps. */
 static int far_step(const run_t *r)
 {
-    int best = 0;
-    for (int i = 0; i < MAPPED - 5; i++)
-        if (dist(r->w->truth[i], r->w->truth[MAPPED - 1]) >
-            dist(r->w->truth[best], r->w->truth[MAPPED - 1]))
-            best = i;
-    assert_true(dist(r->w->truth[best], r->w->truth[MAPPED - 1]) > 1500);
-    return best;
+    return walk_far_step(r->w, MAPPED);
 }
 
 /* Told it is lost where it stands: the next scan searches, finds the robot where

@@ -158,6 +158,64 @@ static void test_kidnapped_robot_is_found_again(void **state)
     finish(r);
 }
 
+/* What the last SONAR handled published, from capture message @p from on: its POSE
+ * first, and any STATUS (the state it caused) after it. @return the STATUS count. */
+static int assert_pose_first(const run_t *r, size_t from)
+{
+    int statuses = 0;
+    bool posed = false;
+    for (size_t i = from; i < r->cap.n; i++) {
+        hl_chan_t ch = r->cap.msgs[i].ch;
+        if (ch == HL_CH_STATUS) {
+            assert_true(posed);     /* a STATUS before the POSE of its scan */
+            statuses++;
+        }
+        if (ch == HL_CH_POSE) {
+            assert_false(posed);    /* one POSE a scan */
+            posed = true;
+        }
+    }
+    assert_true(posed);
+    return statuses;
+}
+
+/* The kidnap again, scan by scan: each scan's POSE goes out before the STATUS of the state
+ * it causes (LOST when the scan made the daemon lost, LOCALIZING when it found the robot
+ * again), and that STATUS says the state the scan left. */
+static void test_pose_before_status(void **state)
+{
+    (void)state;
+    run_t *r = start(2);
+    load_tour();
+    feed_tour(r->c, 128);
+    hl_bus_scan_t last = decode_scan(127), from = decode_scan(100);
+    int64_t t = last.utime;
+    int changes = 0;
+    for (int i = 0; i < 12; i++) {
+        hl_bus_scan_t here = decode_scan(100 + (size_t)i);
+        hl_pose_t odo = hl_pose_compose(last.odometry, hl_pose_between(from.odometry, here.odometry));
+        t += 5000000;
+        size_t before = r->cap.n;
+        bool was_lost = hl_cycle_lost(r->c);
+        feed_as(r, 100 + (size_t)i, last.seq + 1 + i, t, odo);
+        int statuses = assert_pose_first(r, before);
+        if (was_lost != hl_cycle_lost(r->c)) {
+            /* the state changed with this scan: one STATUS says so, after the POSE */
+            assert_int_equal(statuses, 1);
+            hl_bus_status_t st;
+            const out_msg_t *m = &r->cap.msgs[r->cap.n - 1];
+            assert_int_equal(m->ch, HL_CH_STATUS);
+            assert_int_equal(hl_bus_decode_status(m->data, m->len, &st, NULL), HL_OK);
+            assert_int_equal(st.state, hl_cycle_lost(r->c) ? HL_BUS_STATE_LOST
+                                                           : HL_BUS_STATE_LOCALIZING);
+            changes++;
+        }
+    }
+    assert_true(changes >= 2);      /* lost, and found again */
+    assert_false(hl_cycle_lost(r->c));
+    finish(r);
+}
+
 /* RELOCALIZE while tracking well: lost; the next scan's global search puts the robot where
  * tracking does, which ends it at once. */
 static void test_relocalize_command(void **state)
@@ -227,6 +285,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_kidnapped_robot_is_found_again),
+        cmocka_unit_test(test_pose_before_status),
         cmocka_unit_test(test_relocalize_command),
         cmocka_unit_test(test_relocalize_with_automatic_entry_off),
     };

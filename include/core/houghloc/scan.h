@@ -77,6 +77,15 @@ HL_API hl_pose_t hl_pose_compose(hl_pose_t base, hl_pose_t rel);
 HL_API hl_pose_t hl_pose_between(hl_pose_t from, hl_pose_t to);
 /** Checks |x|, |y| <= HL_COORD_MAX_MM. */
 HL_API bool hl_pose_in_range(hl_pose_t p);
+/**
+ * The prediction (dead reckoning): @p pose, where the odometry read @p odom_then, moved
+ * by the odometry's motion since, to @p odom_now. Every prediction of the tracker and the
+ * daemon is this one function.
+ * @return true with the moved pose in @p out; false, with @p pose in @p out, when the
+ *         moved pose is out of range.
+ */
+HL_API bool hl_pose_predict(hl_pose_t pose, hl_pose_t odom_then, hl_pose_t odom_now,
+                            hl_pose_t *out);
 
 #ifdef __cplusplus
 }

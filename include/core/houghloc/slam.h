@@ -11,6 +11,11 @@
  * the whole map for it while it is, and confirms what the search finds. Its answer is one
  * status, hl_slam_status_t, and the global search's fields when one ran.
  *
+ * The cycle is one pass: the scan is checked and prepared once, the prediction has one
+ * definition (hl_pose_predict), and no search runs twice with the same inputs within a
+ * scan (tracking's local search, computed before the recovery decides, is the one it
+ * compares and the one committed).
+ *
  * Two methods (slam.guarded):
  *  - paper:    every localization is accepted and extends the map (the paper's method,
  *              slam.profile = paper);
@@ -92,7 +97,7 @@ typedef enum hl_slam_status {
 /* Why the tracker became lost with a scan (hl_slam_step_t.lost_why). */
 typedef enum hl_slam_lost_why {
     HL_SLAM_LOST_NOT = 0,       /* it did not */
-    HL_SLAM_LOST_ELSEWHERE = 1, /* the periodic global search (slam.search_every) found the
+    HL_SLAM_LOST_ELSEWHERE = 1, /* the watch's global search (slam.search_every) found the
                                    robot elsewhere, explaining the scan clearly better */
     HL_SLAM_LOST_DOUBTFUL = 2,  /* slam.lost_after doubtful scans in a row */
 } hl_slam_lost_why_t;
@@ -128,6 +133,8 @@ typedef struct hl_slam_step {
     bool searched_lost;             /* the global search ran because the tracker is lost
                                        (also when it became lost with this scan) ... */
     hl_status_t search_status;      /* ... and returned this (HL_OK: see search) */
+    bool watched;                   /* the watch (search_every) ran the global search on
+                                       this scan while tracking */
 } hl_slam_step_t;
 
 typedef struct hl_slam hl_slam_t;

@@ -4,7 +4,8 @@
  * and fingerprints every result so that a speed-up can be shown to change nothing.
  *
  *   hl-bench-cycle [--log FILE] [--reps N] [--start X_MM,Y_MM,DEG] [--paper]
- *                  [--close-loops] [--square-walls] [--long-drives] [--steps]
+ *                  [--close-loops] [--square-walls] [--long-drives]
+ *                  [--lost-after N] [--search-every N] [--steps]
  *
  * Reads the SONAR events of FILE (default logs/tour.lcmlog; every other channel is
  * skipped, so a stale GROUND_TRUTH type does not matter), then runs the tour N times
@@ -14,15 +15,17 @@
  * echo bearings and refinement, the other parameters as they are; --close-loops: with
  * loop closure, slam.close_loops; --square-walls: and
  * square walls along x and y, slam.square_walls; --long-drives: a drive of 2 m or more also
- * tried turned about its start, slam.long_drive_mm = 2000). Each hl_slam_update
+ * tried turned about its start, slam.long_drive_mm = 2000; --lost-after, --search-every:
+ * the recovery's lost_after and search_every, 2 and 10 in the daemon). Each hl_slam_update
  * is timed with CLOCK_MONOTONIC. Prints one line per repetition and a summary:
  *
  *   cycle rep=<i> scans=<n> median_us=<n> p90_us=<n> p99_us=<n> max_us=<n> checksum=<hex>
  *   cycle summary reps=<N> median_of_medians_us=<n> p90_us=<n> p99_us=<n> checksum=<hex>
  *
  * The checksum is FNV-1a (64 bit) over, for every step: the return status, the step's
- * pose, prediction, slam status, every field of the Hough result, the vectors added, and
- * then the map's count, version and every map vector. Every repetition must give the
+ * pose, prediction, slam status, every field of the Hough result, the vectors added, the
+ * recovery's changes (lost_why, found_how) and the global search's answer when the step
+ * carries one, and then the map's count, version and every map vector. Every repetition must give the
  * same checksum (the exit status is 1 otherwise). --steps prints each step's pose and
  * status as well.
  */
@@ -92,6 +95,14 @@ static void fnv_step(uint64_t *h, hl_status_t st, const hl_slam_step_t *s, const
     fnv_i64(h, s->loc.votes);
     fnv_i64(h, s->loc.pairs);
     fnv_i64(h, s->added);
+    fnv_i64(h, s->lost_why);
+    fnv_i64(h, s->found_how);
+    if (s->status == HL_SLAM_RELOCALIZED || s->status == HL_SLAM_LOST) {
+        fnv_pose(h, s->search.pose);
+        fnv_i64(h, s->search.score);
+        fnv_pose(h, s->search.runner_up);
+        fnv_i64(h, s->search.runner_up_score);
+    }
     uint32_t n = hl_map_count(map);
     const hl_vector_t *v = hl_map_vectors(map);
     fnv_i64(h, n);
@@ -144,13 +155,26 @@ static int read_tour(const char *path, recorded_t *out, int max)
 static void usage(FILE *f)
 {
     fprintf(f, "usage: hl-bench-cycle [--log FILE] [--reps N] [--start X_MM,Y_MM,DEG] "
-               "[--paper] [--close-loops] [--square-walls] [--long-drives] [--steps]\n");
+               "[--paper] [--close-loops] [--square-walls] [--long-drives] "
+               "[--lost-after N] [--search-every N] [--steps]\n");
 }
 
 static int bad_usage(const char *what, const char *value)
 {
     fprintf(stderr, "hl-bench-cycle: %s '%s' (try --help)\n", what, value);
     return 2;
+}
+
+/* A whole number lo..hi, nothing more. */
+static bool parse_count(const char *a, long lo, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(a, &end, 10);
+    if (*a < '0' || *a > '9' || *end || errno || v < lo || v > hi)
+        return false;
+    *out = v;
+    return true;
 }
 
 /* One field of --start: X_MM or Y_MM, a whole number within +-HL_COORD_MAX_MM; *s moves
@@ -194,6 +218,7 @@ int main(int argc, char **argv)
     int reps = 5;
     bool paper = false, steps = false, close_loops = false, square_walls = false;
     bool long_drives = false;
+    int32_t lost_after = 0, search_every = 0;
     hl_pose_t start = { 0, 0, 0 };
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -202,13 +227,20 @@ int main(int argc, char **argv)
         } else if (!strcmp(argv[i], "--log") && i + 1 < argc) {
             path = argv[++i];
         } else if (!strcmp(argv[i], "--reps") && i + 1 < argc) {
-            const char *a = argv[++i];
-            char *end;
-            errno = 0;
-            long v = strtol(a, &end, 10);
-            if (*a < '0' || *a > '9' || *end || errno || v < 1 || v > 1000)
-                return bad_usage("--reps wants a whole number 1..1000, not", a);
+            long v;
+            if (!parse_count(argv[++i], 1, 1000, &v))
+                return bad_usage("--reps wants a whole number 1..1000, not", argv[i]);
             reps = (int)v;
+        } else if (!strcmp(argv[i], "--lost-after") && i + 1 < argc) {
+            long v;
+            if (!parse_count(argv[++i], 0, 1000000, &v))
+                return bad_usage("--lost-after wants a whole number 0..1000000, not", argv[i]);
+            lost_after = (int32_t)v;
+        } else if (!strcmp(argv[i], "--search-every") && i + 1 < argc) {
+            long v;
+            if (!parse_count(argv[++i], 0, 1000000, &v))
+                return bad_usage("--search-every wants a whole number 0..1000000, not", argv[i]);
+            search_every = (int32_t)v;
         } else if (!strcmp(argv[i], "--start") && i + 1 < argc) {
             if (!parse_start(argv[++i], &start))
                 return bad_usage("--start wants X_MM,Y_MM,DEG (millimetres within +-4194304, "
@@ -238,8 +270,11 @@ int main(int argc, char **argv)
 
     hl_params_t p;
     hl_params_default(&p);
+    char lost_after_s[16], search_every_s[16];
+    snprintf(lost_after_s, sizeof lost_after_s, "%d", (int)lost_after);
+    snprintf(search_every_s, sizeof search_every_s, "%d", (int)search_every);
     const char *sets[][2] = {
-        { "slam.lost_after", "0" }, { "slam.search_every", "0" },
+        { "slam.lost_after", lost_after_s }, { "slam.search_every", search_every_s },
         { "slam.guarded", paper ? "false" : "true" },
         { "slam.echo_bearings", paper ? "false" : "true" },
         { "slam.refine", paper ? "false" : "true" },

@@ -3,11 +3,13 @@
 # mode RUNS times (default 5) and prints one line:
 #   bench daemon_replay scans=<n> wall_ms=<median> scans_per_s=<n> compute_median_us=<n>
 #         compute_p99_us=<n> peak_rss_kib=<n>
-# for the tracking cycle alone (the defaults, whose time budget
-# docs/results/performance.md gives), then the same line named daemon_replay_watch with
-# slam.search_every=1, where every scan also runs the global search that notices a
-# kidnapped robot (docs/results/relocalization.md; off by default), then
-# daemon_replay_loops with slam.close_loops=true (loop closure, slam.h; off by default).
+# for the defaults (whose time budget docs/results/performance.md gives: the watch
+# searches the whole map only on scans in doubt and every slam.search_every-th), then
+# the same line named daemon_replay_watch with slam.search_every=1, where every scan
+# also runs the global search that notices a kidnapped robot
+# (docs/design/relocalization.md), then daemon_replay_loops with slam.close_loops=true
+# (loop closure, slam.h; off by default). make bench makes a page of them
+# (bench_table.sh: docs/results/bench-table.md).
 # wall_ms is the whole process (start, replay, map save, exit); the compute figures are
 # houghlocd's own STATUS (the cycle's latency per scan, SONAR handler entry to POSE out,
 # over all scans of the last run);
