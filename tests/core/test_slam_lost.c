@@ -198,7 +198,7 @@ static void test_params_checked(void **state)
     hl_slam_params_default(&p);
     assert_null(hl_slam_params_error(&p));
     assert_int_equal(p.lost_after, 2);      /* on: the search answers wrong on <= 1 % */
-    assert_int_equal(p.search_every, 1);
+    assert_int_equal(p.search_every, 10);   /* and on every scan in doubt */
     p.lost_after = -1;
     assert_non_null(hl_slam_params_error(&p));
     hl_slam_params_default(&p);

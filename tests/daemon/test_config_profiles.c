@@ -117,7 +117,7 @@ static void test_defaults_are_the_librarys(void **state)
     }
     assert_true(n > 40);
     assert_string_equal(get(&f->a, "slam.lost_after"), "2");     /* the LOST state on */
-    assert_string_equal(get(&f->a, "slam.search_every"), "1");
+    assert_string_equal(get(&f->a, "slam.search_every"), "10");
 }
 
 /* laser: its keys, the realeval settings. */
