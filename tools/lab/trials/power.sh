@@ -24,7 +24,7 @@
 # the daemon gives that scan is "found" when it lies within FOUND_MM of the GROUND_TRUTH
 # the standing robot sends (the position alone: the sounding turns the robot in place).
 # The daemon runs with its defaults for finding a lost robot (the LOST state's keys);
-# LOST_KEYS adds "key = value" lines to its [daemon] section (for example
+# LOST_KEYS adds "key = value" lines to its [slam] section (for example
 # "search_every = 1" "lost_after = 2"). When it did not find the robot, as an operator
 # would, the restart is told where the robot stands (houghloc-ctl set-pose at the truth)
 # before the tour goes on: left alone, the estimate would fall further behind with every
@@ -87,6 +87,7 @@ url = $URL
 map_file = $MAP
 save_every = $EVERY
 log_level = debug
+[slam]
 $(for kv in ${LOST_KEYS:-}; do echo "$kv"; done)
 [start]
 x_m = $sx
