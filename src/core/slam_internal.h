@@ -93,6 +93,10 @@ static inline int64_t hl_slam_dist2(hl_pose_t a, hl_pose_t b)
  *  then the last estimate). */
 bool hl_slam_predict(const hl_slam_t *s, hl_pose_t odometry, hl_pose_t *out);
 
+/** hl_slam_prepare of a scan already checked (its buffers as there). */
+const hl_scan_t *hl_slam_prepare_valid(const hl_slam_params_t *p, const hl_scan_t *scan,
+                                       hl_scan_t *echoed, hl_scan_t *fitted);
+
 /** @p scan (checked) as the localizer and the map see it: hl_slam_prepare into the
  *  tracker's own buffers, which hold it until the next call. */
 const hl_scan_t *hl_slam_ready(hl_slam_t *s, const hl_scan_t *scan);

@@ -1,6 +1,6 @@
 /*
  * costmap.c - the planner's grid (plan.h): wall segments and extra obstacles rasterized,
- * inflated through an exact Euclidean distance transform, fenced, and the start's lethal
+ * inflated through an exact Euclidean distance transform (edt.c), fenced, and the start's lethal
  * region marked.
  *
  * The inflation measures between whole cells: a cell is lethal when some point of it is
@@ -18,6 +18,7 @@
  */
 #include "houghloc/plan.h"
 
+#include "edt.h"
 #include "gridwalk.h"
 
 #include <math.h>
@@ -324,82 +325,6 @@ static uint32_t clear_start(hl_costmap_t *cm, hl_mm_t sx, hl_mm_t sy)
     return dropped;
 }
 
-/* The column pass: dist = rows to the nearest cell, in this column, that has an obstacle
- * in its own or a neighbouring column, capped at band. (Taking one off it, the row pass
- * measures to the obstacles grown by one cell.) */
-static void edt_columns(hl_costmap_t *cm)
-{
-    int32_t w = cm->grid.cols, h = cm->grid.rows;
-    uint8_t cap = (uint8_t)cm->band;
-    for (int32_t j = 0; j < h; j++) {
-        const uint8_t *c = cm->cells + (size_t)j * (size_t)w;
-        uint8_t *d = cm->dist + (size_t)j * (size_t)w;
-        const uint8_t *up = j ? d - w : NULL;
-        for (int32_t i = 0; i < w; i++) {
-            bool src = c[i] == HL_PLAN_CELL_OBSTACLE ||
-                       (i > 0 && c[i - 1] == HL_PLAN_CELL_OBSTACLE) ||
-                       (i + 1 < w && c[i + 1] == HL_PLAN_CELL_OBSTACLE);
-            d[i] = src ? 0 : up && up[i] < cap ? (uint8_t)(up[i] + 1) : cap;
-        }
-    }
-    for (int32_t j = h - 2; j >= 0; j--) {
-        uint8_t *d = cm->dist + (size_t)j * (size_t)w;
-        const uint8_t *down = d + w;
-        for (int32_t i = 0; i < w; i++)
-            if (down[i] + 1 < d[i])
-                d[i] = (uint8_t)(down[i] + 1);
-    }
-}
-
-/* The row pass for row j: for each cell, the squared distance to the grown obstacles,
- * min over i of (x - i)^2 + G(i)^2, by the lower envelope of those parabolas; turned
- * into the cell byte through the table. Columns at the cap are left out: their
- * parabolas never come below lut_n, so a cell no parabola reaches is free. */
-static void edt_row(hl_costmap_t *cm, int32_t j)
-{
-    int32_t w = cm->grid.cols;
-    const uint8_t *d = cm->dist + (size_t)j * (size_t)w;
-    uint8_t *out = cm->cells + (size_t)j * (size_t)w;
-    int32_t *s = cm->env_s, *t = cm->env_t;
-#define G2(i) ((int64_t)(d[i] ? d[i] - 1 : 0) * (d[i] ? d[i] - 1 : 0))
-#define F(x, i) ((int64_t)((x) - (i)) * ((x) - (i)) + G2(i))
-    int32_t q = -1;
-    for (int32_t u = 0; u < w; u++) {
-        if (d[u] >= cm->band)
-            continue;
-        while (q >= 0 && F(t[q], s[q]) > F(t[q], u))
-            q--;
-        if (q < 0) {
-            q = 0;
-            s[0] = u;
-            t[0] = 0;
-            continue;
-        }
-        /* The first x where parabola u is below parabola s[q]. */
-        int64_t i = s[q];
-        int64_t sep = hl_walk_floor_div((int64_t)u * u - i * i + G2(u) - G2(i), 2 * (u - i)) + 1;
-        if (sep < w) {
-            q++;
-            s[q] = u;
-            t[q] = (int32_t)sep;
-        }
-    }
-    for (int32_t u = w - 1; u >= 0; u--) {
-        if (out[u] == HL_PLAN_CELL_OBSTACLE)
-            ;
-        else if (q < 0)
-            out[u] = 0;
-        else {
-            int64_t d2 = F(u, s[q]);
-            out[u] = d2 < cm->lut_n ? cm->lut[d2] : 0;
-        }
-        if (q >= 0 && u == t[q])
-            q--;
-    }
-#undef F
-#undef G2
-}
-
 /* Cells outside the allowed area or the world: obstacles for the search, not inflated. */
 static void fence(hl_costmap_t *cm, const hl_costmap_input_t *in)
 {
@@ -503,9 +428,12 @@ hl_plan_result_t hl_costmap_build(hl_costmap_t *cm, const hl_costmap_input_t *in
     for (uint32_t k = 0; k < in->n_obstacles; k++)
         obstacles += draw_segment(cm, in->obstacle_x[k], in->obstacle_y[k], in->obstacle_x[k],
                                   in->obstacle_y[k]);
-    edt_columns(cm);
-    for (int32_t j = 0; j < g->rows; j++)
-        edt_row(cm, j);
+    hl_edt_columns(cm->cells, cm->dist, cm->grid.cols, cm->grid.rows, (uint8_t)cm->band);
+    for (int32_t j = 0; j < g->rows; j++) {
+        size_t row = (size_t)j * (size_t)g->cols;
+        hl_edt_row(cm->dist + row, cm->cells + row, g->cols, cm->band, cm->lut, cm->lut_n,
+                   cm->env_s, cm->env_t);
+    }
     fence(cm, in);
     g->goal_clearance_mm = goal_clearance(cm, in->goal_x, in->goal_y, obstacles);
     mark_start_region(cm, in->start_x, in->start_y);
