@@ -13,6 +13,7 @@
 #include "blur.h"
 #include "gate.h"
 #include "peak.h"
+#include "prior.h"
 
 #include "loc_params.h"
 #include "valid_scan.h"
@@ -365,25 +366,6 @@ static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface
     }
 }
 
-/* Gaussian weights in Q8 of the distance of each cell centre from the prediction. */
-static void fill_prior(hl_localizer_t *loc, const hl_loc_query_t *q, const hl_loc_surface_t *s)
-{
-    double sx = loc->p.prior_sigma_mm;
-    for (int32_t i = 0; i < s->nx; i++) {
-        double d = s->x0_mm + (i + 0.5) * s->cell_mm - q->predicted.x_mm;
-        loc->wx[i] = (uint32_t)lround(256.0 * exp(-0.5 * d * d / (sx * sx)));
-    }
-    for (int32_t i = 0; i < s->ny; i++) {
-        double d = s->y0_mm + (i + 0.5) * s->cell_mm - q->predicted.y_mm;
-        loc->wy[i] = (uint32_t)lround(256.0 * exp(-0.5 * d * d / (sx * sx)));
-    }
-    double st = loc->p.prior_sigma_theta;
-    for (int32_t i = 0; i < s->nt; i++) {
-        double d = hl_bam_diff((hl_bam_t)(s->theta0 + i * s->theta_step), q->predicted.theta);
-        loc->wt[i] = (uint32_t)lround(256.0 * exp(-0.5 * d * d / (st * st)));
-    }
-}
-
 /* Interpolated offset along one axis of the grid, in units of `step`. */
 static int32_t axis_offset(const hl_grid_t *g, const hl_peak_t *pk, int axis, int32_t step)
 {
@@ -465,7 +447,8 @@ static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
     hl_grid_t g = { .cells = loc->blurred, .nx = s.nx, .ny = s.ny, .nt = s.nt,
                     .row_max = loc->blurred == loc->buf_a ? loc->buf_b : loc->buf_a };
     if (query->use_prior) {
-        fill_prior(loc, query, &s);
+        hl_prior_weights(&s, query->predicted, loc->p.prior_sigma_mm, loc->p.prior_sigma_theta,
+                         loc->wx, loc->wy, loc->wt);
         g.wx = loc->wx;
         g.wy = loc->wy;
         g.wt = loc->wt;
