@@ -4,6 +4,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 
+#include "houghloc-internal/flank.h"
 #include "houghloc-internal/params.h"
 #include "valid_scan.h"
 
@@ -14,7 +15,7 @@ void hl_echo_params_default(hl_echo_params_t *p)
     p->noise_permille = HL_ECHO_NOISE_PERMILLE;
     p->cap_q8 = (uint16_t)(HL_ECHO_CAP * 256);
     p->tie_q8 = (uint16_t)(HL_ECHO_TIE * 256);
-    /* the half beam: echo.half_beam_deg (params_table.c) */
+    /* the half beam and flank normals: echo.* (params_table.c) */
     hl_params_fill_defaults(p, offsetof(hl_slam_params_t, echo), sizeof *p);
 }
 
@@ -178,5 +179,7 @@ static hl_status_t correct(const hl_echo_params_t *p, const hl_scan_t *in, bool 
         out->readings[order[a] & 0xFFFF].bearing =
             (hl_bam_t)(ri->bearing - p->half_beam + (first + last) * p->step / 2);
     }
+    if (p->flank_normals)
+        hl_flank_normals(p, in, order, n, out);
     return HL_OK;
 }

@@ -120,6 +120,11 @@ const hl_param_entry_t hl_param_table[] = {
     FLAG("slam.square_walls", E, square_walls, "false",
          "... and the building's walls run along the map frame's axes (turn the frame with "
          "start.heading_deg): each stop's readings tie its heading to the world"),
+    INT("slam.multiscan_mm", E, I32, multiscan_mm, 0, 100000, "0",
+        "sounding by motion: localize each scan with the readings of the last this much "
+        "travel, placed by the odometry, and draw them into the map only then (0: each scan "
+        "alone)"),
+    DEG("slam.multiscan_deg", E, multiscan_turn, 0, 180, "90", "... or this much turning"),
     INT("slam.long_drive_mm", E, I32, long_drive_mm, 0, 1000000, "0",
         "after a drive this long since the last scan, also localize from the drive turned "
         "+-6 and +-12 degrees about its start (odometry's heading drift swings it) and keep "
@@ -167,6 +172,9 @@ const hl_param_entry_t hl_param_table[] = {
     DEG("echo.half_beam_deg", E, echo.half_beam, 1, 45, "7",
         "half the width an echo can come from (a Polaroid-type beam: 7; a hard 22-degree "
         "cone: 11)"),
+    FLAG("echo.flank_normals", E, echo.flank_normals, "false",
+         "a reading on a wall's flank echoes from its cone's edge and takes the wall's "
+         "normal, through its neighbour's echo (for rings whose cones overlap)"),
 
     /* ---- [normals]: fitted normals (slam.fit_normals) ---- */
     FLAG("normals.keep_unfitted", E, normals.keep_unfitted, "false",
@@ -300,14 +308,26 @@ const size_t hl_param_table_len = sizeof hl_param_table / sizeof hl_param_table[
 /* A sonar sounded at the laser's rate rather than at stops: the settings measured on the
  * pseudo-sonar ring of five real buildings (docs/results/real-buildings.md, "Pseudo-sonar"). */
 static const hl_param_setting_t sonar_continuous[] = {
-    { "slam.heading_gain", "0.3",
-      "soundings a few centimetres apart: odometry's heading between two is better than one "
-      "sounding's against the map, so take 30 % of each heading correction" },
+    { "slam.heading_gain", "0.7",
+      "soundings a few centimetres apart: odometry's heading between two is as good as one "
+      "sounding's against the map, so take 70 % of each heading correction" },
     { "localize.prior_sigma_mm", "100", "... and a tighter odometry prior in position" },
     { "localize.prior_sigma_deg", "5", "... and in heading" },
     { "echo.half_beam_deg", "11",
       "the nearest return anywhere in a hard 22-degree cone (half of it), not the 7 degrees "
       "of a Polaroid-type beam" },
+    { "echo.flank_normals", "true",
+      "... cones every few degrees overlap: a reading on a wall's flank gets the wall's "
+      "normal, not its beam's (most readings of a moving ring are on flanks)" },
+    { "slam.refine", "false",
+      "the point-to-line polish moves a sonar sounding off the Hough peak: against a map "
+      "drawn at the true poses it doubles the heading error" },
+    { "slam.map_capacity", "15000",
+      "a map that holds whole floors, so that the robot finds the walls it passed minutes "
+      "ago ..." },
+    { "slam.map_per_place", "1",
+      "... kept sparse: one vector of a 50 mm square seen from one side (a new one replaces "
+      "it at random)" },
     CONTINUOUS_CLOSURE
     { "slam.closure_match_readings", "256",
       "... a keyframe matched with 256 of its readings (up to 1,024 joined), which keeps a "

@@ -43,6 +43,11 @@ hl_slam_t *hl_slam_create_with(const hl_slam_params_t *p)
     s->search_echoed = p->echo_bearings ? calloc(HL_RELOC_MAX_SCANS, sizeof(hl_scan_t)) : NULL;
     s->search_fitted = p->fit_normals ? calloc(HL_RELOC_MAX_SCANS, sizeof(hl_scan_t)) : NULL;
     s->kept_scans = p->reloc.scans > 1 ? calloc(p->reloc.scans, sizeof(hl_scan_t)) : NULL;
+    if (p->multiscan_mm > 0) {
+        s->multi = hl_multiscan_create(HL_MULTISCAN_MAX_SCANS, p->multiscan_mm,
+                                       p->multiscan_turn);
+        s->assembled = malloc(sizeof *s->assembled);
+    }
     s->refiner = p->refine ? hl_refine_create(&p->refine_params, p->map_capacity) : NULL;
     s->reloc = hl_reloc_create(&p->reloc, &lp);
     s->closure = p->close_loops ? hl_closure_create(p->closure_stops, p->map_capacity, p->seed)
@@ -54,6 +59,7 @@ hl_slam_t *hl_slam_create_with(const hl_slam_params_t *p)
         (p->fit_normals && !s->fitted) || (p->refine && !s->refiner) ||
         (p->echo_bearings && !s->search_echoed) || (p->fit_normals && !s->search_fitted) ||
         (p->reloc.scans > 1 && !s->kept_scans) ||
+        (p->multiscan_mm > 0 && (!s->multi || !s->assembled)) ||
         !s->reloc || (p->close_loops && !s->closure)) {
         hl_slam_destroy(s);
         return NULL;
@@ -80,6 +86,8 @@ void hl_slam_destroy(hl_slam_t *s)
     free(s->search_echoed);
     free(s->search_fitted);
     free(s->kept_scans);
+    hl_multiscan_destroy(s->multi);
+    free(s->assembled);
     hl_refine_destroy(s->refiner);
     hl_reloc_destroy(s->reloc);
     hl_closure_destroy(s->closure);
@@ -92,6 +100,8 @@ void hl_slam_reset(hl_slam_t *s, hl_pose_t start)
     s->started = false;
     s->pose = start;
     s->peak_avg = 0;
+    if (s->multi)
+        hl_multiscan_clear(s->multi);
     if (s->closure)
         hl_slam_closure_reset(s);
 }
@@ -298,6 +308,29 @@ static hl_status_t stage_integrate(hl_slam_t *s, const hl_scan_t *scan, hl_slam_
     return hl_map_add_scan(s->map, scan, step->pose, &step->added);
 }
 
+/* Integrate by motion: the scans the drive has taken out of the window go into the map,
+ * and this one into the window (the first goes straight into an empty map). Each goes in
+ * where the newest estimate puts it by the odometry between them: the window's scans
+ * were localized together with the newest. */
+static hl_status_t stage_integrate_window(hl_slam_t *s, const hl_scan_t *scan,
+                                          hl_pose_t odometry, bool extend,
+                                          hl_slam_step_t *step)
+{
+    if (hl_map_count(s->map) == 0)
+        return extend ? hl_map_add_scan(s->map, scan, step->pose, &step->added) : HL_OK;
+    const hl_scan_t *old;
+    hl_pose_t old_odometry, old_pose;
+    bool draw;
+    while (hl_multiscan_pop_due(s->multi, odometry, &old, &old_odometry, &old_pose, &draw)) {
+        uint32_t added = 0;
+        hl_pose_predict(step->pose, odometry, old_odometry, &old_pose);
+        if (draw && hl_map_add_scan(s->map, old, old_pose, &added) == HL_OK)
+            step->added += added;
+    }
+    hl_multiscan_push(s->multi, scan, odometry, step->pose, extend);
+    return HL_OK;
+}
+
 /* The stages that compute (predict, localize, guard) go into the proposal, and only
  * hl_slam_commit changes the tracker, so that every error return leaves it as it was
  * (slam_internal.h). The scratch buffers (s->echoed, the localizer's raster, the
@@ -312,8 +345,14 @@ hl_status_t hl_slam_propose(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odom
         return HL_ERR_RANGE;
     p->step = (hl_slam_step_t){ .pose = predicted, .predicted = predicted,
                                 .status = HL_SLAM_ODOMETRY_ONLY };
+    /* Sounding by motion: the newest scan with the window's, once there is a map. */
+    const hl_scan_t *seen = ready;
+    if (s->multi && hl_map_count(s->map) > 0) {
+        hl_multiscan_assemble(s->multi, ready, odometry, s->assembled);
+        seen = s->assembled;
+    }
     hl_pose_t found;
-    hl_status_t st = stage_localize(s, ready, odometry, p, &found);
+    hl_status_t st = stage_localize(s, seen, odometry, p, &found);
     if (st == HL_OK)
         p->extend = stage_guard(s, found, &p->step, &p->peak_avg);
     else if (st != HL_ERR_EMPTY)
@@ -336,7 +375,11 @@ hl_status_t hl_slam_commit(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odome
     hl_rng_t rng_before = hl_map_rng(s->map);
     bool stop = false;      /* a stop of its own for loop closure, or joins the last */
     hl_status_t st;
-    if (p->extend && (st = stage_integrate(s, ready, &p->step, &stop)) != HL_OK)
+    if (s->multi)
+        st = stage_integrate_window(s, ready, odometry, p->extend, &p->step);
+    else
+        st = p->extend ? stage_integrate(s, ready, &p->step, &stop) : HL_OK;
+    if (st != HL_OK)
         return st;
     /* Closure: cannot fail (its memory is its own, from create). A rejected scan is not
      * remembered: its pose is odometry's alone. */
@@ -365,6 +408,8 @@ hl_status_t hl_slam_track(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odomet
 void hl_slam_place(hl_slam_t *s, hl_pose_t pose, hl_pose_t odometry)
 {
     s->pose = pose;
+    if (s->multi)       /* the window's scans were placed from the pose before */
+        hl_multiscan_clear(s->multi);
     if (s->closure)     /* no step joins the stops before to the ones after */
         hl_slam_closure_reset(s);
     /* Before the first scan there is no reference yet: the first scan's odometry

@@ -7,6 +7,7 @@
 #define HOUGHLOC_CORE_SLAM_INTERNAL_H
 
 #include "houghloc-internal/closure.h"
+#include "houghloc-internal/multiscan.h"
 #include "houghloc-internal/slam_params.h"
 #include "houghloc-internal/slam_search.h"
 #include "houghloc/slam.h"
@@ -44,6 +45,7 @@ typedef struct hl_slam_memo {
     bool active;
     bool have_local;
     hl_pose_t local_from;       /* the prediction it searched from */
+    const hl_scan_t *local_scan; /* ... and the scan (the newest alone, or assembled) */
     hl_status_t local_status;
     hl_loc_result_t local_loc;
     hl_pose_t local_pose;       /* valid when local_status is HL_OK */
@@ -69,6 +71,9 @@ struct hl_slam {
     hl_map_t *shadow;       /* ... the map drawn again aside (closure_redraw_readings) */
     hl_slam_matching_t matching;
     hl_slam_recovery_t recovery;
+    hl_multiscan_t *multi;  /* sounding by motion (multiscan_mm): the scans not yet
+                               drawn into the map */
+    hl_scan_t *assembled;   /* ... the newest scan with them, as localized */
     hl_scan_t *kept_scans;  /* reloc.scans copies when it is above 1: the scans the
                                recovery's search takes together, as prepared */
     hl_scan_t *search_echoed, *search_fitted;   /* HL_RELOC_MAX_SCANS each, as echoed and

@@ -49,6 +49,13 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "keyframe_turn must be at most a half turn";
     if (p->square_walls && !p->close_loops)
         return "square_walls needs close_loops";
+    if (p->multiscan_mm < 0 || p->multiscan_mm > 100000)
+        return "multiscan_mm must be in 0..100000";
+    if (p->multiscan_turn > HL_BAM_HALF_TURN)
+        return "multiscan_turn must be at most a half turn";
+    if (p->multiscan_mm > 0 && p->close_loops)
+        return "multiscan_mm needs close_loops off: loop closure's stops are scans drawn "
+               "as they come";
     if (p->long_drive_mm < 0 || p->long_drive_mm > 1000000)
         return "long_drive_mm must be in 0..1000000";
     if (p->lost_after < 0 || p->lost_after > 1000000)

@@ -17,7 +17,8 @@ hl_status_t hl_slam_search_local(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t
                                  hl_loc_result_t *loc, hl_pose_t *pose)
 {
     hl_slam_memo_t *m = &s->memo;
-    if (m->active && m->have_local && same_pose(m->local_from, predicted)) {
+    if (m->active && m->have_local && m->local_scan == ready &&
+        same_pose(m->local_from, predicted)) {
         *loc = m->local_loc;
         if (m->local_status == HL_OK)
             *pose = m->local_pose;
@@ -27,6 +28,7 @@ hl_status_t hl_slam_search_local(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t
     if (m->active) {
         m->have_local = true;
         m->local_from = predicted;
+        m->local_scan = ready;
         m->local_status = st;
         m->local_loc = *loc;
         if (st == HL_OK)

@@ -1,6 +1,6 @@
 /* Tests for src/core/echo.c: a wall seen through a 22 degree cone (its plateau moves to
  * the foot, its flanks to their cone edges), a round room (nothing moves), a bounced
- * reading, wrap-around, hostile scans and parameter checks. */
+ * reading, wrap-around, flank normals, hostile scans and parameter checks. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -107,6 +107,60 @@ static void test_wall_plateau_and_flanks(void **state)
     run_wall(47.0, 2500.0);
 }
 
+/* Flank normals: on a wall seen through hard 22-degree cones (ranges in 10 mm steps, as
+ * the pseudo-sonar's), every reading given a tilt has the wall's normal to within 3
+ * degrees and its echo on the wall, the plateau stays square to its beam, and without
+ * the option the flanks' normals (their beams') are far off. */
+static void test_flank_normals(void **state)
+{
+    (void)state;
+    const double normal = 47.0, d = 2500.0;
+    hl_echo_params_t p;
+    hl_echo_params_default(&p);
+    p.half_beam = hl_bam_from_deg(HALF_DEG);
+    hl_scan_t *in = malloc(sizeof *in), *out = malloc(sizeof *out);
+    make_wall_ring(in, normal, d);
+    for (uint32_t i = 0; i < in->count; i++)
+        in->readings[i].range_mm = (in->readings[i].range_mm + 5) / 10 * 10;
+    assert_int_equal(hl_echo_correct(&p, in, out), HL_OK);
+    double worst_beam = 0;
+    for (uint32_t i = 0; i < out->count; i++) {
+        if (!out->readings[i].valid)
+            continue;
+        assert_int_equal(out->readings[i].tilt, 0);
+        double off = fabs(remainder(sdeg(hl_reading_normal(&out->readings[i], 0)) -
+                                    (normal + 180.0), 360.0));
+        worst_beam = off > worst_beam ? off : worst_beam;
+    }
+    assert_true(worst_beam > 20.0);
+
+    p.flank_normals = true;
+    assert_int_equal(hl_echo_correct(&p, in, out), HL_OK);
+    assert_int_equal(hl_scan_check(out), HL_OK);
+    int tilted = 0;
+    for (uint32_t i = 0; i < out->count; i++) {
+        const hl_reading_t *r = &out->readings[i];
+        if (!r->valid)
+            continue;
+        if (in->readings[i].range_mm <= d + 10) {   /* the plateau */
+            assert_int_equal(r->tilt, 0);
+            continue;
+        }
+        if (r->tilt == 0)
+            continue;
+        tilted++;
+        double off = fabs(remainder(sdeg(hl_reading_normal(r, 0)) - (normal + 180.0), 360.0));
+        assert_true(off < 3.0);
+        double a = hl_bam_to_rad(r->bearing);
+        double along_normal = r->range_mm * (cos(a) * cos(normal * PI / 180) +
+                                             sin(a) * sin(normal * PI / 180));
+        assert_true(fabs(along_normal - d) < 0.02 * d);
+    }
+    assert_true(tilted >= 10);
+    free(in);
+    free(out);
+}
+
 /* In a round room centred on the robot no reading contradicts another: all stay put. */
 static void test_round_room_stays_on_axis(void **state)
 {
@@ -177,7 +231,9 @@ static void test_hostile_scans(void **state)
             hl_scan_add(in, b, (int32_t)hl_rng_below(&rng, HL_RANGE_MAX_MM + 1), -1,
                         hl_rng_below(&rng, 4) != 0);
         }
+        p.flank_normals = round % 4 >= 2;
         assert_int_equal(hl_echo_correct(&p, in, out), HL_OK);
+        assert_int_equal(hl_scan_check(out), HL_OK);
         for (uint32_t i = 0; i < in->count; i++)
             assert_true(abs(hl_bam_diff(out->readings[i].bearing, in->readings[i].bearing)) <=
                         p.half_beam);
@@ -226,6 +282,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_wall_plateau_and_flanks),
+        cmocka_unit_test(test_flank_normals),
         cmocka_unit_test(test_round_room_stays_on_axis),
         cmocka_unit_test(test_bounced_reading_is_capped),
         cmocka_unit_test(test_wraps_through_zero),

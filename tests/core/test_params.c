@@ -292,7 +292,7 @@ static void test_offered_keys_print_on_one_line(void **state)
         assert_true(strlen(strchr(k->key, '.') + 1) + 3 + 20 <= 198);
     }
     assert_int_equal(operator_keys, 4);
-    assert_true(offered <= 40);
+    assert_true(offered <= 42);     /* few: every knob is one more thing to get wrong */
 }
 
 /* The stage modules' defaults are the table's. */

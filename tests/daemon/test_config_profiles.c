@@ -154,7 +154,7 @@ static void test_order_profile_keys(void **state)
     /* an override of the profile wins over the file's */
     load_ok(f, &f->b, f->path, "slam.profile=sonar-continuous", NULL);
     assert_string_equal(get(&f->b, "slam.profile"), "sonar-continuous");
-    assert_string_equal(get(&f->b, "slam.heading_gain"), "0.3");
+    assert_string_equal(get(&f->b, "slam.heading_gain"), "0.7");
     assert_string_equal(get(&f->b, "localize.group_mm"), "0");
     assert_string_equal(get(&f->b, "slam.map_capacity"), "800");
     /* the paper's method is a profile too */
@@ -326,7 +326,7 @@ static void test_capacity_advice(void **state)
     hl_capacity_advice("/x/map.hlmap", 15000, 1500, out, sizeof out);
     assert_string_equal(out, "/x/map.hlmap: holds 15000 vectors, more than slam.map_capacity "
                              "= 1500: raise it (--set slam.map_capacity=15000, or slam.profile "
-                             "= laser) or start afresh with --fresh-map (which moves this file "
+                             "= sonar-continuous) or start afresh with --fresh-map (which moves this file "
                              "aside)");
     hl_capacity_advice("m", 20000, 15000, out, sizeof out);
     assert_non_null(strstr(out, "(--set slam.map_capacity=20000) or start afresh"));

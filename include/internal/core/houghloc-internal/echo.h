@@ -29,6 +29,7 @@
 #ifndef HOUGHLOC_INTERNAL_ECHO_H
 #define HOUGHLOC_INTERNAL_ECHO_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "houghloc/scan.h"
@@ -62,6 +63,8 @@ typedef struct hl_echo_params {
                                    default 8 x 256 */
     uint16_t tie_q8;            /* bearings scoring within this of the best count as best;
                                    default 0.5 x 256 */
+    bool flank_normals;         /* a reading on a wall's flank: its echo at the cone's
+                                   edge and its normal the wall's (flank.h); default off */
 } hl_echo_params_t;
 
 /** Fills @p p with the defaults above. */
@@ -71,7 +74,8 @@ const char *hl_echo_params_error(const hl_echo_params_t *p);
 
 /**
  * Copies @p in to @p out with every valid reading's bearing moved to its estimated echo
- * bearing (robot frame). Ranges, validity and order are unchanged. @p in and @p out may
+ * bearing (robot frame), and with flank_normals its flank readings' normals (flank.h).
+ * Ranges, validity and order are unchanged. @p in and @p out may
  * not overlap.
  * @return HL_OK; HL_ERR_ARG for NULL, overlap or invalid parameters; HL_ERR_RANGE when
  *         @p in fails hl_scan_check.

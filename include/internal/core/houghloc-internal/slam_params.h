@@ -101,6 +101,10 @@ typedef struct hl_slam_params {
     bool square_walls;          /* ... and the building's walls run along the map frame's
                                    axes, so that each stop's readings tie its heading to
                                    the world; needs close_loops */
+    hl_mm_t multiscan_mm;       /* sounding by motion (multiscan.h): each scan is
+                                   localized with the readings of the last this much
+                                   travel, which go into the map only after it; 0 = off */
+    hl_bam_t multiscan_turn;    /* ... or this much turning */
     hl_mm_t long_drive_mm;      /* after a drive at least this long since the last scan,
                                    also try the drive turned about where it started and
                                    let the global search's judge pick; 0 = off */
