@@ -12,6 +12,12 @@
 #define GN_DONE_MM 0.01         /* ... until no pose moves more than this */
 #define GN_DONE_RAD 1e-7
 #define MAX_DROPS 8             /* outliers dropped a fit at most */
+/* A step is solved by conjugate gradients preconditioned by the last factorization (no
+ * new one) while the poses have moved less than this since it was made ... */
+#define PCG_MOVED_MM 100.0
+#define PCG_MOVED_RAD 0.02
+#define PCG_ITERATIONS 20       /* ... and the gradients converge within this many */
+#define PCG_TOLERANCE 1e-6      /* ... to this share of the residual (solve.h) */
 
 typedef struct { double v[9]; } mat3_t;     /* row-major */
 
@@ -31,6 +37,10 @@ struct hl_posegraph {
     hl_solve_block_t *blocks;       /* [max_poses + max_edges] */
     double match_weight;            /* hl_posegraph_weigh_matches; 1 from create */
     double *g, *dx;                 /* [3 * max_poses] each */
+    bool factored;                  /* the solver holds a factorization ... */
+    double moved_mm, moved_rad;     /* ... and the poses moved this much since (the sum of
+                                       the steps' largest moves) */
+    hl_pg_work_t stats;
 };
 
 size_t hl_posegraph_mem_bytes(uint32_t max_poses, uint32_t max_edges)
@@ -161,6 +171,36 @@ static void add_into(hl_solve_block_t *out, const mat3_t *m, bool transposed)
             out->v[3 * i + j] += transposed ? m->v[3 * j + i] : m->v[3 * i + j];
 }
 
+/* H dx = -g for g->dx[3 ..]: by conjugate gradients on the last factorization while the
+ * poses have moved little since it was made (a refit, the last steps of a fit), else by a
+ * new factorization, which the steps after are preconditioned by. */
+static hl_solve_status_t solve_step(hl_posegraph_t *g, uint32_t n, uint32_t n_blocks)
+{
+    if (g->factored && g->moved_mm < PCG_MOVED_MM && g->moved_rad < PCG_MOVED_RAD) {
+        uint32_t iterations = 0;
+        hl_solve_status_t st = hl_sparse_ldlt_pcg(g->ldlt, n - 1, g->blocks, n_blocks, &g->g[3],
+                                                  &g->dx[3], PCG_TOLERANCE, PCG_ITERATIONS,
+                                                  &iterations);
+        g->stats.pcg_iterations += iterations;
+        if (st == HL_SOLVE_OK) {
+            g->stats.pcg_solves++;
+            return st;
+        }
+        g->stats.pcg_failures++;
+    }
+    g->factored = false;
+    bool reused = false;
+    hl_solve_status_t st = hl_sparse_ldlt_solve(g->ldlt, n - 1, g->blocks, n_blocks, &g->g[3],
+                                                &g->dx[3], &reused);
+    g->stats.analyses += !reused;
+    if (st != HL_SOLVE_OK)
+        return st;
+    g->stats.factorizations++;
+    g->factored = true;
+    g->moved_mm = g->moved_rad = 0;
+    return st;
+}
+
 /* One Gauss-Newton step of iteratively reweighted least squares: g->dx solves H dx = -g,
  * pose 0 held, each loop edge weighed by the Cauchy kernel at the current poses. A
  * heading adds to its pose's own block alone. @return false when the solver refuses
@@ -212,8 +252,8 @@ static bool gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
     }
     for (uint32_t q = 3; q < 3 * n; q++)
         g->g[q] = -g->g[q];
-    if (hl_sparse_ldlt_solve(g->ldlt, n - 1, g->blocks, n_blocks, &g->g[3], &g->dx[3], NULL) !=
-        HL_SOLVE_OK) {
+    g->stats.steps++;
+    if (solve_step(g, n, n_blocks) != HL_SOLVE_OK) {
         memset(g->dx, 0, 3 * n * sizeof *g->dx);
         return false;
     }
@@ -235,6 +275,8 @@ static void solve(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n, const hl_p
             most_mm = fmax(most_mm, fmax(fabs(d[0]), fabs(d[1])));
             most_rad = fmax(most_rad, fabs(d[2]));
         }
+        g->moved_mm += most_mm;
+        g->moved_rad += most_rad;
         if (most_mm < GN_DONE_MM && most_rad < GN_DONE_RAD)
             break;
     }
@@ -279,6 +321,17 @@ static bool headings_fit(const hl_pg_heading_t *headings, uint32_t n_headings, u
             !(headings[k].sigma_rad > 0) || !isfinite(headings[k].sigma_rad))
             return false;
     return true;
+}
+
+void hl_posegraph_shift(hl_posegraph_t *g, uint32_t k)
+{
+    if (g)
+        hl_sparse_ldlt_shift(g->ldlt, k);
+}
+
+hl_pg_work_t hl_posegraph_work(const hl_posegraph_t *g)
+{
+    return g ? g->stats : (hl_pg_work_t){ 0 };
 }
 
 bool hl_posegraph_weigh_matches(hl_posegraph_t *g, double weight)

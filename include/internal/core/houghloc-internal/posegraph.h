@@ -60,6 +60,22 @@ hl_pose_t hl_pg_to_pose(hl_pg_pose_t p);
 hl_pg_pose_t hl_pg_between(hl_pg_pose_t a, hl_pg_pose_t b);
 hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
 
+/** The poses were renumbered since the last fit: pose i is now pose i - @p k (the first
+ *  @p k forgotten, as a record of stops forgets its oldest), so that the factorization
+ *  kept from that fit still preconditions the next (hl_posegraph_fit). */
+void hl_posegraph_shift(hl_posegraph_t *g, uint32_t k);
+
+/* What the fits so far did (for benchmarks and tests): Gauss-Newton steps, the
+ * analyses and factorizations of their normal equations, and the steps solved instead by
+ * conjugate gradients on the last factorization (with their iterations, and the tries
+ * that did not converge and were factored after all). */
+typedef struct hl_pg_work {
+    uint64_t steps, analyses, factorizations;
+    uint64_t pcg_solves, pcg_iterations, pcg_failures;
+} hl_pg_work_t;
+
+hl_pg_work_t hl_posegraph_work(const hl_posegraph_t *g);
+
 /** A loop edge (a match) counts @p weight (0 < weight <= 1) of a step in the fits from
  *  now on, after its kernel (which, with the outlier gate, still reads its error in the
  *  steps' sigmas): for matches less sure than the steps, as a continuous sensor's
