@@ -35,6 +35,11 @@ struct hl_sparse_ldlt {
                                                    blocks of the rows the factor misses */
 };
 
+/* Whether the arguments name a system of @p s's limits: blocks of the upper block
+ * triangle within @p n_block_rows, every value a number (solve.h's HL_SOLVE_BAD_ARGUMENT). */
+bool hl_blocks_valid(const hl_sparse_ldlt *s, uint32_t n_block_rows,
+                     const hl_solve_block_t *blocks, uint32_t n_blocks);
+
 /* Sizes the conjugate gradients' workspace for the largest system (create). Throws
  * std::bad_alloc. */
 void hl_pcg_reserve(hl_sparse_ldlt *s);

@@ -132,18 +132,9 @@ hl_solve_status_t hl_sparse_ldlt_pcg(hl_sparse_ldlt_t *s, uint32_t n_block_rows,
 {
     if (iterations)
         *iterations = 0;
-    if (!s || !rhs || !x || !blocks || n_block_rows == 0 || n_block_rows > s->max_block_rows ||
-        n_blocks == 0 || n_blocks > s->max_blocks)
+    if (!rhs || !x || !hl_blocks_valid(s, n_block_rows, blocks, n_blocks))
         return HL_SOLVE_BAD_ARGUMENT;
     const int n = 3 * static_cast<int>(n_block_rows);
-    for (uint32_t k = 0; k < n_blocks; k++) {
-        const hl_solve_block_t &b = blocks[k];
-        if (b.row > b.col || b.col >= n_block_rows)
-            return HL_SOLVE_BAD_ARGUMENT;
-        for (double v : b.v)
-            if (!std::isfinite(v))
-                return HL_SOLVE_BAD_ARGUMENT;
-    }
     for (int i = 0; i < n; i++)
         if (!std::isfinite(rhs[i]))
             return HL_SOLVE_BAD_ARGUMENT;

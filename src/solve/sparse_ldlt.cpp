@@ -31,9 +31,7 @@ uint64_t block_key(const hl_solve_block_t &b)
 
 }  // namespace
 
-namespace {
-
-bool blocks_valid(const hl_sparse_ldlt *s, uint32_t n_block_rows,
+bool hl_blocks_valid(const hl_sparse_ldlt *s, uint32_t n_block_rows,
                   const hl_solve_block_t *blocks, uint32_t n_blocks)
 {
     if (!s || !blocks || n_block_rows == 0 || n_block_rows > s->max_block_rows ||
@@ -49,6 +47,8 @@ bool blocks_valid(const hl_sparse_ldlt *s, uint32_t n_block_rows,
     }
     return true;
 }
+
+namespace {
 
 bool same_pattern(const hl_sparse_ldlt *s, uint32_t n_block_rows,
                   const hl_solve_block_t *blocks, uint32_t n_blocks)
@@ -214,7 +214,7 @@ size_t hl_sparse_ldlt_mem_bytes(uint32_t max_block_rows, uint32_t max_blocks)
 hl_solve_status_t hl_sparse_ldlt_analyze(hl_sparse_ldlt_t *s, uint32_t n_block_rows,
                                          const hl_solve_block_t *blocks, uint32_t n_blocks)
 {
-    if (!blocks_valid(s, n_block_rows, blocks, n_blocks))
+    if (!hl_blocks_valid(s, n_block_rows, blocks, n_blocks))
         return HL_SOLVE_BAD_ARGUMENT;
     try {
         return analyze(s, n_block_rows, blocks, n_blocks);
@@ -229,7 +229,7 @@ hl_solve_status_t hl_sparse_ldlt_solve(hl_sparse_ldlt_t *s, uint32_t n_block_row
                                        const hl_solve_block_t *blocks, uint32_t n_blocks,
                                        const double *rhs, double *x, bool *pattern_reused)
 {
-    if (!rhs || !x || !blocks_valid(s, n_block_rows, blocks, n_blocks))
+    if (!rhs || !x || !hl_blocks_valid(s, n_block_rows, blocks, n_blocks))
         return HL_SOLVE_BAD_ARGUMENT;
     try {
         return solve(s, n_block_rows, blocks, n_blocks, rhs, x, pattern_reused);
