@@ -4,9 +4,11 @@
  * new match says where one stop lies from another.
  *
  * Gauss-Newton; each step's normal equations, 3 x 3 blocks (each pose's own and each
- * edge's between its two poses), are solved exactly by the solve layer's sparse Cholesky
- * factorization (houghloc/solve.h: Eigen's SimplicialLDLT behind a C interface), whose
- * ordering serves every step of one fit. Every edge weighs the same (one localization's error, sigma_mm
+ * edge's between its two poses), are solved by the solve layer's sparse Cholesky
+ * factorization (houghloc-internal/solve.h: Eigen's SimplicialLDLT behind a C interface),
+ * whose ordering serves while the pattern holds; or, while the poses have moved little
+ * since the last factorization (a fit's last steps, the next fit after a stop added),
+ * by conjugate gradients preconditioned by that factorization, kept from fit to fit. Every edge weighs the same (one localization's error, sigma_mm
  * and sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
  * reweighted: each Gauss-Newton step weighs it by 1 / (1 + e / kernel^2), e its squared
  * error in standard deviations at the poses the step starts from). A pose may also carry

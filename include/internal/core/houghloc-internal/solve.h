@@ -17,8 +17,8 @@
  * the one analyzed before only refills the values and factors again (each Gauss-Newton
  * step of one fit shares the pattern), and says so in *pattern_reused.
  *
- * Memory: create reserves the matrix, the block-to-value map and the pattern's copy for
- * the largest system; Eigen's own work (the ordering, the factor, its permuted copy of the
+ * Memory: create reserves the matrix, the block-to-value map, the pattern's copy and the
+ * conjugate gradients' vectors for the largest system; Eigen's own work (the ordering, the factor, its permuted copy of the
  * matrix) is allocated by Eigen inside the calls (docs/results/pose-graph-solver.md).
  * No call throws; every failure is a status.
  */
