@@ -37,6 +37,8 @@ struct hl_posegraph {
     hl_solve_block_t *blocks;       /* [max_poses + max_edges] */
     double match_weight;            /* hl_posegraph_weigh_matches; 1 from create */
     double *g, *dx;                 /* [3 * max_poses] each */
+    double *cs;                     /* [2 * max_poses]: each pose's cosine and sine */
+    double *chi2;                   /* [max_edges]: each loop edge's error (drop_outliers) */
     bool factored;                  /* the solver holds a factorization ... */
     double moved_mm, moved_rad;     /* ... and the poses moved this much since (the sum of
                                        the steps' largest moves) */
@@ -47,7 +49,7 @@ size_t hl_posegraph_mem_bytes(uint32_t max_poses, uint32_t max_edges)
 {
     return sizeof(hl_posegraph_t) +
            ((size_t)max_poses + max_edges) * sizeof(hl_solve_block_t) +
-           (size_t)max_poses * 2 * 3 * sizeof(double) +
+           (size_t)max_poses * 4 * 2 * sizeof(double) + (size_t)max_edges * sizeof(double) +
            hl_sparse_ldlt_mem_bytes(max_poses, max_poses + max_edges);
 }
 
@@ -65,7 +67,9 @@ hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges)
     g->blocks = calloc((size_t)max_poses + max_edges, sizeof *g->blocks);
     g->g = calloc(3 * (size_t)max_poses, sizeof *g->g);
     g->dx = calloc(3 * (size_t)max_poses, sizeof *g->dx);
-    if (!g->ldlt || !g->blocks || !g->g || !g->dx) {
+    g->cs = calloc(2 * (size_t)max_poses, sizeof *g->cs);
+    g->chi2 = calloc((size_t)max_edges + 1, sizeof *g->chi2);
+    if (!g->ldlt || !g->blocks || !g->g || !g->dx || !g->cs || !g->chi2) {
         hl_posegraph_destroy(g);
         return NULL;
     }
@@ -80,6 +84,8 @@ void hl_posegraph_destroy(hl_posegraph_t *g)
     free(g->blocks);
     free(g->g);
     free(g->dx);
+    free(g->cs);
+    free(g->chi2);
     free(g);
 }
 
@@ -116,11 +122,22 @@ hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel)
                            wrap(a.theta + rel.theta) };
 }
 
-/* The edge's error (the measured relative pose against the poses' own) and Jacobians. */
-static void linearize(const hl_pg_pose_t *poses, const hl_pg_edge_t *e, edge_terms_t *t)
+/* Each pose's cosine and sine into @p cs, once for all the edges from it. */
+static void pose_trig(const hl_pg_pose_t *poses, uint32_t n, double *cs)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        cs[2 * i] = cos(poses[i].theta);
+        cs[2 * i + 1] = sin(poses[i].theta);
+    }
+}
+
+/* The edge's error (the measured relative pose against the poses' own) and Jacobians, @p cs
+ * the poses' cosines and sines (pose_trig). */
+static void linearize(const hl_pg_pose_t *poses, const double *cs, const hl_pg_edge_t *e,
+                      edge_terms_t *t)
 {
     hl_pg_pose_t a = poses[e->from], b = poses[e->to];
-    double c = cos(a.theta), s = sin(a.theta), dx = b.x - a.x, dy = b.y - a.y;
+    double c = cs[2 * e->from], s = cs[2 * e->from + 1], dx = b.x - a.x, dy = b.y - a.y;
     t->r[0] = c * dx + s * dy - e->rel.x;
     t->r[1] = -s * dx + c * dy - e->rel.y;
     t->r[2] = wrap(b.theta - a.theta - e->rel.theta);
@@ -217,10 +234,11 @@ static bool gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
     memset(g->dx, 0, 3 * n * sizeof *g->dx);
     for (uint32_t i = 1; i < n; i++)
         own[i - 1] = (hl_solve_block_t){ i - 1, i - 1, { 0 } };
+    pose_trig(poses, n, g->cs);
     for (uint32_t k = 0; k < n_edges; k++) {
         edge_terms_t t;
         uint32_t i = edges[k].from, j = edges[k].to;
-        linearize(poses, &edges[k], &t);
+        linearize(poses, g->cs, &edges[k], &t);
         double robust = edges[k].loop && kernel > 0
                             ? 1 / (1 + squared_sigmas(&t, w) / (kernel * kernel)) : 1;
         if (edges[k].loop)
@@ -282,32 +300,45 @@ static void solve(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n, const hl_p
     }
 }
 
-/* An edge's squared error in standard deviations, averaged over its three terms. */
-static double chi2(const hl_pg_pose_t *poses, const hl_pg_edge_t *e, const double w[3])
+/* Drops the loop edges beyond the gate from @p edges (the order kept), worst first, at most
+ * @p most: as many times dropping the one farthest from the fit, the poses unchanged
+ * between. Each edge's error is measured once (g->chi2, squared in standard deviations,
+ * averaged over its three terms; steps 0). @return the number dropped. */
+static uint32_t drop_outliers(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint32_t n,
+                              hl_pg_edge_t *edges, uint32_t *n_edges, const double w[3],
+                              double gate, uint32_t most)
 {
-    edge_terms_t t;
-    linearize(poses, e, &t);
-    return squared_sigmas(&t, w) / 3;
-}
-
-/* Drops the loop edge farthest from the fit if it lies beyond the gate. */
-static bool drop_worst(const hl_pg_pose_t *poses, hl_pg_edge_t *edges, uint32_t *n_edges,
-                       const double w[3], double gate)
-{
-    uint32_t worst = UINT32_MAX;
-    double worst_chi2 = gate * gate;
+    double *chi2 = g->chi2;
+    pose_trig(poses, n, g->cs);
     for (uint32_t k = 0; k < *n_edges; k++) {
-        double c = edges[k].loop ? chi2(poses, &edges[k], w) : 0;
-        if (c > worst_chi2) {
-            worst_chi2 = c;
-            worst = k;
+        edge_terms_t t;
+        chi2[k] = 0;
+        if (edges[k].loop) {
+            linearize(poses, g->cs, &edges[k], &t);
+            chi2[k] = squared_sigmas(&t, w) / 3;
         }
     }
-    if (worst == UINT32_MAX)
-        return false;
-    memmove(&edges[worst], &edges[worst + 1], (*n_edges - worst - 1) * sizeof *edges);
-    (*n_edges)--;
-    return true;
+    uint32_t dropped = 0;
+    for (; dropped < most; dropped++) {
+        uint32_t worst = UINT32_MAX;
+        double worst_chi2 = gate * gate;
+        for (uint32_t k = 0; k < *n_edges; k++)
+            if (chi2[k] > worst_chi2) {
+                worst_chi2 = chi2[k];
+                worst = k;
+            }
+        if (worst == UINT32_MAX)
+            break;
+        chi2[worst] = -1;       /* marked: gone below */
+    }
+    if (dropped) {
+        uint32_t kept = 0;
+        for (uint32_t k = 0; k < *n_edges; k++)
+            if (chi2[k] >= 0)
+                edges[kept++] = edges[k];
+        *n_edges = kept;
+    }
+    return dropped;
 }
 
 /* Whether every heading names a pose below n, is a number and has a positive, finite
@@ -367,10 +398,8 @@ uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
     solve(g, poses, n, edges, *n_edges, &pb, GN_STEPS);
     uint32_t dropped = 0;
     for (;;) {
-        uint32_t now = 0;
-        while (now < batch && dropped + now < MAX_DROPS &&
-               drop_worst(poses, edges, n_edges, w, gate))
-            now++;
+        uint32_t most = MAX_DROPS - dropped, now;
+        now = drop_outliers(g, poses, n, edges, n_edges, w, gate, most < batch ? most : batch);
         if (now == 0)
             return dropped;
         dropped += now;
