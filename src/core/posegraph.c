@@ -17,7 +17,7 @@
 #define PCG_MOVED_MM 100.0
 #define PCG_MOVED_RAD 0.02
 #define PCG_ITERATIONS 20       /* ... and the gradients converge within this many */
-#define PCG_TOLERANCE 1e-6      /* ... to this share of the residual (solve.h) */
+#define PCG_TOLERANCE 1e-4      /* ... to this share of the residual (solve.h) */
 
 typedef struct { double v[9]; } mat3_t;     /* row-major */
 
