@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "houghloc/rng.h"
 #include "houghloc-internal/posegraph.h"
 
 #define PI 3.14159265358979323846
@@ -173,6 +172,7 @@ static void forget_oldest(hl_closure_t *c)
     c->n_edges = kept;
     c->first++;
     c->count--;
+    hl_posegraph_shift(c->graph, 1);
 }
 
 /* The axis of the walls in the frame of the scan @p placed (header, "Square walls"), and

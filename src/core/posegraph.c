@@ -12,6 +12,12 @@
 #define GN_DONE_MM 0.01         /* ... until no pose moves more than this */
 #define GN_DONE_RAD 1e-7
 #define MAX_DROPS 8             /* outliers dropped a fit at most */
+/* A step is solved by conjugate gradients preconditioned by the last factorization (no
+ * new one) while the poses have moved less than this since it was made ... */
+#define PCG_MOVED_MM 100.0
+#define PCG_MOVED_RAD 0.02
+#define PCG_ITERATIONS 20       /* ... and the gradients converge within this many */
+#define PCG_TOLERANCE 1e-4      /* ... to this share of the residual (solve.h) */
 
 typedef struct { double v[9]; } mat3_t;     /* row-major */
 
@@ -31,13 +37,19 @@ struct hl_posegraph {
     hl_solve_block_t *blocks;       /* [max_poses + max_edges] */
     double match_weight;            /* hl_posegraph_weigh_matches; 1 from create */
     double *g, *dx;                 /* [3 * max_poses] each */
+    double *cs;                     /* [2 * max_poses]: each pose's cosine and sine */
+    double *chi2;                   /* [max_edges]: each loop edge's error (drop_outliers) */
+    bool factored;                  /* the solver holds a factorization ... */
+    double moved_mm, moved_rad;     /* ... and the poses moved this much since (the sum of
+                                       the steps' largest moves) */
+    hl_pg_work_t stats;
 };
 
 size_t hl_posegraph_mem_bytes(uint32_t max_poses, uint32_t max_edges)
 {
     return sizeof(hl_posegraph_t) +
            ((size_t)max_poses + max_edges) * sizeof(hl_solve_block_t) +
-           (size_t)max_poses * 2 * 3 * sizeof(double) +
+           (size_t)max_poses * 4 * 2 * sizeof(double) + (size_t)max_edges * sizeof(double) +
            hl_sparse_ldlt_mem_bytes(max_poses, max_poses + max_edges);
 }
 
@@ -55,7 +67,9 @@ hl_posegraph_t *hl_posegraph_create(uint32_t max_poses, uint32_t max_edges)
     g->blocks = calloc((size_t)max_poses + max_edges, sizeof *g->blocks);
     g->g = calloc(3 * (size_t)max_poses, sizeof *g->g);
     g->dx = calloc(3 * (size_t)max_poses, sizeof *g->dx);
-    if (!g->ldlt || !g->blocks || !g->g || !g->dx) {
+    g->cs = calloc(2 * (size_t)max_poses, sizeof *g->cs);
+    g->chi2 = calloc((size_t)max_edges + 1, sizeof *g->chi2);
+    if (!g->ldlt || !g->blocks || !g->g || !g->dx || !g->cs || !g->chi2) {
         hl_posegraph_destroy(g);
         return NULL;
     }
@@ -70,6 +84,8 @@ void hl_posegraph_destroy(hl_posegraph_t *g)
     free(g->blocks);
     free(g->g);
     free(g->dx);
+    free(g->cs);
+    free(g->chi2);
     free(g);
 }
 
@@ -106,11 +122,22 @@ hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel)
                            wrap(a.theta + rel.theta) };
 }
 
-/* The edge's error (the measured relative pose against the poses' own) and Jacobians. */
-static void linearize(const hl_pg_pose_t *poses, const hl_pg_edge_t *e, edge_terms_t *t)
+/* Each pose's cosine and sine into @p cs, once for all the edges from it. */
+static void pose_trig(const hl_pg_pose_t *poses, uint32_t n, double *cs)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        cs[2 * i] = cos(poses[i].theta);
+        cs[2 * i + 1] = sin(poses[i].theta);
+    }
+}
+
+/* The edge's error (the measured relative pose against the poses' own) and Jacobians, @p cs
+ * the poses' cosines and sines (pose_trig). */
+static void linearize(const hl_pg_pose_t *poses, const double *cs, const hl_pg_edge_t *e,
+                      edge_terms_t *t)
 {
     hl_pg_pose_t a = poses[e->from], b = poses[e->to];
-    double c = cos(a.theta), s = sin(a.theta), dx = b.x - a.x, dy = b.y - a.y;
+    double c = cs[2 * e->from], s = cs[2 * e->from + 1], dx = b.x - a.x, dy = b.y - a.y;
     t->r[0] = c * dx + s * dy - e->rel.x;
     t->r[1] = -s * dx + c * dy - e->rel.y;
     t->r[2] = wrap(b.theta - a.theta - e->rel.theta);
@@ -161,6 +188,36 @@ static void add_into(hl_solve_block_t *out, const mat3_t *m, bool transposed)
             out->v[3 * i + j] += transposed ? m->v[3 * j + i] : m->v[3 * i + j];
 }
 
+/* H dx = -g for g->dx[3 ..]: by conjugate gradients on the last factorization while the
+ * poses have moved little since it was made (a refit, the last steps of a fit), else by a
+ * new factorization, which the steps after are preconditioned by. */
+static hl_solve_status_t solve_step(hl_posegraph_t *g, uint32_t n, uint32_t n_blocks)
+{
+    if (g->factored && g->moved_mm < PCG_MOVED_MM && g->moved_rad < PCG_MOVED_RAD) {
+        uint32_t iterations = 0;
+        hl_solve_status_t st = hl_sparse_ldlt_pcg(g->ldlt, n - 1, g->blocks, n_blocks, &g->g[3],
+                                                  &g->dx[3], PCG_TOLERANCE, PCG_ITERATIONS,
+                                                  &iterations);
+        g->stats.pcg_iterations += iterations;
+        if (st == HL_SOLVE_OK) {
+            g->stats.pcg_solves++;
+            return st;
+        }
+        g->stats.pcg_failures++;
+    }
+    g->factored = false;
+    bool reused = false;
+    hl_solve_status_t st = hl_sparse_ldlt_solve(g->ldlt, n - 1, g->blocks, n_blocks, &g->g[3],
+                                                &g->dx[3], &reused);
+    g->stats.analyses += !reused;
+    if (st != HL_SOLVE_OK)
+        return st;
+    g->stats.factorizations++;
+    g->factored = true;
+    g->moved_mm = g->moved_rad = 0;
+    return st;
+}
+
 /* One Gauss-Newton step of iteratively reweighted least squares: g->dx solves H dx = -g,
  * pose 0 held, each loop edge weighed by the Cauchy kernel at the current poses. A
  * heading adds to its pose's own block alone. @return false when the solver refuses
@@ -177,10 +234,11 @@ static bool gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
     memset(g->dx, 0, 3 * n * sizeof *g->dx);
     for (uint32_t i = 1; i < n; i++)
         own[i - 1] = (hl_solve_block_t){ i - 1, i - 1, { 0 } };
+    pose_trig(poses, n, g->cs);
     for (uint32_t k = 0; k < n_edges; k++) {
         edge_terms_t t;
         uint32_t i = edges[k].from, j = edges[k].to;
-        linearize(poses, &edges[k], &t);
+        linearize(poses, g->cs, &edges[k], &t);
         double robust = edges[k].loop && kernel > 0
                             ? 1 / (1 + squared_sigmas(&t, w) / (kernel * kernel)) : 1;
         if (edges[k].loop)
@@ -212,8 +270,8 @@ static bool gauss_newton_step(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint
     }
     for (uint32_t q = 3; q < 3 * n; q++)
         g->g[q] = -g->g[q];
-    if (hl_sparse_ldlt_solve(g->ldlt, n - 1, g->blocks, n_blocks, &g->g[3], &g->dx[3], NULL) !=
-        HL_SOLVE_OK) {
+    g->stats.steps++;
+    if (solve_step(g, n, n_blocks) != HL_SOLVE_OK) {
         memset(g->dx, 0, 3 * n * sizeof *g->dx);
         return false;
     }
@@ -235,37 +293,52 @@ static void solve(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n, const hl_p
             most_mm = fmax(most_mm, fmax(fabs(d[0]), fabs(d[1])));
             most_rad = fmax(most_rad, fabs(d[2]));
         }
+        g->moved_mm += most_mm;
+        g->moved_rad += most_rad;
         if (most_mm < GN_DONE_MM && most_rad < GN_DONE_RAD)
             break;
     }
 }
 
-/* An edge's squared error in standard deviations, averaged over its three terms. */
-static double chi2(const hl_pg_pose_t *poses, const hl_pg_edge_t *e, const double w[3])
+/* Drops the loop edges beyond the gate from @p edges (the order kept), worst first, at most
+ * @p most: as many times dropping the one farthest from the fit, the poses unchanged
+ * between. Each edge's error is measured once (g->chi2, squared in standard deviations,
+ * averaged over its three terms; steps 0). @return the number dropped. */
+static uint32_t drop_outliers(hl_posegraph_t *g, const hl_pg_pose_t *poses, uint32_t n,
+                              hl_pg_edge_t *edges, uint32_t *n_edges, const double w[3],
+                              double gate, uint32_t most)
 {
-    edge_terms_t t;
-    linearize(poses, e, &t);
-    return squared_sigmas(&t, w) / 3;
-}
-
-/* Drops the loop edge farthest from the fit if it lies beyond the gate. */
-static bool drop_worst(const hl_pg_pose_t *poses, hl_pg_edge_t *edges, uint32_t *n_edges,
-                       const double w[3], double gate)
-{
-    uint32_t worst = UINT32_MAX;
-    double worst_chi2 = gate * gate;
+    double *chi2 = g->chi2;
+    pose_trig(poses, n, g->cs);
     for (uint32_t k = 0; k < *n_edges; k++) {
-        double c = edges[k].loop ? chi2(poses, &edges[k], w) : 0;
-        if (c > worst_chi2) {
-            worst_chi2 = c;
-            worst = k;
+        edge_terms_t t;
+        chi2[k] = 0;
+        if (edges[k].loop) {
+            linearize(poses, g->cs, &edges[k], &t);
+            chi2[k] = squared_sigmas(&t, w) / 3;
         }
     }
-    if (worst == UINT32_MAX)
-        return false;
-    memmove(&edges[worst], &edges[worst + 1], (*n_edges - worst - 1) * sizeof *edges);
-    (*n_edges)--;
-    return true;
+    uint32_t dropped = 0;
+    for (; dropped < most; dropped++) {
+        uint32_t worst = UINT32_MAX;
+        double worst_chi2 = gate * gate;
+        for (uint32_t k = 0; k < *n_edges; k++)
+            if (chi2[k] > worst_chi2) {
+                worst_chi2 = chi2[k];
+                worst = k;
+            }
+        if (worst == UINT32_MAX)
+            break;
+        chi2[worst] = -1;       /* marked: gone below */
+    }
+    if (dropped) {
+        uint32_t kept = 0;
+        for (uint32_t k = 0; k < *n_edges; k++)
+            if (chi2[k] >= 0)
+                edges[kept++] = edges[k];
+        *n_edges = kept;
+    }
+    return dropped;
 }
 
 /* Whether every heading names a pose below n, is a number and has a positive, finite
@@ -279,6 +352,17 @@ static bool headings_fit(const hl_pg_heading_t *headings, uint32_t n_headings, u
             !(headings[k].sigma_rad > 0) || !isfinite(headings[k].sigma_rad))
             return false;
     return true;
+}
+
+void hl_posegraph_shift(hl_posegraph_t *g, uint32_t k)
+{
+    if (g)
+        hl_sparse_ldlt_shift(g->ldlt, k);
+}
+
+hl_pg_work_t hl_posegraph_work(const hl_posegraph_t *g)
+{
+    return g ? g->stats : (hl_pg_work_t){ 0 };
 }
 
 bool hl_posegraph_weigh_matches(hl_posegraph_t *g, double weight)
@@ -314,10 +398,8 @@ uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
     solve(g, poses, n, edges, *n_edges, &pb, GN_STEPS);
     uint32_t dropped = 0;
     for (;;) {
-        uint32_t now = 0;
-        while (now < batch && dropped + now < MAX_DROPS &&
-               drop_worst(poses, edges, n_edges, w, gate))
-            now++;
+        uint32_t most = MAX_DROPS - dropped, now;
+        now = drop_outliers(g, poses, n, edges, n_edges, w, gate, most < batch ? most : batch);
         if (now == 0)
             return dropped;
         dropped += now;

@@ -12,13 +12,9 @@
 #include <new>
 #include <vector>
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
+#include "ldlt_state.h"
 
 namespace {
-
-using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper>;
 
 /* A pivot of D at most this share of its row's diagonal in A is taken for zero: all but
  * this much of the row was explained by the rows before it, so the matrix is singular to
@@ -35,21 +31,7 @@ uint64_t block_key(const hl_solve_block_t &b)
 
 }  // namespace
 
-struct hl_sparse_ldlt {
-    uint32_t max_block_rows = 0, max_blocks = 0;
-    SparseMatrix a;                             /* upper triangle */
-    Ldlt ldlt;
-    std::vector<int> value_of;                  /* [9 * max_blocks] place in a's values */
-    std::vector<uint64_t> pattern;              /* [max_blocks] (row, col) analyzed */
-    std::vector<Eigen::Triplet<double, int>> triplets;  /* [9 * max_blocks] */
-    Eigen::VectorXd rhs;                        /* [3 * max_block_rows] so rhs may be x */
-    uint32_t pattern_rows = 0, pattern_blocks = 0;
-    bool analyzed = false;
-};
-
-namespace {
-
-bool blocks_valid(const hl_sparse_ldlt *s, uint32_t n_block_rows,
+bool hl_blocks_valid(const hl_sparse_ldlt *s, uint32_t n_block_rows,
                   const hl_solve_block_t *blocks, uint32_t n_blocks)
 {
     if (!s || !blocks || n_block_rows == 0 || n_block_rows > s->max_block_rows ||
@@ -65,6 +47,8 @@ bool blocks_valid(const hl_sparse_ldlt *s, uint32_t n_block_rows,
     }
     return true;
 }
+
+namespace {
 
 bool same_pattern(const hl_sparse_ldlt *s, uint32_t n_block_rows,
                   const hl_solve_block_t *blocks, uint32_t n_blocks)
@@ -97,6 +81,7 @@ hl_solve_status_t analyze(hl_sparse_ldlt *s, uint32_t n_block_rows,
                           const hl_solve_block_t *blocks, uint32_t n_blocks)
 {
     s->analyzed = false;
+    s->factored = false;
     const int n = 3 * static_cast<int>(n_block_rows);
     s->triplets.clear();
     for (uint32_t k = 0; k < n_blocks; k++)
@@ -171,9 +156,13 @@ hl_solve_status_t solve(hl_sparse_ldlt *s, uint32_t n_block_rows, const hl_solve
             if (place != kNoValue)
                 values[place] += blocks[k].v[e];
         }
+    s->factored = false;
     s->ldlt.factorize(s->a);
     if (s->ldlt.info() != Eigen::Success || !pivots_positive(s))
         return HL_SOLVE_NOT_POSITIVE_DEFINITE;
+    s->factored = true;
+    s->factored_rows = n_block_rows;
+    s->shift = 0;
     s->rhs.head(n) = Eigen::Map<const Eigen::VectorXd>(rhs, n);
     Eigen::Map<Eigen::VectorXd>(x, n) = s->ldlt.solve(s->rhs.head(n));
     return HL_SOLVE_OK;
@@ -199,6 +188,7 @@ hl_sparse_ldlt_t *hl_sparse_ldlt_create(uint32_t max_block_rows, uint32_t max_bl
         s->rhs.resize(3 * static_cast<Eigen::Index>(max_block_rows));
         s->a.resize(3 * max_block_rows, 3 * max_block_rows);
         s->a.reserve(9 * static_cast<Eigen::Index>(max_blocks) + 3 * max_block_rows);
+        hl_pcg_reserve(s);
     } catch (...) {     /* std::bad_alloc: Eigen and the vectors throw nothing else */
         delete s;
         return nullptr;
@@ -217,18 +207,20 @@ size_t hl_sparse_ldlt_mem_bytes(uint32_t max_block_rows, uint32_t max_blocks)
     return sizeof(hl_sparse_ldlt) +
            entries * (sizeof(double) + sizeof(int) + sizeof(Eigen::Triplet<double, int>)) +
            9 * static_cast<size_t>(max_blocks) * sizeof(int) + max_blocks * sizeof(uint64_t) +
-           (3 * static_cast<size_t>(max_block_rows) + 1) * (sizeof(double) + sizeof(int));
+           (3 * static_cast<size_t>(max_block_rows) + 1) * (sizeof(double) + sizeof(int)) +
+           static_cast<size_t>(max_block_rows) * (5 * 3 + 9 + 9) * sizeof(double);
 }
 
 hl_solve_status_t hl_sparse_ldlt_analyze(hl_sparse_ldlt_t *s, uint32_t n_block_rows,
                                          const hl_solve_block_t *blocks, uint32_t n_blocks)
 {
-    if (!blocks_valid(s, n_block_rows, blocks, n_blocks))
+    if (!hl_blocks_valid(s, n_block_rows, blocks, n_blocks))
         return HL_SOLVE_BAD_ARGUMENT;
     try {
         return analyze(s, n_block_rows, blocks, n_blocks);
     } catch (...) {
         s->analyzed = false;
+        s->factored = false;
         return HL_SOLVE_NO_MEMORY;
     }
 }
@@ -237,12 +229,13 @@ hl_solve_status_t hl_sparse_ldlt_solve(hl_sparse_ldlt_t *s, uint32_t n_block_row
                                        const hl_solve_block_t *blocks, uint32_t n_blocks,
                                        const double *rhs, double *x, bool *pattern_reused)
 {
-    if (!rhs || !x || !blocks_valid(s, n_block_rows, blocks, n_blocks))
+    if (!rhs || !x || !hl_blocks_valid(s, n_block_rows, blocks, n_blocks))
         return HL_SOLVE_BAD_ARGUMENT;
     try {
         return solve(s, n_block_rows, blocks, n_blocks, rhs, x, pattern_reused);
     } catch (...) {
         s->analyzed = false;
+        s->factored = false;
         return HL_SOLVE_NO_MEMORY;
     }
 }
@@ -258,6 +251,8 @@ const char *hl_solve_status_name(hl_solve_status_t status)
         return "matrix not positive definite";
     case HL_SOLVE_NO_MEMORY:
         return "no memory";
+    case HL_SOLVE_NOT_CONVERGED:
+        return "not converged";
     }
     return "unknown status";
 }

@@ -1,7 +1,9 @@
 /* Tests for src/core/posegraph.c: a loop's drift taken back by one match, a wrong match
  * dropped, a wrong match weighed down by the kernel, wrong matches under the kernel
  * dropped at once, a match weighed down pulls less, steps given either way round, pose 0
- * held, a consistent graph left alone, headings of the poses' own, bad calls refused. */
+ * held, a consistent graph left alone, headings of the poses' own, bad calls refused; a
+ * refit solved on the kept factorization (a match added; the first pose forgotten) as a
+ * fresh workspace's fit solves it. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -332,6 +334,79 @@ static void test_bad_calls_change_nothing(void **state)
     hl_posegraph_destroy(NULL);
 }
 
+/* A fit of @p n_poses poses on a fresh workspace, for comparison. */
+static void fresh_fit(hl_pg_pose_t *poses, uint32_t n_poses, hl_pg_edge_t *edges, uint32_t n)
+{
+    hl_posegraph_t *g = hl_posegraph_create(N, N + 4);
+    assert_non_null(g);
+    hl_posegraph_fit(g, poses, n_poses, edges, &n, NULL, 0, SIGMA_MM, SIGMA_RAD, 1.0, 3.0);
+    hl_pg_work_t w = hl_posegraph_work(g);
+    assert_int_equal(w.factorizations > 0, 1);
+    hl_posegraph_destroy(g);
+}
+
+/* The next fit after a small change (a match added; then the first pose forgotten, as a
+ * full record forgets its oldest) is solved by conjugate gradients on the factorization
+ * kept from the fit before, with no new one, and lands where a fresh workspace's fit of
+ * the same graph from the same poses does. */
+static void test_a_refit_solves_on_the_kept_factorization(void **state)
+{
+    (void)state;
+    hl_pg_pose_t t[N], poses[N], fresh[N];
+    hl_pg_edge_t edges[N + 4], copy_edges[N + 4];
+    truth(t);
+    uint32_t n = drifting_chain(t, 0.05 * PI / 180, poses, edges);
+    edges[n++] = (hl_pg_edge_t){ 0, N - 1, hl_pg_between(t[0], t[N - 1]), true };
+    hl_posegraph_t *g = hl_posegraph_create(N, N + 4);
+    assert_non_null(g);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, NULL, 0, SIGMA_MM, SIGMA_RAD,
+                                      1.0, 3.0), 0);
+    hl_pg_work_t before = hl_posegraph_work(g);
+    assert_true(before.factorizations > 0);
+    /* A match across the loop, a little off the fit. */
+    hl_pg_pose_t rel = hl_pg_between(poses[3], poses[9]);
+    rel.x += 10;
+    edges[n++] = (hl_pg_edge_t){ 3, 9, rel, true };
+    copy(fresh, poses);
+    for (uint32_t k = 0; k < n; k++)
+        copy_edges[k] = edges[k];
+    fresh_fit(fresh, N, copy_edges, n);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, NULL, 0, SIGMA_MM, SIGMA_RAD,
+                                      1.0, 3.0), 0);
+    hl_pg_work_t after = hl_posegraph_work(g);
+    assert_true(after.steps > before.steps);
+    assert_true(after.factorizations == before.factorizations);
+    assert_true(after.pcg_solves == before.pcg_solves + (after.steps - before.steps));
+    assert_true(worst_mm(poses, fresh) < 1e-3);
+    assert_true(worst_mm(poses, t) > 1);     /* and it moved: the match was off */
+    /* The first pose forgotten: its edges gone, the rest one down, the shift told. */
+    uint32_t kept = 0;
+    for (uint32_t k = 0; k < n; k++)
+        if (edges[k].from > 0)
+            edges[kept++] = (hl_pg_edge_t){ edges[k].from - 1, edges[k].to - 1, edges[k].rel,
+                                            edges[k].loop };
+    for (int i = 0; i + 1 < N; i++)
+        poses[i] = poses[i + 1];
+    poses[2].x += 5;            /* and one pose off, for the refit to take back */
+    hl_posegraph_shift(g, 1);
+    for (int i = 0; i + 1 < N; i++)
+        fresh[i] = poses[i];
+    for (uint32_t k = 0; k < kept; k++)
+        copy_edges[k] = edges[k];
+    fresh_fit(fresh, N - 1, copy_edges, kept);
+    before = after;
+    assert_int_equal(hl_posegraph_fit(g, poses, N - 1, edges, &kept, NULL, 0, SIGMA_MM,
+                                      SIGMA_RAD, 1.0, 3.0), 0);
+    after = hl_posegraph_work(g);
+    assert_true(after.factorizations == before.factorizations);
+    assert_true(after.pcg_solves > before.pcg_solves);
+    double worst = 0;
+    for (int i = 0; i + 1 < N; i++)
+        worst = fmax(worst, hypot(poses[i].x - fresh[i].x, poses[i].y - fresh[i].y));
+    assert_true(worst < 1e-3);
+    hl_posegraph_destroy(g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -344,6 +419,7 @@ int main(void)
         cmocka_unit_test(test_steps_either_way_round_fit_alike),
         cmocka_unit_test(test_headings_of_their_own_turn_a_chain_back),
         cmocka_unit_test(test_bad_calls_change_nothing),
+        cmocka_unit_test(test_a_refit_solves_on_the_kept_factorization),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

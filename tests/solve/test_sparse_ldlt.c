@@ -1,7 +1,10 @@
-/* Tests for src/solve/sparse_ldlt.cpp (include/internal/core/houghloc-internal/solve.h): a small SPD block system
- * against its dense solution, blocks of one place summed, the pattern's analysis reused
- * with new values (and the same answer as a fresh solver), a singular and an indefinite
- * system refused, bad arguments refused. */
+/* Tests for src/solve/sparse_ldlt.cpp and src/solve/pcg.cpp
+ * (include/internal/core/houghloc-internal/solve.h): a small SPD block system against its
+ * dense solution, blocks of one place summed, the pattern's analysis reused with new
+ * values (and the same answer as a fresh solver), a singular and an indefinite system
+ * refused, bad arguments refused; conjugate gradients on the last factorization solving
+ * another system (other values; the unknowns renumbered and one added), and refusing
+ * without a factorization or within too few iterations. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -262,6 +265,96 @@ static void test_bad_arguments_refused(void **state)
     hl_sparse_ldlt_destroy(s);
 }
 
+/* The factorization of one matrix preconditions conjugate gradients on another of the
+ * same pattern: the other's answer, in fewer iterations than unknowns. */
+static void test_pcg_on_the_last_factorization(void **state)
+{
+    (void)state;
+    double a[N][N], rhs[N], want[N], got[N];
+    hl_solve_block_t blocks[MAX_BLOCKS];
+    fill_rhs(rhs);
+    hl_sparse_ldlt_t *s = hl_sparse_ldlt_create(ROWS, MAX_BLOCKS);
+    assert_non_null(s);
+    dense_spd(a, 0.5);
+    uint32_t n_blocks = to_blocks(a, blocks);
+    uint32_t iterations = 99;
+    /* Nothing factored yet: refused, x untouched. */
+    got[0] = 7;
+    assert_int_equal(hl_sparse_ldlt_pcg(s, ROWS, blocks, n_blocks, rhs, got, 1e-10, 50,
+                                        &iterations), HL_SOLVE_NOT_CONVERGED);
+    assert_true(got[0] == 7);
+    assert_int_equal(hl_sparse_ldlt_solve(s, ROWS, blocks, n_blocks, rhs, got, NULL),
+                     HL_SOLVE_OK);
+    /* The same matrix: one iteration. */
+    assert_int_equal(hl_sparse_ldlt_pcg(s, ROWS, blocks, n_blocks, rhs, got, 1e-10, 50,
+                                        &iterations), HL_SOLVE_OK);
+    assert_int_equal(iterations, 1);
+    dense_spd(a, 0.6);
+    dense_solve(a, rhs, want);
+    n_blocks = to_blocks(a, blocks);
+    /* Too few iterations for another matrix: refused, x untouched. */
+    got[0] = 7;
+    assert_int_equal(hl_sparse_ldlt_pcg(s, ROWS, blocks, n_blocks, rhs, got, 1e-10, 1,
+                                        &iterations), HL_SOLVE_NOT_CONVERGED);
+    assert_true(got[0] == 7);
+    assert_int_equal(hl_sparse_ldlt_pcg(s, ROWS, blocks, n_blocks, rhs, got, 1e-10, 50,
+                                        &iterations), HL_SOLVE_OK);
+    assert_true(iterations > 1 && iterations < N);
+    for (int i = 0; i < N; i++)
+        assert_true(fabs(got[i] - want[i]) <= 1e-8 * (1 + fabs(want[i])));
+    assert_int_equal(hl_sparse_ldlt_pcg(s, ROWS, blocks, n_blocks, rhs, NULL, 1e-10, 50, NULL),
+                     HL_SOLVE_BAD_ARGUMENT);
+    hl_sparse_ldlt_destroy(s);
+}
+
+/* The unknowns renumbered after the factorization (the first block gone, the others one
+ * down, a new last block): with the shift told, conjugate gradients still find the new
+ * system's answer. */
+static void test_pcg_after_a_shift(void **state)
+{
+    (void)state;
+    double a[N][N], b[N][N], rhs[N], want[N], got[N];
+    hl_solve_block_t blocks[MAX_BLOCKS];
+    fill_rhs(rhs);
+    hl_sparse_ldlt_t *s = hl_sparse_ldlt_create(ROWS, MAX_BLOCKS);
+    assert_non_null(s);
+    dense_spd(a, 0.5);
+    assert_int_equal(hl_sparse_ldlt_solve(s, ROWS, blocks, to_blocks(a, blocks), rhs, got, NULL),
+                     HL_SOLVE_OK);
+    /* b: a's blocks 1..3 as 0..2, and a new block 3 tied to block 2. */
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++)
+            b[i][j] = i < N - 3 && j < N - 3 ? a[i + 3][j + 3] : 0;
+    for (int i = 0; i < 3; i++) {
+        b[N - 3 + i][N - 3 + i] = 5;
+        b[N - 6 + i][N - 3 + i] = b[N - 3 + i][N - 6 + i] = -1;
+        b[N - 6 + i][N - 6 + i] += 1;
+    }
+    dense_solve(b, rhs, want);
+    uint32_t n_blocks = 0;
+    for (uint32_t bi = 0; bi < ROWS; bi++)
+        for (uint32_t bj = bi; bj < ROWS; bj++) {
+            hl_solve_block_t blk = { bi, bj, { 0 } };
+            double sum = 0;
+            for (int e = 0; e < 9; e++)
+                sum += fabs(blk.v[e] = b[3 * bi + e / 3][3 * bj + e % 3]);
+            if (sum > 0)
+                blocks[n_blocks++] = blk;
+        }
+    hl_sparse_ldlt_shift(s, 1);
+    uint32_t iterations = 0;
+    assert_int_equal(hl_sparse_ldlt_pcg(s, ROWS, blocks, n_blocks, rhs, got, 1e-10, 50,
+                                        &iterations), HL_SOLVE_OK);
+    assert_true(iterations > 1 && iterations < N);
+    for (int i = 0; i < N; i++)
+        assert_true(fabs(got[i] - want[i]) <= 1e-8 * (1 + fabs(want[i])));
+    /* Shifted past everything it held: nothing to precondition by. */
+    hl_sparse_ldlt_shift(s, ROWS);
+    assert_int_equal(hl_sparse_ldlt_pcg(s, ROWS, blocks, n_blocks, rhs, got, 1e-10, 50, NULL),
+                     HL_SOLVE_NOT_CONVERGED);
+    hl_sparse_ldlt_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -269,6 +362,8 @@ int main(void)
         cmocka_unit_test(test_pattern_reused_same_answer),
         cmocka_unit_test(test_singular_and_indefinite_refused),
         cmocka_unit_test(test_bad_arguments_refused),
+        cmocka_unit_test(test_pcg_on_the_last_factorization),
+        cmocka_unit_test(test_pcg_after_a_shift),
     };
     return cmocka_run_group_tests_name("sparse_ldlt", tests, NULL, NULL);
 }

@@ -90,14 +90,14 @@ $(call obj,$(KIDNAP_SRCS) tools/lab/kidnap/tour_study.cpp): $(BUILD)/obj/%.o: %.
 	@echo "  CXX     $<"
 	$(Q)$(CXX) $(CPPFLAGS) $(PKG_CFLAGS) $(CXXFLAGS) -c -o $@ $<
 
-$(BUILD)/bin/hl-kidnap: $(KIDNAP_OBJS) $(SIM_LIB) $(DAEMON_LIB) $(ROBOT_LIB) \
+$(BUILD)/bin/hl-kidnap: $(KIDNAP_OBJS) $(SIM_LIB) $(DAEMON_LIB) $(ROBOT_LIB) $(STORE_LIB) \
                         $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $(KIDNAP_OBJS) $(SIM_LIB) $(DAEMON_LIB) $(DAEMON_LDLIBS)
 
-$(BUILD)/bin/hl-tour-study: $(TOUR_STUDY_OBJS) $(DAEMON_LIB) $(ROBOT_LIB) $(BUS_LIB) $(LCM_LIB) \
-                            $(CORE_LIB)
+$(BUILD)/bin/hl-tour-study: $(TOUR_STUDY_OBJS) $(DAEMON_LIB) $(ROBOT_LIB) $(STORE_LIB) \
+                            $(BUS_LIB) $(LCM_LIB) $(CORE_LIB)
 	@mkdir -p $(@D)
 	@echo "  LD      $@"
 	$(Q)$(CXX) -o $@ $(TOUR_STUDY_OBJS) $(DAEMON_LIB) $(DAEMON_LDLIBS)

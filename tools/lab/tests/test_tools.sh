@@ -75,7 +75,7 @@ check "hl-bench RUNS WORKLOAD runs that workload alone" sh -c '
 # steps' drift past 5 % wrong matches (the worst stop 68 mm from its truth at 256 stops).
 "$BIN/hl-bench-posegraph" --stops 256 >"$tmp/pg"
 check "hl-bench-posegraph prints its line" grep -qE \
-    '^bench posegraph_fit stops=256 edges=[0-9]+ dropped=[0-9]+ first_ms=[0-9.]+ refit_ms=[0-9.]+ worst_mm=[0-9]+$' "$tmp/pg"
+    '^bench posegraph_fit stops=256 edges=[0-9]+ dropped=[0-9]+ first_ms=[0-9.]+ refit_ms=[0-9.]+ next_ms=[0-9.]+ worst_mm=[0-9]+$' "$tmp/pg"
 check "hl-bench-posegraph: the fit lands every stop within 200 mm of its truth" \
     awk '{ split($NF, w, "="); exit !(w[2] + 0 < 200) }' "$tmp/pg"
 # hl-bench-cycle's loop closure, with and without square walls: each run repeatable (exit

@@ -4,9 +4,11 @@
  * new match says where one stop lies from another.
  *
  * Gauss-Newton; each step's normal equations, 3 x 3 blocks (each pose's own and each
- * edge's between its two poses), are solved exactly by the solve layer's sparse Cholesky
- * factorization (houghloc/solve.h: Eigen's SimplicialLDLT behind a C interface), whose
- * ordering serves every step of one fit. Every edge weighs the same (one localization's error, sigma_mm
+ * edge's between its two poses), are solved by the solve layer's sparse Cholesky
+ * factorization (houghloc-internal/solve.h: Eigen's SimplicialLDLT behind a C interface),
+ * whose ordering serves while the pattern holds; or, while the poses have moved little
+ * since the last factorization (a fit's last steps, the next fit after a stop added),
+ * by conjugate gradients preconditioned by that factorization, kept from fit to fit. Every edge weighs the same (one localization's error, sigma_mm
  * and sigma_rad), but that a loop edge may be weighed down by a Cauchy kernel (iteratively
  * reweighted: each Gauss-Newton step weighs it by 1 / (1 + e / kernel^2), e its squared
  * error in standard deviations at the poses the step starts from). A pose may also carry
@@ -59,6 +61,22 @@ hl_pose_t hl_pg_to_pose(hl_pg_pose_t p);
 /* Pose @p b in the frame of @p a, and its inverse. */
 hl_pg_pose_t hl_pg_between(hl_pg_pose_t a, hl_pg_pose_t b);
 hl_pg_pose_t hl_pg_compose(hl_pg_pose_t a, hl_pg_pose_t rel);
+
+/** The poses were renumbered since the last fit: pose i is now pose i - @p k (the first
+ *  @p k forgotten, as a record of stops forgets its oldest), so that the factorization
+ *  kept from that fit still preconditions the next (hl_posegraph_fit). */
+void hl_posegraph_shift(hl_posegraph_t *g, uint32_t k);
+
+/* What the fits so far did (for benchmarks and tests): Gauss-Newton steps, the
+ * analyses and factorizations of their normal equations, and the steps solved instead by
+ * conjugate gradients on the last factorization (with their iterations, and the tries
+ * that did not converge and were factored after all). */
+typedef struct hl_pg_work {
+    uint64_t steps, analyses, factorizations;
+    uint64_t pcg_solves, pcg_iterations, pcg_failures;
+} hl_pg_work_t;
+
+hl_pg_work_t hl_posegraph_work(const hl_posegraph_t *g);
 
 /** A loop edge (a match) counts @p weight (0 < weight <= 1) of a step in the fits from
  *  now on, after its kernel (which, with the outlier gate, still reads its error in the

@@ -17,8 +17,8 @@
  * the one analyzed before only refills the values and factors again (each Gauss-Newton
  * step of one fit shares the pattern), and says so in *pattern_reused.
  *
- * Memory: create reserves the matrix, the block-to-value map and the pattern's copy for
- * the largest system; Eigen's own work (the ordering, the factor, its permuted copy of the
+ * Memory: create reserves the matrix, the block-to-value map, the pattern's copy and the
+ * conjugate gradients' vectors for the largest system; Eigen's own work (the ordering, the factor, its permuted copy of the
  * matrix) is allocated by Eigen inside the calls (docs/results/pose-graph-solver.md).
  * No call throws; every failure is a status.
  */
@@ -40,6 +40,8 @@ typedef enum hl_solve_status {
                                            value not a number */
     HL_SOLVE_NOT_POSITIVE_DEFINITE,     /* a pivot not positive: singular or indefinite */
     HL_SOLVE_NO_MEMORY,
+    HL_SOLVE_NOT_CONVERGED,             /* conjugate gradients: no factorization to
+                                           precondition by, or not within the iterations */
 } hl_solve_status_t;
 
 /* One 3 x 3 block of the matrix, at block row `row` and block column `col`. */
@@ -76,6 +78,31 @@ hl_solve_status_t hl_sparse_ldlt_analyze(hl_sparse_ldlt_t *s, uint32_t n_block_r
 hl_solve_status_t hl_sparse_ldlt_solve(hl_sparse_ldlt_t *s, uint32_t n_block_rows,
                                        const hl_solve_block_t *blocks, uint32_t n_blocks,
                                        const double *rhs, double *x, bool *pattern_reused);
+
+/**
+ * Solves A x = @p rhs (as hl_sparse_ldlt_solve, any pattern) by conjugate gradients
+ * preconditioned by the last factorization hl_sparse_ldlt_solve made, without factoring
+ * A: for a system near the one factored (the next Gauss-Newton step of a fit, or the
+ * next fit with a pose added or a match dropped), where the old factor is nearly A's
+ * own and a few iterations do. The factored unknown block b stands for this system's
+ * block b - shift (hl_sparse_ldlt_shift); this system's blocks the factor does not hold
+ * (new ones past it) are preconditioned by the inverses of their diagonal blocks.
+ * Stops once r^T M^-1 r, the residual r in the preconditioner M's inverse, has fallen to
+ * @p tolerance^2 of its value at x = 0 (*@p iterations, if not NULL, says how many
+ * were taken). No allocation: the workspace comes from create.
+ * @return HL_SOLVE_OK; HL_SOLVE_NOT_CONVERGED when no factorization is held, it holds
+ * no block of this system, or @p max_iterations did not do (then the caller factors A);
+ * HL_SOLVE_BAD_ARGUMENT as hl_sparse_ldlt_solve. On an error @p x is left as it was.
+ */
+hl_solve_status_t hl_sparse_ldlt_pcg(hl_sparse_ldlt_t *s, uint32_t n_block_rows,
+                                     const hl_solve_block_t *blocks, uint32_t n_blocks,
+                                     const double *rhs, double *x, double tolerance,
+                                     uint32_t max_iterations, uint32_t *iterations);
+
+/** The unknowns were renumbered since the last factorization: block b is now block
+ *  b - @p k (the first @p k dropped, as a record forgets its oldest pose), so that the
+ *  factorization still preconditions the blocks it holds (hl_sparse_ldlt_pcg). */
+void hl_sparse_ldlt_shift(hl_sparse_ldlt_t *s, uint32_t k);
 
 /* The status as a few words, for an error line. */
 const char *hl_solve_status_name(hl_solve_status_t status);
