@@ -308,10 +308,8 @@ const size_t hl_param_table_len = sizeof hl_param_table / sizeof hl_param_table[
 /* A sonar sounded at the laser's rate rather than at stops: the settings measured on the
  * pseudo-sonar ring of five real buildings (docs/results/real-buildings.md, "Pseudo-sonar"). */
 static const hl_param_setting_t sonar_continuous[] = {
-    { "slam.heading_gain", "0.7",
-      "soundings a few centimetres apart: odometry's heading between two is as good as one "
-      "sounding's against the map, so take 70 % of each heading correction" },
-    { "localize.prior_sigma_mm", "100", "... and a tighter odometry prior in position" },
+    { "localize.prior_sigma_mm", "100",
+      "soundings centimetres apart: a tighter odometry prior in position ..." },
     { "localize.prior_sigma_deg", "5", "... and in heading" },
     { "echo.half_beam_deg", "11",
       "the nearest return anywhere in a hard 22-degree cone (half of it), not the 7 degrees "
@@ -321,7 +319,7 @@ static const hl_param_setting_t sonar_continuous[] = {
       "normal, not its beam's (most readings of a moving ring are on flanks)" },
     { "slam.refine", "false",
       "the point-to-line polish moves a sonar sounding off the Hough peak: against a map "
-      "drawn at the true poses it doubles the heading error" },
+      "drawn at the true poses it doubles one sounding's error on freiburg-079" },
     { "slam.map_capacity", "15000",
       "a map that holds whole floors, so that the robot finds the walls it passed minutes "
       "ago ..." },

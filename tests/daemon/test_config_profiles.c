@@ -154,7 +154,7 @@ static void test_order_profile_keys(void **state)
     /* an override of the profile wins over the file's */
     load_ok(f, &f->b, f->path, "slam.profile=sonar-continuous", NULL);
     assert_string_equal(get(&f->b, "slam.profile"), "sonar-continuous");
-    assert_string_equal(get(&f->b, "slam.heading_gain"), "0.7");
+    assert_string_equal(get(&f->b, "echo.half_beam_deg"), "11");
     assert_string_equal(get(&f->b, "localize.group_mm"), "0");
     assert_string_equal(get(&f->b, "slam.map_capacity"), "800");
     /* the paper's method is a profile too */

@@ -6,8 +6,8 @@
  * nearest at the cone's edge towards the wall's foot, and its surface there is not square
  * to the beam: the paper's tangent (the normal along the beam, reversed) is off by the
  * angle of incidence. On the pseudo-sonar ring of five real buildings (22-degree cones
- * every 2.8 degrees) that puts the median reading's normal 39-42 degrees from the wall's,
- * and 63 % of them more than 30 degrees off, beyond the localizer's normal gate, while the
+ * every 2.8 degrees) that puts the median reading's normal 30-42 degrees from the wall's,
+ * and half or more of them more than 30 degrees off, beyond the localizer's normal gate, while the
  * echo's place is good to a degree (docs/results/real-buildings.md, "Where the sonar's
  * error goes").
  *

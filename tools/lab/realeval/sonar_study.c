@@ -1,0 +1,305 @@
+/*
+ * sonar_study.c - hl-sonar-study: where the pseudo-sonar ring's error comes from, on a
+ * real building (docs/results/real-buildings.md, "Where the sonar's error goes").
+ *
+ *   hl-sonar-study echo SONAR.txt LASER.txt [KEY=VALUE ...]
+ *       each pseudo-sonar reading, prepared as the tracker prepares it (echo bearings,
+ *       normals), against the laser scan it was made from: the true echo is the nearest
+ *       laser return in the reading's 22-degree cone, the true normal that of the line
+ *       through the laser returns within 3 beams and 300 mm of it. Prints one line:
+ *         echo readings=N bearing_median_deg=X bearing_p90_deg=X point_median_mm=X
+ *              point_p90_mm=X normal_median_deg=X normal_p90_deg=X normal_over30_pct=X
+ *   hl-sonar-study oracle SONAR.txt TRUTH.txt NPREV [KEY=VALUE ...]
+ *       each scan localized (hl_slam_localize) against a map of the NPREV scans
+ *       before it drawn at their TRUE poses, from the true pose before it moved by the
+ *       odometry: the localizer's own precision, with no drift in the map. With WINDOW=W
+ *       in the environment, the scan is localized with the W scans before it placed by
+ *       the odometry (a multiscan, multiscan.h) against the NPREV scans before those.
+ *       Prints one line:
+ *         oracle scans=N failed=N heading_rms_deg=X position_rms_mm=X
+ *                odometry_heading_rms_deg=X odometry_position_rms_mm=X
+ *
+ * SONAR.txt, LASER.txt and TRUTH.txt are `hl-eval text LOG SONAR|GROUND_TRUTH FILE` of
+ * houghloc-import-carmen's --input sonar and --input laser logs of one building (the
+ * laser log for its scans only: both have one scan per laser scan, in order). The
+ * tracker's settings are the sonar-continuous profile's, then each KEY=VALUE
+ * (hl_params_set). Exit status 0, 1 on an unreadable file, 2 on bad usage.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "houghloc-internal/multiscan.h"
+#include "houghloc-internal/params.h"
+#include "houghloc-internal/slam_params.h"
+#include "houghloc-internal/slam_search.h"
+#include "houghloc/params.h"
+#include "houghloc/slam.h"
+
+#define MAX_SCANS 8000
+#define CONE_BAM 2003           /* 11 degrees: the importer's cone */
+#define PI 3.14159265358979323846
+
+typedef struct log {
+    int n;
+    hl_scan_t *scans;           /* [MAX_SCANS] */
+    hl_pose_t *poses;           /* the odometry (SONAR) or the truth (GROUND_TRUTH) */
+} log_t;
+
+static int usage(void)
+{
+    fprintf(stderr, "usage: hl-sonar-study echo SONAR.txt LASER.txt [KEY=VALUE ...]\n"
+                    "       hl-sonar-study oracle SONAR.txt TRUTH.txt NPREV [KEY=VALUE ...]\n");
+    return 2;
+}
+
+static long field(const char *line, const char *key)
+{
+    const char *at = strstr(line, key);
+    return at ? strtol(at + strlen(key), NULL, 10) : 0;
+}
+
+/* One `hl-eval text` file: scans with their odometry, or poses alone. */
+static int read_log(const char *path, bool scans, log_t *out)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "hl-sonar-study: cannot read %s\n", path);
+        return 1;
+    }
+    static char line[1 << 18];
+    out->n = 0;
+    while (out->n < MAX_SCANS && fgets(line, sizeof line, f)) {
+        hl_pose_t *p = &out->poses[out->n];
+        const char *prefix = scans ? "odometry." : " ";
+        char key[32];
+        snprintf(key, sizeof key, "%sx_mm=", prefix);
+        p->x_mm = (hl_mm_t)field(line, key);
+        snprintf(key, sizeof key, "%sy_mm=", prefix);
+        p->y_mm = (hl_mm_t)field(line, key);
+        snprintf(key, sizeof key, "%sheading_bam=", prefix);
+        p->theta = (hl_bam_t)field(line, key);
+        if (scans) {
+            hl_scan_t *s = &out->scans[out->n];
+            hl_scan_clear(s);
+            const char *r = strstr(line, " readings=");
+            for (r = r ? r + 10 : NULL; r && *r && *r != '\n';) {
+                int i, b, range, valid;
+                if (sscanf(r, "%d:%d:%d:%d", &i, &b, &range, &valid) != 4)
+                    break;
+                hl_scan_add(s, (hl_bam_t)b, range, -1, valid != 0);
+                r = strchr(r, ',');
+                r = r ? r + 1 : NULL;
+            }
+        }
+        out->n++;
+    }
+    fclose(f);
+    return 0;
+}
+
+static int by_value(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double quantile(double *v, int n, double q)
+{
+    qsort(v, n, sizeof *v, by_value);
+    return n ? v[(int)(q * (n - 1))] : 0;
+}
+
+/* The nearest laser return within the cone of @p bearing, or -1. */
+static int true_echo(const hl_scan_t *laser, hl_bam_t bearing)
+{
+    int best = -1;
+    for (uint32_t j = 0; j < laser->count; j++) {
+        const hl_reading_t *l = &laser->readings[j];
+        if (l->valid && abs(hl_bam_diff(l->bearing, bearing)) <= CONE_BAM &&
+            (best < 0 || l->range_mm < laser->readings[best].range_mm))
+            best = (int)j;
+    }
+    return best;
+}
+
+static void point(const hl_reading_t *r, double *x, double *y)
+{
+    double a = hl_bam_to_rad(r->bearing);
+    *x = r->range_mm * cos(a);
+    *y = r->range_mm * sin(a);
+}
+
+/* The normal (towards the sensor) of the line through the laser returns within 3 beams
+ * and 300 mm of return @p at; false with fewer than 5 of them. */
+static bool true_normal(const hl_scan_t *laser, int at, double *normal)
+{
+    double tx, ty, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    point(&laser->readings[at], &tx, &ty);
+    int n = 0;
+    for (int j = at - 3; j <= at + 3; j++) {
+        if (j < 0 || j >= (int)laser->count || !laser->readings[j].valid)
+            continue;
+        double x, y;
+        point(&laser->readings[j], &x, &y);
+        x -= tx;
+        y -= ty;
+        if (hypot(x, y) > 300)
+            continue;
+        sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y, n++;
+    }
+    if (n < 5)
+        return false;
+    double mx = sx / n, my = sy / n;
+    double along = 0.5 * atan2(2 * (sxy / n - mx * my), (sxx / n - mx * mx) - (syy / n - my * my));
+    double nx = -sin(along), ny = cos(along);
+    if (nx * tx + ny * ty > 0)
+        nx = -nx, ny = -ny;
+    *normal = atan2(ny, nx);
+    return true;
+}
+
+static int study_echo(const hl_slam_params_t *sp, const log_t *sonar, const log_t *laser)
+{
+    enum { MAX = 1 << 20 };
+    double *bearing = malloc(MAX * sizeof *bearing), *place = malloc(MAX * sizeof *place),
+           *normal = malloc(MAX * sizeof *normal);
+    hl_scan_t *echoed = malloc(sizeof *echoed), *fitted = malloc(sizeof *fitted);
+    if (!bearing || !place || !normal || !echoed || !fitted)
+        return 1;
+    int m = 0, over30 = 0;
+    for (int k = 0; k < sonar->n && k < laser->n; k++) {
+        const hl_scan_t *in = &sonar->scans[k];
+        const hl_scan_t *ready = hl_slam_prepare(sp, in, echoed, fitted);
+        for (uint32_t i = 0; i < ready->count && m < MAX; i++) {
+            const hl_reading_t *r = &ready->readings[i];
+            int t = r->valid ? true_echo(&laser->scans[k], in->readings[i].bearing) : -1;
+            double n_true;
+            if (t < 0 || abs(laser->scans[k].readings[t].range_mm - in->readings[i].range_mm) > 15 ||
+                !true_normal(&laser->scans[k], t, &n_true))
+                continue;
+            const hl_reading_t *tr = &laser->scans[k].readings[t];
+            double ex, ey, tx, ty;
+            point(r, &ex, &ey);
+            point(tr, &tx, &ty);
+            bearing[m] = abs(hl_bam_diff(r->bearing, tr->bearing)) * 360.0 / 65536;
+            place[m] = hypot(ex - tx, ey - ty);
+            normal[m] = fabs(remainder(hl_bam_to_rad(hl_reading_normal(r, 0)) - n_true, 2 * PI)) *
+                        180 / PI;
+            over30 += normal[m] > 30;
+            m++;
+        }
+    }
+    printf("echo readings=%d bearing_median_deg=%.2f bearing_p90_deg=%.2f point_median_mm=%.0f "
+           "point_p90_mm=%.0f normal_median_deg=%.1f normal_p90_deg=%.1f normal_over30_pct=%.0f\n",
+           m, quantile(bearing, m, .5), quantile(bearing, m, .9), quantile(place, m, .5),
+           quantile(place, m, .9), quantile(normal, m, .5), quantile(normal, m, .9),
+           m ? 100.0 * over30 / m : 0);
+    free(bearing), free(place), free(normal), free(echoed), free(fitted);
+    return 0;
+}
+
+static double sdeg(hl_bam_t a)
+{
+    return hl_bam_diff(a, 0) * 360.0 / 65536;
+}
+
+static int study_oracle(hl_slam_t *s, const hl_slam_params_t *sp, const log_t *sonar,
+                        const log_t *truth, int nprev, int window)
+{
+    hl_scan_t *ready = malloc((size_t)sonar->n * sizeof *ready);
+    hl_scan_t *echoed = malloc(sizeof *echoed), *fitted = malloc(sizeof *fitted);
+    hl_scan_t *seen = malloc(sizeof *seen);
+    hl_multiscan_t *ms = hl_multiscan_create(HL_MULTISCAN_MAX_SCANS, 100000, HL_BAM_HALF_TURN);
+    if (!ready || !echoed || !fitted || !seen || !ms)
+        return 1;
+    for (int k = 0; k < sonar->n; k++)
+        ready[k] = *hl_slam_prepare(sp, &sonar->scans[k], echoed, fitted);
+    double h2 = 0, p2 = 0, oh2 = 0, op2 = 0;
+    int m = 0, failed = 0;
+    const hl_pose_t *odo = sonar->poses, *gt = truth->poses;
+    for (int k = nprev + window; k < sonar->n && k < truth->n; k++) {
+        hl_map_t *map = hl_slam_map(s);
+        hl_map_clear(map);
+        for (int j = k - window - nprev; j < k - window; j++)
+            hl_map_add_scan(map, &ready[j], gt[j], NULL);
+        hl_multiscan_clear(ms);
+        for (int j = k - window; j < k; j++)
+            hl_multiscan_push(ms, &ready[j], odo[j], gt[j], true);
+        hl_multiscan_assemble(ms, &ready[k], odo[k], seen);
+        hl_pose_t predicted, pose;
+        hl_loc_result_t loc;
+        hl_pose_predict(gt[k - 1], odo[k - 1], odo[k], &predicted);
+        double odh = sdeg((hl_bam_t)(predicted.theta - gt[k].theta));
+        oh2 += odh * odh;
+        op2 += pow(hypot(predicted.x_mm - gt[k].x_mm, predicted.y_mm - gt[k].y_mm), 2);
+        if (hl_slam_localize(s, seen, predicted, &loc, &pose) != HL_OK) {
+            failed++;
+            continue;
+        }
+        double dh = sdeg((hl_bam_t)(pose.theta - gt[k].theta));
+        h2 += dh * dh;
+        p2 += pow(hypot(pose.x_mm - gt[k].x_mm, pose.y_mm - gt[k].y_mm), 2);
+        m++;
+    }
+    int all = m + failed;
+    printf("oracle scans=%d failed=%d heading_rms_deg=%.3f position_rms_mm=%.1f "
+           "odometry_heading_rms_deg=%.3f odometry_position_rms_mm=%.1f\n", m, failed,
+           m ? sqrt(h2 / m) : 0, m ? sqrt(p2 / m) : 0, all ? sqrt(oh2 / all) : 0,
+           all ? sqrt(op2 / all) : 0);
+    hl_multiscan_destroy(ms);
+    free(ready), free(echoed), free(fitted), free(seen);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 4)
+        return usage();
+    bool oracle = strcmp(argv[1], "oracle") == 0;
+    if (!oracle && strcmp(argv[1], "echo") != 0)
+        return usage();
+    int first_key = oracle ? 5 : 4, nprev = 0, window = 0;
+    if (oracle && (argc < 5 || (nprev = atoi(argv[4])) < 1 || nprev > 1000))
+        return usage();
+    if (oracle && getenv("WINDOW"))
+        window = atoi(getenv("WINDOW"));
+    if (window < 0 || window > HL_MULTISCAN_MAX_SCANS)
+        return usage();
+    hl_params_t params;
+    hl_params_default(&params);
+    hl_params_set(&params, "slam.profile", "sonar-continuous");
+    for (int i = first_key; i < argc; i++) {
+        char key[128];
+        const char *eq = strchr(argv[i], '=');
+        if (!eq || eq - argv[i] >= (long)sizeof key)
+            return usage();
+        memcpy(key, argv[i], (size_t)(eq - argv[i]));
+        key[eq - argv[i]] = '\0';
+        if (hl_params_set(&params, key, eq + 1) != HL_OK) {
+            fprintf(stderr, "hl-sonar-study: %s\n", hl_params_error(&params));
+            return 2;
+        }
+    }
+    log_t a = { .scans = malloc(MAX_SCANS * sizeof(hl_scan_t)),
+                .poses = malloc(MAX_SCANS * sizeof(hl_pose_t)) };
+    log_t b = { .scans = oracle ? NULL : malloc(MAX_SCANS * sizeof(hl_scan_t)),
+                .poses = malloc(MAX_SCANS * sizeof(hl_pose_t)) };
+    /* The scans are prepared once with the settings; the tracker that localizes them
+     * takes them as they are (no second echo estimate or normals fit). */
+    hl_params_t as_is = params;
+    hl_params_set(&as_is, "slam.echo_bearings", "false");
+    hl_params_set(&as_is, "slam.fit_normals", "false");
+    hl_slam_t *s = hl_slam_create(&as_is);
+    if (!a.scans || !a.poses || (!oracle && !b.scans) || !b.poses || !s)
+        return 1;
+    if (read_log(argv[2], true, &a) || read_log(argv[3], !oracle, &b))
+        return 1;
+    const hl_slam_params_t *sp = hl_params_slam_const(&params);
+    int st = oracle ? study_oracle(s, sp, &a, &b, nprev, window) : study_echo(sp, &a, &b);
+    hl_slam_destroy(s);
+    free(a.scans), free(a.poses), free(b.scans), free(b.poses);
+    return st;
+}

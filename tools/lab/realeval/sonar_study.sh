@@ -1,0 +1,52 @@
+#!/bin/sh
+# sonar_study.sh [BUILDING ...] - where the pseudo-sonar ring's error comes from
+# (docs/results/real-buildings.md, "Where the sonar's error goes"): for each building
+# (default intel aces freiburg-079), hl-sonar-study's echo placement and normals against
+# the laser under four preparations, then the localizer against a map drawn at the true
+# poses under four settings and with multiscans of 2 and 4 scans. One line a figure,
+# prefixed with the building and the variant. Environment: BUILD (default build), DATA
+# (default ../shared/data), EVAL_OUT (default BUILD/eval; the imports are shared with
+# make eval-real). A failing step stops with one line naming it, exit status 1.
+set -u
+BUILD=${BUILD:-build}
+EVAL_OUT=${EVAL_OUT:-$BUILD/eval}
+BIN=$BUILD/bin
+HERE=$(dirname "$0")
+[ $# -gt 0 ] || set -- intel aces freiburg-079
+tmp=$(mktemp -d) || exit 1
+trap 'rm -rf "$tmp"' EXIT
+die() { echo "sonar_study: $1" >&2; exit 1; }
+for b in "$@"; do
+    for input in sonar laser; do
+        log=$EVAL_OUT/input/${b}_${input}_every.lcmlog
+        [ -s "$log" ] || BUILD=$BUILD EVAL_OUT=$EVAL_OUT sh "$HERE/run_one.sh" import "$b" "$input" every ||
+            die "$b: import $input failed"
+        "$BIN/hl-eval" text "$log" SONAR "$tmp/$b.$input" || die "$b: hl-eval text $input failed"
+    done
+    "$BIN/hl-eval" text "$EVAL_OUT/input/${b}_sonar_every.lcmlog" GROUND_TRUTH "$tmp/$b.truth" ||
+        die "$b: hl-eval text GROUND_TRUTH failed"
+    while read -r name settings; do
+        # shellcheck disable=SC2086
+        line=$("$BIN/hl-sonar-study" echo "$tmp/$b.sonar" "$tmp/$b.laser" $settings) ||
+            die "$b: hl-sonar-study echo $name failed"
+        echo "$b $name $line"
+    done <<'VARIANTS'
+beam-axis slam.echo_bearings=false echo.flank_normals=false
+echo-bearings echo.flank_normals=false
+fitted-normals echo.flank_normals=false slam.fit_normals=true normals.keep_unfitted=true
+flank-normals echo.flank_normals=true
+VARIANTS
+    while read -r name window settings; do
+        # shellcheck disable=SC2086
+        line=$(WINDOW=$window "$BIN/hl-sonar-study" oracle "$tmp/$b.sonar" "$tmp/$b.truth" 30 $settings) ||
+            die "$b: hl-sonar-study oracle $name failed"
+        echo "$b $name $line"
+    done <<'VARIANTS'
+beam-normals,polish 0 slam.refine=true echo.flank_normals=false
+beam-normals 0 echo.flank_normals=false
+flank-normals,polish 0 slam.refine=true
+the-profile 0
+multiscan-2 2
+multiscan-4 4
+VARIANTS
+done
