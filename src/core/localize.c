@@ -18,6 +18,7 @@
 #include "gate.h"
 #include "peak.h"
 #include "prior.h"
+#include "simd.h"
 #include "tiles.h"
 
 #include "loc_params.h"
@@ -287,9 +288,11 @@ static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
  * sparse map) takes the short way. What the loop reads besides the candidate is copied
  * to locals first: the compiler cannot tell that the stores into the raster leave the
  * context alone, and would reload it for every vote. */
-static inline void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
-                                      hl_bam_t tn0, const gate_t *gate, uint16_t *votes,
-                                      const bool once, const bool note)
+static HL_ALWAYS_INLINE void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t *c,
+                                                uint32_t ncand,
+                                                hl_bam_t tn0, const gate_t *gate,
+                                                uint16_t *votes, const bool once,
+                                                const bool note)
 {
     const hl_vgroups_t *g = &loc->groups;
     const size_t plane = (size_t)c->nx * c->ny;
