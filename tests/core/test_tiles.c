@@ -66,13 +66,30 @@ static void fill(raster_t *r, hl_tiles_t *t)
             }
 }
 
-static void test_box_is_hl_blur3(void **state)
+/* The buffers of the largest raster, zero. */
+static raster_t raster_alloc(void)
 {
-    (void)state;
     raster_t r = { 0 };
     r.votes = calloc(MAX_CELLS, sizeof *r.votes);
     r.a = calloc(MAX_CELLS, sizeof *r.a);
     r.b = calloc(MAX_CELLS, sizeof *r.b);
+    r.laid = calloc(MAX_CELLS, sizeof *r.laid);
+    assert_true(r.votes && r.a && r.b && r.laid);
+    return r;
+}
+
+static void raster_free(raster_t *r)
+{
+    free(r->votes);
+    free(r->a);
+    free(r->b);
+    free(r->laid);
+}
+
+static void test_box_is_hl_blur3(void **state)
+{
+    (void)state;
+    raster_t r = raster_alloc();
     uint32_t *box = malloc(HL_BLUR_BOX_MAX_W * 40 * MAX_NT * sizeof *box);
     uint32_t *scratch = malloc(HL_BLUR_BOX_SCRATCH(HL_BLUR_BOX_MAX_W, 40, MAX_NT) *
                                sizeof *scratch);
@@ -104,9 +121,7 @@ static void test_box_is_hl_blur3(void **state)
                 }
         assert_int_equal(m, want_m);
     }
-    free(r.votes);
-    free(r.a);
-    free(r.b);
+    raster_free(&r);
     free(box);
     free(scratch);
 }
@@ -114,11 +129,7 @@ static void test_box_is_hl_blur3(void **state)
 static void test_search_is_the_plain_peak(void **state)
 {
     (void)state;
-    raster_t r = { 0 };
-    r.votes = calloc(MAX_CELLS, sizeof *r.votes);
-    r.a = calloc(MAX_CELLS, sizeof *r.a);
-    r.b = calloc(MAX_CELLS, sizeof *r.b);
-    r.laid = calloc(MAX_CELLS, sizeof *r.laid);
+    raster_t r = raster_alloc();
     uint32_t *store = calloc(MAX_CELLS, sizeof *store);
     uint32_t *row_max = calloc(MAX_SIDE * MAX_NT, sizeof *row_max);
     hl_tiles_t t;
@@ -184,10 +195,7 @@ static void test_search_is_the_plain_peak(void **state)
     assert_true(found > 300);   /* the trials found peaks, and some tied */
     assert_true(ties > 5);
     hl_tiles_free(&t);
-    free(r.votes);
-    free(r.a);
-    free(r.b);
-    free(r.laid);
+    raster_free(&r);
     free(store);
     free(row_max);
 }
