@@ -205,3 +205,64 @@ uint32_t *hl_blur3(const uint16_t *votes, int32_t nx, int32_t ny, int32_t nt,
     axis_pass(buf_b, buf_a, nt, plane, 1, kt);
     return buf_a;
 }
+
+/* The largest of n values (vectorized). */
+HL_VECTOR_KERNEL
+static uint32_t max_of(const uint32_t *restrict v, int64_t n)
+{
+    uint32_t m = 0;
+    for (int64_t i = 0; i < n; i++)
+        m = v[i] > m ? v[i] : m;
+    return m;
+}
+
+/*
+ * The box's passes run in the order and with the roundings of hl_blur3's, on the box's
+ * own small buffers: the x pass over its rows and ry rows either side (rows outside the
+ * raster, and columns, are zero: what hl_blur3's edges' shorter kernels leave out), the
+ * y pass over the box's rows (every tap, the missing rows being zero), the theta pass
+ * through every slice (axis_pass, as hl_blur3's). Each output cell is the same sum of
+ * the same products, hence the same integer.
+ */
+uint32_t hl_blur3_box(const uint16_t *votes, int32_t nx, int32_t ny, int32_t nt,
+                      const hl_kernel_t *kx, const hl_kernel_t *ky, const hl_kernel_t *kt,
+                      int32_t x0, int32_t y0, int32_t w, int32_t h, uint32_t *scratch,
+                      uint32_t *out)
+{
+    int32_t rx = kx->radius, ry = ky->radius;
+    int32_t rows = h + 2 * ry;  /* the x pass's rows: y0 - ry .. y0 + h + ry - 1 */
+    size_t in_plane = (size_t)w * rows, plane = (size_t)w * h;
+    uint32_t *a = scratch, *b = a + in_plane * nt;
+    /* without a theta pass the y pass writes the result */
+    int theta = nt > 1 && kt->radius > 0;
+    uint32_t *yout = theta ? b : out;
+    uint32_t line[HL_BLUR_BOX_MAX_W + 2 * HL_BLUR_MAX_RADIUS];
+    int symx = symmetric(kx), symy = symmetric(ky);
+    /* the line holds x0 - rx .. x0 + w + rx - 1; the raster's part is [jlo, jhi) */
+    int32_t len = w + 2 * rx;
+    int32_t jlo = x0 - rx < 0 ? rx - x0 : 0;
+    int32_t jhi = x0 + w + rx > nx ? nx - (x0 - rx) : len;
+    for (int32_t j = 0; j < jlo; j++)
+        line[j] = 0;
+    for (int32_t j = jhi; j < len; j++)
+        line[j] = 0;
+    for (int32_t it = 0; it < nt; it++) {
+        for (int32_t i = 0; i < rows; i++) {
+            int32_t y = y0 - ry + i;
+            uint32_t *row = a + it * in_plane + (size_t)i * w;
+            if (y < 0 || y >= ny) {
+                memset(row, 0, (size_t)w * sizeof *row);
+                continue;
+            }
+            const uint16_t *src = votes + ((size_t)it * ny + y) * nx;
+            for (int32_t j = jlo; j < jhi; j++)
+                line[j] = src[x0 - rx + j];
+            taps_run(line, row, w, 1, kx->taps, 2 * rx + 1, symx, 0);
+        }
+        taps_run(a + it * in_plane, yout + it * plane, (int64_t)plane, w, ky->taps,
+                 2 * ry + 1, symy, 1);
+    }
+    if (theta)
+        axis_pass(b, out, nt, (int64_t)plane, 1, kt);
+    return max_of(out, (int64_t)plane * nt);
+}

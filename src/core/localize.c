@@ -2,6 +2,10 @@
  * localize.c - the Hough vote (paper, sections 5-6): pairs of <test reading, map vector>
  * whose normals agree vote for the robot position map point - R(theta) * reading, into
  * an (x, y, theta) raster; blur; peak. Formats: houghloc/fixed.h. Allocation: create only.
+ *
+ * A search without a prior over a raster of at least TILED_MIN_CELLS (a whole map's)
+ * blurs and searches only the tiles near its votes (tiles.h): the same surface and peak,
+ * without passes over the millions of cells no vote reaches.
  */
 #include "houghloc-internal/localize.h"
 #include "houghloc-internal/fixed.h"
@@ -14,6 +18,8 @@
 #include "gate.h"
 #include "peak.h"
 #include "prior.h"
+#include "simd.h"
+#include "tiles.h"
 
 #include "loc_params.h"
 #include "valid_scan.h"
@@ -43,7 +49,20 @@ struct hl_localizer {
     uint16_t *stamps;   /* vote_once: per cell, the last reading that voted there */
 
     hl_loc_surface_t surface;   /* geometry of the last run */
+
+    /* The sparse path (tiles.h), allocated when max_cells reaches TILED_MIN_CELLS. The
+     * vote raster is zero between runs but for what the last ones wrote: the tiles
+     * listed as voted in `tiles`, and the first votes_dirty cells (a plain run's). */
+    hl_tiles_t tiles;
+    bool tiles_on;
+    size_t votes_dirty;
+    bool sparse;            /* the last run took the sparse path: its blurred tiles are in
+                               buf_a, and surface.cells NULL until laid out in buf_b */
 };
+
+/* The smallest raster searched by the sparse path: smaller ones stay in the caches
+ * anyway, and a window's raster is mostly voted. */
+#define TILED_MIN_CELLS (1u << 18)
 
 void hl_loc_destroy(hl_localizer_t *loc)
 {
@@ -61,6 +80,7 @@ void hl_loc_destroy(hl_localizer_t *loc)
     free(loc->bearing);
     free(loc->tilt);
     free(loc->stamps);
+    hl_tiles_free(&loc->tiles);
     free(loc);
 }
 
@@ -99,9 +119,14 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
     loc->tilt = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->tilt);
     if (p->vote_once)
         loc->stamps = alloc_counted(loc, p->max_cells, sizeof *loc->stamps);
+    bool tiles_ok = true;
+    if (p->max_cells >= TILED_MIN_CELLS) {
+        tiles_ok = loc->tiles_on = hl_tiles_init(&loc->tiles, p->max_cells, loc->wlen, max_nt);
+        loc->mem_bytes += hl_tiles_mem_bytes(&loc->tiles);
+    }
     if (!loc->votes || !loc->buf_a || !loc->buf_b || !loc->wx || !loc->wy || !loc->wt ||
         !groups_ok || !loc->cand || !loc->range || !loc->bearing || !loc->tilt ||
-        (p->vote_once && !loc->stamps)) {
+        (p->vote_once && !loc->stamps) || !tiles_ok) {
         hl_loc_destroy(loc);
         return NULL;
     }
@@ -205,6 +230,8 @@ typedef struct vote_ctx {
     int32_t tx[2 * HL_LOC_MAX_HALF_STEPS + 1], ty[2 * HL_LOC_MAX_HALF_STEPS + 1];
     uint32_t votes, pairs;
     uint16_t tag;           /* vote_once: the reading's stamp, index + 1 */
+    uint16_t *most;         /* the sparse path's notes of its tiles (tiles.h), or NULL */
+    uint32_t ntx;           /* ... tiles a row */
 } vote_ctx_t;
 
 /*
@@ -261,9 +288,11 @@ static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
  * sparse map) takes the short way. What the loop reads besides the candidate is copied
  * to locals first: the compiler cannot tell that the stores into the raster leave the
  * context alone, and would reload it for every vote. */
-static inline void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
-                                      hl_bam_t tn0, const gate_t *gate, uint16_t *votes,
-                                      const bool once)
+static HL_ALWAYS_INLINE void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t *c,
+                                                uint32_t ncand,
+                                                hl_bam_t tn0, const gate_t *gate,
+                                                uint16_t *votes, const bool once,
+                                                const bool note)
 {
     const hl_vgroups_t *g = &loc->groups;
     const size_t plane = (size_t)c->nx * c->ny;
@@ -272,6 +301,8 @@ static inline void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t *c, uint32
     const int32_t *tx = c->tx, *ty = c->ty, nt = c->nt;
     uint16_t *stamps = loc->stamps;
     const uint16_t tag = c->tag;
+    uint16_t *most = c->most;
+    const uint32_t ntx = c->ntx;
     int32_t *diff = loc->slice_diff;
     uint32_t nvotes = 0, npairs = 0;
     for (uint32_t i = 0; i < ncand; i++) {
@@ -323,6 +354,8 @@ static inline void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t *c, uint32
             }
             uint32_t sum = *cell + (uint32_t)weight;
             *cell = (uint16_t)(sum < HL_VOTE_MAX ? sum : HL_VOTE_MAX);
+            if (note)   /* the sparse path: the tile's most votes */
+                hl_tiles_note(most, ntx, ix, iy, *cell);
             nvotes += (uint32_t)weight;
         }
         if (m1 - m0 > 1)
@@ -332,15 +365,22 @@ static inline void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t *c, uint32
     c->pairs += npairs;
 }
 
-/* The loop twice, with and without vote_once, so that the common case carries no test of
- * it per vote (the compiler folds the constant). */
+/* The loop four times, with and without vote_once and the sparse path's notes, so that
+ * the common cases carry no test of them per vote (the compiler folds the constants). */
 static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
                             hl_bam_t tn0, const gate_t *gate, uint16_t *votes)
 {
-    if (loc->stamps)
-        vote_candidates_as(loc, c, ncand, tn0, gate, votes, true);
-    else
-        vote_candidates_as(loc, c, ncand, tn0, gate, votes, false);
+    if (c->most) {
+        if (loc->stamps)
+            vote_candidates_as(loc, c, ncand, tn0, gate, votes, true, true);
+        else
+            vote_candidates_as(loc, c, ncand, tn0, gate, votes, false, true);
+    } else {
+        if (loc->stamps)
+            vote_candidates_as(loc, c, ncand, tn0, gate, votes, true, false);
+        else
+            vote_candidates_as(loc, c, ncand, tn0, gate, votes, false, false);
+    }
 }
 
 static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface_t *s,
@@ -366,8 +406,18 @@ static void cast_votes(hl_localizer_t *loc, uint32_t nread, const hl_loc_surface
     }
 }
 
+/* The score of one cell of the last run's grid (the sparse path's: its blocks). */
+static uint32_t score_at(hl_localizer_t *loc, const hl_grid_t *g, int32_t ix, int32_t iy,
+                         int32_t it)
+{
+    if (loc->sparse)
+        return hl_tiles_cell(&loc->tiles, ix, iy, it);
+    return hl_grid_score(g, ix, iy, it);
+}
+
 /* Interpolated offset along one axis of the grid, in units of `step`. */
-static int32_t axis_offset(const hl_grid_t *g, const hl_peak_t *pk, int axis, int32_t step)
+static int32_t axis_offset(hl_localizer_t *loc, const hl_grid_t *g, const hl_peak_t *pk,
+                           int axis, int32_t step)
 {
     int32_t i[3] = { pk->ix, pk->iy, pk->it };
     int32_t n[3] = { g->nx, g->ny, g->nt };
@@ -376,8 +426,8 @@ static int32_t axis_offset(const hl_grid_t *g, const hl_peak_t *pk, int axis, in
     int32_t lo[3] = { i[0], i[1], i[2] }, hi[3] = { i[0], i[1], i[2] };
     lo[axis]--;
     hi[axis]++;
-    return hl_peak_offset(hl_grid_score(g, lo[0], lo[1], lo[2]), pk->score,
-                          hl_grid_score(g, hi[0], hi[1], hi[2]), step);
+    return hl_peak_offset(score_at(loc, g, lo[0], lo[1], lo[2]), pk->score,
+                          score_at(loc, g, hi[0], hi[1], hi[2]), step);
 }
 
 static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
@@ -421,7 +471,18 @@ static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
     if (st != HL_OK)
         return st;
     size_t cells = (size_t)s.nx * s.ny * s.nt;
-    memset(loc->votes, 0, cells * sizeof *loc->votes);
+    bool tiled = loc->tiles_on && !query->use_prior && cells >= TILED_MIN_CELLS &&
+                 hl_tiles_fit(&loc->tiles, s.nx, s.ny, s.nt);
+    /* The votes start from zero: what the last runs wrote is cleared. */
+    memset(loc->votes, 0, loc->votes_dirty * sizeof *loc->votes);
+    loc->votes_dirty = 0;
+    if (loc->tiles_on)
+        hl_tiles_clear_votes(&loc->tiles, loc->votes);
+    if (tiled)
+        hl_tiles_begin(&loc->tiles, s.nx, s.ny, s.nt);
+    else
+        loc->votes_dirty = cells;
+    loc->sparse = false;
     if (loc->stamps)
         memset(loc->stamps, 0, cells * sizeof *loc->stamps);
     group_map(loc, map, n, &s, max_range);
@@ -429,18 +490,28 @@ static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
     vote_ctx_t c = { .nx = s.nx, .ny = s.ny, .nt = s.nt,
                      .width_q8 = (uint32_t)(s.nx * s.cell_mm) * 256u,
                      .height_q8 = (uint32_t)(s.ny * s.cell_mm) * 256u,
-                     .recip = (1ull << 32) / (uint32_t)s.cell_mm + 1 };
+                     .recip = (1ull << 32) / (uint32_t)s.cell_mm + 1,
+                     .most = tiled ? loc->tiles.most : NULL,
+                     .ntx = tiled ? (uint32_t)loc->tiles.ntx : 0 };
     cast_votes(loc, nread, &s, &c);
+    if (tiled)
+        hl_tiles_take_votes(&loc->tiles);
     result->votes = c.votes;
     result->pairs = c.pairs;
     if (c.votes == 0)
         return HL_ERR_EMPTY;
 
-    loc->blurred = hl_blur3(loc->votes, s.nx, s.ny, s.nt, &loc->kx, &loc->kx, &loc->kt,
-                            loc->buf_a, loc->buf_b);
-    s.cells = loc->blurred;
+    if (tiled) {    /* blurred as the search needs it (hl_tiles_search) */
+        loc->blurred = loc->buf_a;  /* the tiles' blocks, not a raster */
+        s.cells = NULL;
+    } else {
+        loc->blurred = hl_blur3(loc->votes, s.nx, s.ny, s.nt, &loc->kx, &loc->kx, &loc->kt,
+                                loc->buf_a, loc->buf_b);
+        s.cells = loc->blurred;
+    }
     s.votes = loc->votes;
     loc->surface = s;
+    loc->sparse = tiled;
 
     /* The blur's other buffer is free now: hl_peak_find keeps its row maxima there
      * (ny * nt <= max_cells). */
@@ -454,7 +525,10 @@ static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
         g.wt = loc->wt;
     }
     hl_peak_t pk;
-    if (!hl_peak_find(&g, s.cell_mm, loc->p.peak_separation_mm, &pk))
+    int found = tiled ? hl_tiles_search(&loc->tiles, loc->votes, &loc->kx, &loc->kx, &loc->kt,
+                                        loc->buf_a, s.cell_mm, loc->p.peak_separation_mm, &pk)
+                      : hl_peak_find(&g, s.cell_mm, loc->p.peak_separation_mm, &pk);
+    if (!found)
         return HL_ERR_EMPTY;
     result->ix = pk.ix;
     result->iy = pk.iy;
@@ -472,14 +546,21 @@ static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
     result->cell_pose.x_mm = s.x0_mm + pk.ix * s.cell_mm + s.cell_mm / 2;
     result->cell_pose.y_mm = s.y0_mm + pk.iy * s.cell_mm + s.cell_mm / 2;
     result->cell_pose.theta = (hl_bam_t)(s.theta0 + pk.it * s.theta_step);
-    result->pose.x_mm = result->cell_pose.x_mm + axis_offset(&g, &pk, 0, s.cell_mm);
-    result->pose.y_mm = result->cell_pose.y_mm + axis_offset(&g, &pk, 1, s.cell_mm);
+    result->pose.x_mm = result->cell_pose.x_mm + axis_offset(loc, &g, &pk, 0, s.cell_mm);
+    result->pose.y_mm = result->cell_pose.y_mm + axis_offset(loc, &g, &pk, 1, s.cell_mm);
     result->pose.theta = (hl_bam_t)(result->cell_pose.theta +
-                                    axis_offset(&g, &pk, 2, s.theta_step));
+                                    axis_offset(loc, &g, &pk, 2, s.theta_step));
     return HL_OK;
 }
 
-void hl_loc_get_surface(const hl_localizer_t *loc, hl_loc_surface_t *out)
+void hl_loc_get_surface(hl_localizer_t *loc, hl_loc_surface_t *out)
 {
+    if (loc->sparse && !loc->surface.cells) {
+        /* the sparse path's blocks laid out as a raster, the first time one is asked for */
+        const hl_loc_surface_t *s = &loc->surface;
+        memset(loc->buf_b, 0, (size_t)s->nx * s->ny * s->nt * sizeof *loc->buf_b);
+        hl_tiles_lay_out(&loc->tiles, loc->buf_b);
+        loc->surface.cells = loc->buf_b;
+    }
     *out = loc->surface;
 }

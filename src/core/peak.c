@@ -111,6 +111,18 @@ static void find_best(const rows_t *r, hl_peak_t *best)
         best->ix++;
 }
 
+int32_t hl_peak_reach(int64_t cell2, int64_t sep2, int32_t dy)
+{
+    int64_t dy2 = (int64_t)dy * dy * cell2;
+    if (dy2 >= sep2)
+        return -1;
+    /* cells with (ix - cx)^2 * cell2 < sep2 - dy2 are too close */
+    int32_t r = 0;
+    while ((int64_t)(r + 1) * (r + 1) * cell2 < sep2 - dy2)
+        r++;
+    return r;
+}
+
 /* Highest score among cells at least sqrt(sep2) mm from (cx, cy) in xy; each row skips
  * the run of cells inside the circle. */
 static uint32_t find_second(const rows_t *rw, int64_t cell2, int64_t sep2, int32_t cx,
@@ -119,13 +131,10 @@ static uint32_t find_second(const rows_t *rw, int64_t cell2, int64_t sep2, int32
     const hl_grid_t *g = rw->g;
     uint32_t best = 0;
     for (int32_t iy = 0; iy < g->ny; iy++) {
-        int64_t dy2 = (int64_t)(iy - cy) * (iy - cy) * cell2;
-        /* cells with (ix - cx)^2 * cell2 < sep2 - dy2 are too close: skip [lo, hi) */
+        /* the row's cells too close to the peak: skip [lo, hi) */
         int32_t lo = g->nx, hi = g->nx;
-        if (dy2 < sep2) {
-            int32_t r = 0;
-            while ((int64_t)(r + 1) * (r + 1) * cell2 < sep2 - dy2)
-                r++;
+        int32_t r = hl_peak_reach(cell2, sep2, iy - cy);
+        if (r >= 0) {
             lo = cx - r < 0 ? 0 : cx - r;
             hi = cx + r + 1 > g->nx ? g->nx : cx + r + 1;
         }
@@ -150,8 +159,7 @@ static uint32_t find_second(const rows_t *rw, int64_t cell2, int64_t sep2, int32
 static uint32_t second_of(const rows_t *r, int32_t cell_mm, int32_t sep_mm, int32_t cx,
                           int32_t cy)
 {
-    int64_t sep2 = sep_mm > 0 ? (int64_t)sep_mm * sep_mm : 1;
-    return find_second(r, (int64_t)cell_mm * cell_mm, sep2, cx, cy);
+    return find_second(r, (int64_t)cell_mm * cell_mm, hl_peak_sep2(sep_mm), cx, cy);
 }
 
 int hl_peak_find(const hl_grid_t *g, int32_t cell_mm, int32_t sep_mm, hl_peak_t *out)

@@ -43,6 +43,20 @@ int hl_peak_find(const hl_grid_t *g, int32_t cell_mm, int32_t sep_mm, hl_peak_t 
 uint32_t hl_peak_second(const hl_grid_t *g, int32_t cell_mm, int32_t sep_mm, int32_t cx,
                         int32_t cy);
 
+/** The separation @p sep_mm squared as the second peak's search takes it (1 when 0:
+ *  only the peak's own cell is too close). */
+static inline int64_t hl_peak_sep2(int32_t sep_mm)
+{
+    return sep_mm > 0 ? (int64_t)sep_mm * sep_mm : 1;
+}
+
+/**
+ * The cells of a row @p dy rows from the peak's that are too close to it for the second
+ * peak: those with |ix - cx| <= the returned value, where (ix - cx)^2 cell2 + dy^2 cell2
+ * < sep2 (@p cell2 the cell's side squared, @p sep2 hl_peak_sep2's); -1 when none is.
+ */
+int32_t hl_peak_reach(int64_t cell2, int64_t sep2, int32_t dy);
+
 /**
  * Offset of the vertex of the parabola through (-1, l), (0, c), (1, r), in units of
  * @p step (so within +-step/2 when c is the largest), rounded to nearest.

@@ -13,4 +13,12 @@
 #define HL_VECTOR_KERNEL
 #endif
 
+/* A function the compiler must copy into each caller, so that the constant arguments of
+ * each call fold away (localize.c's vote loop, once for each way it runs). */
+#if defined(__GNUC__)
+#define HL_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define HL_ALWAYS_INLINE inline
+#endif
+
 #endif

@@ -1,6 +1,6 @@
 /* Tests for src/core/localize.c (with blur.c and peak.c): recovery in synthetic rooms,
  * empty inputs, heading wrap, extreme coordinates, vote saturation, capacity limits,
- * the odometry prior. */
+ * the odometry prior, the sparse path of large rasters against the plain computation. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -12,6 +12,8 @@
 #include <string.h>
 
 #include "houghloc-internal/localize.h"
+#include "blur.h"
+#include "peak.h"
 #include "synthroom.h"
 
 typedef struct fixture {
@@ -464,6 +466,106 @@ static void test_peak_is_before_the_prior(void **state)
     free_fixture(f);
 }
 
+/* The blurred cell (ix, iy, it) of a raster laid out as hl_blur3's, 0 outside. */
+static uint32_t cell_of(const uint32_t *c, int32_t nx, int32_t ny, int32_t ix, int32_t iy,
+                        int32_t it)
+{
+    return c[((size_t)it * ny + iy) * nx + ix];
+}
+
+/* One axis's interpolated offset as localize.c takes it, from a whole raster. */
+static int32_t plain_offset(const uint32_t *c, const hl_loc_surface_t *s, const hl_peak_t *pk,
+                            int axis, int32_t step)
+{
+    int32_t i[3] = { pk->ix, pk->iy, pk->it }, n[3] = { s->nx, s->ny, s->nt };
+    if (step == 0 || i[axis] == 0 || i[axis] == n[axis] - 1)
+        return 0;
+    int32_t lo[3] = { i[0], i[1], i[2] }, hi[3] = { i[0], i[1], i[2] };
+    lo[axis]--;
+    hi[axis]++;
+    return hl_peak_offset(cell_of(c, s->nx, s->ny, lo[0], lo[1], lo[2]), pk->score,
+                          cell_of(c, s->nx, s->ny, hi[0], hi[1], hi[2]), step);
+}
+
+/* Whole-map searches without a prior over rasters of millions of cells take the sparse
+ * path (tiles.h); windows with a prior, and small rasters, the plain one. One localizer
+ * through a mix of both gives, every run, the votes of a fresh localizer, and the
+ * surface, peak, second peak and interpolated pose of the plain computation (hl_blur3
+ * and hl_peak_find) over those votes. */
+static void test_sparse_path_is_the_plain_one(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 21; seed <= 23; seed++) {
+        fixture_t *f = make_fixture(-3000, 2000, seed);
+        hl_loc_params_t p = f->p;
+        p.max_cells = 1u << 23;
+        p.vote_once = seed == 23;
+        hl_localizer_t *loc = hl_loc_create(&p);
+        assert_non_null(loc);
+        hl_kernel_t kx, kt;
+        hl_kernel_gaussian(&kx, (double)p.blur_sigma_mm / p.cell_mm);
+        hl_kernel_gaussian(&kt, (double)p.blur_sigma_theta / p.theta_step);
+        size_t max = p.max_cells;
+        uint32_t *a = malloc(max * sizeof *a), *b = malloc(max * sizeof *b);
+        uint32_t *rows = malloc(max * sizeof *rows);
+        uint16_t *votes = malloc(max * sizeof *votes);
+        hl_pose_t off = { f->truth.x_mm + 2000, f->truth.y_mm - 1000,
+                          (hl_bam_t)(f->truth.theta + hl_bam_from_deg(40)) };
+        const hl_loc_query_t queries[] = {
+            { .predicted = f->truth, .window_mm = 0, .search_theta = true },
+            local_query(f->truth),
+            { .predicted = off, .window_mm = 0, .search_theta = true },
+            { .predicted = f->truth, .window_mm = 0, .search_theta = false },
+            { .predicted = f->truth, .window_mm = 0, .search_theta = true },
+            { .predicted = off, .window_mm = 4000, .search_theta = true },
+            { .predicted = f->truth, .window_mm = 1000, .search_theta = true,
+              .use_prior = true },
+            { .predicted = off, .window_mm = 0, .search_theta = true },
+        };
+        int sparse = 0;
+        for (size_t k = 0; k < sizeof queries / sizeof queries[0]; k++) {
+            const hl_loc_query_t *q = &queries[k];
+            hl_loc_result_t r, fresh_r;
+            assert_int_equal(hl_loc_run(loc, f->map, f->n, &f->scan, q, &r), HL_OK);
+            hl_loc_surface_t s, fresh_s;
+            hl_loc_get_surface(loc, &s);
+            size_t cells = (size_t)s.nx * s.ny * s.nt;
+            sparse += !q->use_prior && cells >= 1u << 18;
+            memcpy(votes, s.votes, cells * sizeof *votes);
+            hl_localizer_t *fresh = hl_loc_create(&p);
+            assert_int_equal(hl_loc_run(fresh, f->map, f->n, &f->scan, q, &fresh_r), HL_OK);
+            hl_loc_get_surface(fresh, &fresh_s);
+            assert_memory_equal(votes, fresh_s.votes, cells * sizeof *votes);
+            hl_loc_destroy(fresh);
+            assert_int_equal(r.votes, fresh_r.votes);
+            if (q->use_prior)
+                continue;   /* the prior's cells: test_peak_is_before_the_prior */
+
+            const uint32_t *c = hl_blur3(votes, s.nx, s.ny, s.nt, &kx, &kx, &kt, a, b);
+            assert_memory_equal(s.cells, c, cells * sizeof *c);
+            hl_grid_t g = { .cells = c, .nx = s.nx, .ny = s.ny, .nt = s.nt, .row_max = rows };
+            hl_peak_t pk;
+            assert_int_equal(hl_peak_find(&g, s.cell_mm, p.peak_separation_mm, &pk), 1);
+            assert_int_equal(r.ix, pk.ix);
+            assert_int_equal(r.iy, pk.iy);
+            assert_int_equal(r.it, pk.it);
+            assert_int_equal(r.score, pk.score);
+            assert_int_equal(r.second_score, pk.second);
+            assert_int_equal(r.pose.x_mm, r.cell_pose.x_mm + plain_offset(c, &s, &pk, 0, s.cell_mm));
+            assert_int_equal(r.pose.y_mm, r.cell_pose.y_mm + plain_offset(c, &s, &pk, 1, s.cell_mm));
+            assert_int_equal(r.pose.theta, (hl_bam_t)(r.cell_pose.theta +
+                                                      plain_offset(c, &s, &pk, 2, s.theta_step)));
+        }
+        assert_int_equal(sparse, 5);
+        free(a);
+        free(b);
+        free(rows);
+        free(votes);
+        hl_loc_destroy(loc);
+        free_fixture(f);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -481,6 +583,7 @@ int main(void)
         cmocka_unit_test(test_params_validated),
         cmocka_unit_test(test_prior_breaks_ambiguity),
         cmocka_unit_test(test_peak_is_before_the_prior),
+        cmocka_unit_test(test_sparse_path_is_the_plain_one),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -35,7 +35,7 @@ void save_map_figure(const Context &ctx, const std::string &name,
     save(f, ctx.out_dir + "/" + name);
 }
 
-void save_localization_figures(const Context &ctx, const hl_localizer_t *loc,
+void save_localization_figures(const Context &ctx, hl_localizer_t *loc,
                                const std::vector<hl_vector_t> &map, const Sounding &test,
                                hl_pose_t found)
 {

@@ -20,7 +20,7 @@ void save_map_figure(const Context &ctx, const std::string &name,
 
 // Fig. 4 from the localizer's last vote surface; Fig. 5 the same with the map and the
 // scan's star of readings drawn from the computed pose.
-void save_localization_figures(const Context &ctx, const hl_localizer_t *loc,
+void save_localization_figures(const Context &ctx, hl_localizer_t *loc,
                                const std::vector<hl_vector_t> &map, const Sounding &test,
                                hl_pose_t found);
 

@@ -144,8 +144,10 @@ hl_status_t hl_loc_run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
                        const hl_scan_t *scan, const hl_loc_query_t *query,
                        hl_loc_result_t *result);
 
-/** The surface of the last successful hl_loc_run. */
-void hl_loc_get_surface(const hl_localizer_t *loc, hl_loc_surface_t *out);
+/** The surface of the last successful hl_loc_run. After a search the localizer ran on
+ *  the tiles near its votes alone (a large raster without a prior, localize.c), the first
+ *  call lays the blurred raster out, a pass over its cells. */
+void hl_loc_get_surface(hl_localizer_t *loc, hl_loc_surface_t *out);
 
 #ifdef __cplusplus
 }
