@@ -101,8 +101,7 @@ const hl_param_entry_t hl_param_table[] = {
         "at 256, 4 s at 4096: docs/results/pose-graph-solver.md)"),
     INT("slam.keyframe_mm", E, I32, keyframe_mm, 0, 100000, "0",
         "... a mapped scan is a stop of its own (a node of the fit) when the robot has moved "
-        "this far since the last stop (0 with keyframe_deg 0: every scan is a stop)"),
-    DEG("slam.keyframe_deg", E, keyframe_turn, 0, 180, "0", "... or turned this much"),
+        "this far (or turned 20 degrees) since the last stop (0: every scan is a stop)"),
     REAL("slam.closure_match_weight", E, closure_match_weight, 0.001, 1, "1",
          "... a match counts this share of a step in the fit (1: as much)"),
     INT("slam.closure_matches_per_scan", E, U32, closure_matches_per_scan, 0, 16, "0",
@@ -120,11 +119,11 @@ const hl_param_entry_t hl_param_table[] = {
     FLAG("slam.square_walls", E, square_walls, "false",
          "... and the building's walls run along the map frame's axes (turn the frame with "
          "start.heading_deg): each stop's readings tie its heading to the world"),
-    INT("slam.multiscan_mm", E, I32, multiscan_mm, 0, 100000, "0",
+    INT("slam.multiscan_mm", S, I32, multiscan_mm, 0, 100000, "0",
         "sounding by motion: localize each scan with the readings of the last this much "
         "travel, placed by the odometry, and draw them into the map only then (0: each scan "
         "alone)"),
-    DEG("slam.multiscan_deg", E, multiscan_turn, 0, 180, "90", "... or this much turning"),
+    DEG("slam.multiscan_deg", S, multiscan_turn, 0, 180, "90", "... or this much turning"),
     INT("slam.long_drive_mm", E, I32, long_drive_mm, 0, 1000000, "0",
         "after a drive this long since the last scan, also localize from the drive turned "
         "+-6 and +-12 degrees about its start (odometry's heading drift swings it) and keep "
@@ -239,6 +238,8 @@ const hl_param_entry_t hl_param_table[] = {
     FIXED("slam.lost_peak_ratio", HL_PARAM_REAL, STR(HL_SLAM_LOST_PEAK_RATIO), NULL),
     FIXED("slam.wall_axis_deg", HL_PARAM_DEG, STR(HL_SLAM_WALL_AXIS_DEG),
           "start.heading_deg turns the map frame onto the walls"),
+    FIXED("slam.keyframe_deg", HL_PARAM_DEG, STR(HL_SLAM_KEYFRAME_DEG),
+          "keyframes (slam.keyframe_mm) start after 20 degrees of turning"),
     FIXED("slam.long_drive_turn_deg", HL_PARAM_DEG, STR(HL_SLAM_DRIVE_TURN_DEG), NULL),
     FIXED("slam.long_drive_turns", HL_PARAM_INT, STR(HL_SLAM_DRIVE_TURNS), NULL),
     FIXED("localize.theta_step_deg", HL_PARAM_DEG, STR(HL_LOC_THETA_STEP_DEG), NULL),
@@ -282,7 +283,6 @@ const size_t hl_param_table_len = sizeof hl_param_table / sizeof hl_param_table[
     { "slam.keyframe_mm", "500", \
       "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous " \
       "drive, the scans between joining it, rather than a stop a scan" }, \
-    { "slam.keyframe_deg", "20", "... or 20 degrees" }, \
     { "slam.closure_match_weight", "0.1", \
       "... a match counting a tenth of a step: keyframes joined by many scans' tracking " \
       "are surer than a match against a few stops" }, \

@@ -9,7 +9,8 @@
 
 bool hl_slam_closure_stamp(hl_slam_t *s, hl_pose_t pose)
 {
-    bool stop = hl_closure_is_stop(s->closure, pose, s->p.keyframe_mm, s->p.keyframe_turn);
+    hl_bam_t turn = s->p.keyframe_mm > 0 ? hl_bam_from_deg(HL_SLAM_KEYFRAME_DEG) : 0;
+    bool stop = hl_closure_is_stop(s->closure, pose, s->p.keyframe_mm, turn);
     hl_map_set_stamp(s->map, stop ? hl_closure_next_stamp(s->closure)
                                   : hl_closure_newest_stamp(s->closure));
     return stop;
@@ -57,7 +58,7 @@ static void fit(hl_slam_t *s, hl_pose_t *pose)
 static uint32_t query_stop(const hl_slam_t *s)
 {
     uint32_t newest = hl_closure_newest_stamp(s->closure);
-    bool keyframes = s->p.keyframe_mm > 0 || s->p.keyframe_turn > 0;
+    bool keyframes = s->p.keyframe_mm > 0;
     return keyframes ? newest - 1 : newest;
 }
 

@@ -45,8 +45,6 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "closure_redraw_mm must be in 0..1000";
     if (p->keyframe_mm < 0 || p->keyframe_mm > 100000)
         return "keyframe_mm must be in 0..100000";
-    if (p->keyframe_turn > HL_BAM_HALF_TURN)
-        return "keyframe_turn must be at most a half turn";
     if (p->square_walls && !p->close_loops)
         return "square_walls needs close_loops";
     if (p->multiscan_mm < 0 || p->multiscan_mm > 100000)

@@ -225,8 +225,8 @@ static const rule_case_t ranges[] = {
       "--set localize.group_mm=7: 7 is outside 0 or 8..1000" },
     { { "localize.group_mm=1001" }, { "localize.group_mm=0" },
       "--set localize.group_mm=1001: 1001 is outside 0 or 8..1000" },
-    { { "slam.keyframe_deg=181" }, { "slam.keyframe_deg=180" },
-      "--set slam.keyframe_deg=181: 181 is outside 0..180" },
+    { { "echo.half_beam_deg=46" }, { "echo.half_beam_deg=45" },
+      "--set echo.half_beam_deg=46: 46 is outside 1..45" },
 };
 
 static int count(const char *const *sets)
