@@ -118,7 +118,7 @@ n_big=$($D --map "$tmp/big.map" --check-map | sed -n 's/.* \([0-9]*\) of 16000 v
 check "a 16000-vector map of the tour holds more than 1500 vectors ($n_big)" test "${n_big:-0}" -gt 1500
 cp "$tmp/big.map" "$tmp/big.orig"
 rejects "... refused under the default, naming slam.map_capacity and the value to set" 1 \
-    "holds $n_big vectors, more than slam.map_capacity = 1500: raise it (--set slam.map_capacity=$n_big, or slam.profile = laser)" \
+    "holds $n_big vectors, more than slam.map_capacity = 1500: raise it (--set slam.map_capacity=$n_big, or slam.profile = sonar-continuous)" \
     $D --map "$tmp/big.map" --lcm-url "file://$PWD/$TOUR?speed=0" --lcm-out "file://$tmp/big2.out?mode=w"
 check "... left as it was" cmp -s "$tmp/big.map" "$tmp/big.orig"
 "$BIN/hl-eval" split $TOUR 4 "$tmp/four.lcmlog" /dev/null
