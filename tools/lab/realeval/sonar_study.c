@@ -256,6 +256,15 @@ static int study_oracle(hl_slam_t *s, const hl_slam_params_t *sp, const log_t *s
 
 int main(int argc, char **argv)
 {
+    if (argc == 2 && strcmp(argv[1], "--help") == 0) {
+        printf("usage: hl-sonar-study echo SONAR.txt LASER.txt [KEY=VALUE ...]\n"
+               "       hl-sonar-study oracle SONAR.txt TRUTH.txt NPREV [KEY=VALUE ...]\n"
+               "The pseudo-sonar ring against the laser it is made from (echo), or one\n"
+               "sounding against a map at the true poses (oracle; WINDOW=W: a multiscan of\n"
+               "the W scans before). Inputs: hl-eval text of the imports' SONAR and\n"
+               "GROUND_TRUTH. See tools/lab/realeval/sonar_study.sh.\n");
+        return 0;
+    }
     if (argc < 4)
         return usage();
     bool oracle = strcmp(argv[1], "oracle") == 0;
