@@ -24,6 +24,7 @@
 #include "loc_params.h"
 #include "valid_scan.h"
 #include "vgroup.h"
+#include "votelone.h"
 
 struct hl_localizer {
     hl_loc_params_t p;
@@ -40,6 +41,7 @@ struct hl_localizer {
     /* the map as the vote loop reads it, and the groups one reading can reach */
     hl_vgroups_t groups;
     uint32_t *cand;
+    hl_votelone_t lone;     /* the loop of a map of lone vectors (votelone.h), if capacity */
     int32_t slice_diff[2 * HL_LOC_MAX_HALF_STEPS + 2];  /* a group's weights, differenced */
 
     /* the valid readings of the scan */
@@ -75,6 +77,7 @@ void hl_loc_destroy(hl_localizer_t *loc)
     free(loc->wy);
     free(loc->wt);
     hl_vgroups_free(&loc->groups);
+    hl_votelone_free(&loc->lone);
     free(loc->cand);
     free(loc->range);
     free(loc->bearing);
@@ -114,6 +117,9 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
     bool groups_ok = hl_vgroups_init(&loc->groups, p->max_map_vectors, p->group_mm);
     loc->mem_bytes += hl_vgroups_mem_bytes(&loc->groups);
     loc->cand = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cand);
+    bool lone = p->group_mm == 0 && !p->vote_once;
+    bool lone_ok = !lone || hl_votelone_init(&loc->lone, p->max_map_vectors);
+    loc->mem_bytes += hl_votelone_mem_bytes(&loc->lone);
     loc->range = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->range);
     loc->bearing = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->bearing);
     loc->tilt = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->tilt);
@@ -125,7 +131,7 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
         loc->mem_bytes += hl_tiles_mem_bytes(&loc->tiles);
     }
     if (!loc->votes || !loc->buf_a || !loc->buf_b || !loc->wx || !loc->wy || !loc->wt ||
-        !groups_ok || !loc->cand || !loc->range || !loc->bearing || !loc->tilt ||
+        !groups_ok || !lone_ok || !loc->cand || !loc->range || !loc->bearing || !loc->tilt ||
         (p->vote_once && !loc->stamps) || !tiles_ok) {
         hl_loc_destroy(loc);
         return NULL;
@@ -232,6 +238,7 @@ typedef struct vote_ctx {
     uint16_t tag;           /* vote_once: the reading's stamp, index + 1 */
     uint16_t *most;         /* the sparse path's notes of its tiles (tiles.h), or NULL */
     uint32_t ntx;           /* ... tiles a row */
+    int32_t cell_q8;
 } vote_ctx_t;
 
 /*
@@ -370,7 +377,22 @@ static HL_ALWAYS_INLINE void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t 
 static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
                             hl_bam_t tn0, const gate_t *gate, uint16_t *votes)
 {
-    if (c->most) {
+    hl_votelone_t *v = &loc->lone;
+    if (v->capacity) {  /* lone vectors, weight 1 (votelone.h) */
+        const hl_vgroups_t *g = &loc->groups;
+        hl_votelone_clear(v);
+        for (uint32_t i = 0; i < ncand; i++) {
+            uint32_t k = loc->cand[i];
+            int32_t lo, hi;
+            if (gated_slices(gate, (int16_t)(uint16_t)(g->normal[g->first[k]] - tn0), &lo, &hi)) {
+                hl_votelone_push(v, k, lo, hi);
+                c->pairs += (uint32_t)(hi - lo + 1);
+            }
+        }
+        hl_votelone_raster_t r = { c->nx, c->ny, c->nt, c->width_q8, c->height_q8,
+                                   c->cell_q8, c->tx, c->ty, votes, c->most, c->ntx };
+        c->votes += hl_votelone_cast(v, &r);
+    } else if (c->most) {
         if (loc->stamps)
             vote_candidates_as(loc, c, ncand, tn0, gate, votes, true, true);
         else
@@ -492,7 +514,11 @@ static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
                      .height_q8 = (uint32_t)(s.ny * s.cell_mm) * 256u,
                      .recip = (1ull << 32) / (uint32_t)s.cell_mm + 1,
                      .most = tiled ? loc->tiles.most : NULL,
-                     .ntx = tiled ? (uint32_t)loc->tiles.ntx : 0 };
+                     .ntx = tiled ? (uint32_t)loc->tiles.ntx : 0,
+                     .cell_q8 = s.cell_mm * 256 };
+    if (loc->lone.capacity)
+        hl_votelone_prepare(&loc->lone, loc->groups.gx, loc->groups.gy, loc->groups.ngroups,
+                            c.cell_q8);
     cast_votes(loc, nread, &s, &c);
     if (tiled)
         hl_tiles_take_votes(&loc->tiles);

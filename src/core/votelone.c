@@ -1,0 +1,133 @@
+/* votelone.c - the vote loop for a map of lone vectors (see votelone.h). */
+#include "votelone.h"
+#include "houghloc-internal/fixed.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "simd.h"
+#include "tiles.h"
+
+bool hl_votelone_init(hl_votelone_t *v, uint32_t capacity)
+{
+    memset(v, 0, sizeof *v);
+    v->capacity = capacity;
+    size_t n = capacity ? capacity : 1;
+    int32_t **split[] = { &v->gqx, &v->grx, &v->gqy, &v->gry, &v->qx, &v->rx, &v->qy, &v->ry };
+    bool ok = true;
+    for (size_t i = 0; i < sizeof split / sizeof split[0]; i++)
+        ok = (*split[i] = malloc(n * sizeof **split[i])) != NULL && ok;
+    v->lo = malloc(n * sizeof *v->lo);
+    v->hi = malloc(n * sizeof *v->hi);
+    v->cell = malloc(n * sizeof *v->cell);
+    v->tile = malloc(n * sizeof *v->tile);
+    v->w = malloc(n * sizeof *v->w);
+    hl_votelone_clear(v);
+    return ok && v->lo && v->hi && v->cell && v->tile && v->w;
+}
+
+void hl_votelone_free(hl_votelone_t *v)
+{
+    free(v->gqx);
+    free(v->grx);
+    free(v->gqy);
+    free(v->gry);
+    free(v->qx);
+    free(v->rx);
+    free(v->qy);
+    free(v->ry);
+    free(v->lo);
+    free(v->hi);
+    free(v->cell);
+    free(v->tile);
+    free(v->w);
+    memset(v, 0, sizeof *v);
+}
+
+size_t hl_votelone_mem_bytes(const hl_votelone_t *v)
+{
+    return (size_t)v->capacity * (8 * sizeof *v->qx + sizeof *v->lo +
+                                  sizeof *v->hi + sizeof *v->cell + sizeof *v->tile +
+                                  sizeof *v->w);
+}
+
+/* floor(a / b) for b > 0 */
+static int32_t floor_div(int32_t a, int32_t b)
+{
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+void hl_votelone_prepare(hl_votelone_t *v, const int32_t *gx, const int32_t *gy, uint32_t n,
+                         int32_t cell_q8)
+{
+    for (uint32_t k = 0; k < n; k++) {
+        v->gqx[k] = floor_div(gx[k], cell_q8);
+        v->grx[k] = gx[k] - v->gqx[k] * cell_q8;
+        v->gqy[k] = floor_div(gy[k], cell_q8);
+        v->gry[k] = gy[k] - v->gqy[k] * cell_q8;
+    }
+}
+
+/* Slice it's cell (offset base), tile and weight of each listed candidate: cell 0, tile 0
+ * and weight 0 where it does not vote. The cell of point p under offset t is
+ * floor((p - t) / cell), in the raster when 0 <= p - t < n cell: with p = qp cell + rp
+ * and t = qt cell + rt (0 <= rp, rt < cell), qp - qt - (rp < rt), in 0 .. n - 1.
+ * Returns the sum of the weights. */
+HL_VECTOR_KERNEL
+static uint32_t cells_of(const int32_t *restrict qx, const int32_t *restrict rx,
+                         const int32_t *restrict qy, const int32_t *restrict ry,
+                         const int32_t *restrict lo, const int32_t *restrict hi, uint32_t n,
+                         const hl_votelone_raster_t *r, int32_t it, uint32_t base,
+                         uint32_t *restrict cell, uint32_t *restrict tile,
+                         uint32_t *restrict w)
+{
+    const int32_t d = r->cell_q8;
+    const int32_t tqx = floor_div(r->tx[it], d), trx = r->tx[it] - tqx * d;
+    const int32_t tqy = floor_div(r->ty[it], d), try_ = r->ty[it] - tqy * d;
+    const uint32_t nx = (uint32_t)r->nx, ny = (uint32_t)r->ny, ntx = r->ntx;
+    uint32_t votes = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t ix = (uint32_t)(qx[i] - tqx - (rx[i] < trx));
+        uint32_t iy = (uint32_t)(qy[i] - tqy - (ry[i] < try_));
+        uint32_t ok = (uint32_t)(ix < nx) & (uint32_t)(iy < ny) & (uint32_t)(lo[i] <= it) &
+                      (uint32_t)(it <= hi[i]);
+        cell[i] = ok ? base + iy * nx + ix : 0;
+        tile[i] = ok ? (iy >> HL_TILE_H_SHIFT) * ntx + (ix >> HL_TILE_W_SHIFT) : 0;
+        w[i] = ok;
+        votes += ok;
+    }
+    return votes;
+}
+
+uint32_t hl_votelone_cast(hl_votelone_t *v, const hl_votelone_raster_t *r)
+{
+    const size_t plane = (size_t)r->nx * (size_t)r->ny;
+    uint16_t *votes = r->votes, *most = r->most;
+    const uint32_t *cell = v->cell, *tile = v->tile, *w = v->w;
+    const uint32_t n = v->n;
+    uint32_t total = 0;
+    for (int32_t it = v->lo_min; it <= v->hi_max; it++) {
+        uint32_t cast = cells_of(v->qx, v->rx, v->qy, v->ry, v->lo, v->hi, n, r, it,
+                                 (uint32_t)((size_t)it * plane), v->cell, v->tile, v->w);
+        if (cast == 0)
+            continue;
+        total += cast;
+        if (most) {
+            for (uint32_t i = 0; i < n; i++) {
+                uint16_t *c = votes + cell[i];
+                uint32_t sum = *c + w[i];
+                uint16_t s = (uint16_t)(sum < HL_VOTE_MAX ? sum : HL_VOTE_MAX);
+                *c = s;
+                uint16_t *m = most + tile[i];
+                *m = s > *m ? s : *m;
+            }
+        } else {
+            for (uint32_t i = 0; i < n; i++) {
+                uint16_t *c = votes + cell[i];
+                uint32_t sum = *c + w[i];
+                *c = (uint16_t)(sum < HL_VOTE_MAX ? sum : HL_VOTE_MAX);
+            }
+        }
+    }
+    return total;
+}
