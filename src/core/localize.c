@@ -118,8 +118,7 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
     loc->mem_bytes += hl_vgroups_mem_bytes(&loc->groups);
     loc->cand = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cand);
     bool lone = p->group_mm == 0 && !p->vote_once;
-    bool lone_ok = !lone || hl_votelone_init(&loc->lone, p->max_map_vectors);
-    loc->mem_bytes += hl_votelone_mem_bytes(&loc->lone);
+
     loc->range = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->range);
     loc->bearing = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->bearing);
     loc->tilt = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->tilt);
@@ -130,6 +129,9 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
         tiles_ok = loc->tiles_on = hl_tiles_init(&loc->tiles, p->max_cells, loc->wlen, max_nt);
         loc->mem_bytes += hl_tiles_mem_bytes(&loc->tiles);
     }
+    bool lone_ok = !lone || hl_votelone_init(&loc->lone, p->max_map_vectors,
+                                             loc->tiles_on ? loc->tiles.capacity : 0);
+    loc->mem_bytes += hl_votelone_mem_bytes(&loc->lone);
     if (!loc->votes || !loc->buf_a || !loc->buf_b || !loc->wx || !loc->wy || !loc->wt ||
         !groups_ok || !lone_ok || !loc->cand || !loc->range || !loc->bearing || !loc->tilt ||
         (p->vote_once && !loc->stamps) || !tiles_ok) {
@@ -520,6 +522,8 @@ static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
         hl_votelone_prepare(&loc->lone, loc->groups.gx, loc->groups.gy, loc->groups.ngroups,
                             c.cell_q8);
     cast_votes(loc, nread, &s, &c);
+    if (tiled && loc->lone.capacity)
+        hl_votelone_fold(&loc->lone, loc->tiles.most, (uint32_t)(loc->tiles.ntx * loc->tiles.nty));
     if (tiled)
         hl_tiles_take_votes(&loc->tiles);
     result->votes = c.votes;

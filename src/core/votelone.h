@@ -37,6 +37,12 @@ typedef struct hl_votelone {
     int32_t *lo, *hi;
     uint32_t *cell, *tile;  /* one heading's cells and tiles */
     uint32_t *w;            /* ... and weights */
+    /* The tiles' notes of every fourth vote but the first, in three lanes of their own
+     * (tiles: how many): the notes of a run of votes into one tile, each the greater of
+     * the last note and a cell, would otherwise wait on one another. hl_votelone_fold
+     * merges them into the tiles' own. */
+    uint32_t tiles;
+    uint16_t *lane[3];
 } hl_votelone_t;
 
 /** The raster and one reading's offsets under each heading (localize.c's vote_ctx). */
@@ -50,7 +56,9 @@ typedef struct hl_votelone_raster {
     uint32_t ntx;
 } hl_votelone_raster_t;
 
-bool hl_votelone_init(hl_votelone_t *v, uint32_t capacity);
+/** Allocates for @p capacity groups and, for the sparse path's notes, @p tiles tiles
+ *  (0: none). */
+bool hl_votelone_init(hl_votelone_t *v, uint32_t capacity, uint32_t tiles);
 void hl_votelone_free(hl_votelone_t *v);
 size_t hl_votelone_mem_bytes(const hl_votelone_t *v);
 
@@ -82,5 +90,9 @@ static inline void hl_votelone_push(hl_votelone_t *v, uint32_t k, int32_t lo, in
 
 /** Casts the listed candidates' votes into @p r; @return how many. */
 uint32_t hl_votelone_cast(hl_votelone_t *v, const hl_votelone_raster_t *r);
+
+/** Merges the lanes' notes of the first @p n tiles into @p most, and zeroes them (after
+ *  the casts into a raster with notes). */
+void hl_votelone_fold(hl_votelone_t *v, uint16_t *most, uint32_t n);
 
 #endif
