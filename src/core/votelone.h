@@ -11,11 +11,14 @@
  * with their slice range (hl_votelone_list). Then heading by heading, a plain loop over
  * the list computes each candidate's cell and its tile (written to be vectorized, no
  * branch: a candidate that does not vote under this heading, or lands outside the
- * raster, gets cell 0 and weight 0), and a second loop adds the weights. Adding 0 to
- * cell 0 writes back what it held, and noting it leaves its tile's most votes as they
- * were (a bound already noted or zero), so the raster, its notes and the counts are those
- * of the general loop: a saturating sum of ones and a running maximum do not depend on
- * the order of the votes.
+ * raster, gets weight 0 and one of cells 0-3, of tile 0), and a second loop adds the
+ * weights and notes the cells in the tiles. The cells are not divided by the cell size
+ * vote by vote: a point and an offset are split into quotient and remainder once, and
+ * the cell is the quotients' difference less a borrow. Adding 0 to a cell writes back
+ * what it held, and noting it leaves its tile's most votes as they were (a bound already
+ * noted, or zero), so the raster, its notes and the counts are those of the general
+ * loop: a saturating sum of ones and a running maximum do not depend on the order of the
+ * votes (tests/core/test_votelone.c).
  *
  * Memory comes from hl_votelone_init only.
  */
