@@ -243,53 +243,13 @@ typedef struct vote_ctx {
     int32_t cell_q8;
 } vote_ctx_t;
 
-/*
- * The groups that can pair with one reading under some heading of the slice: those
- * whose centroid is close enough that centroid - reading lands in the raster for some
- * heading. The normal gate is left to the vote loop, member by member. Returns how many
- * were listed in loc->cand.
- */
+/* The groups that can pair with one reading under some heading (hl_vgroups_gather),
+ * listed in loc->cand; returns how many. */
 static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
                                   const hl_loc_surface_t *s, hl_bam_t tn0, int32_t gate)
 {
-    int32_t xmin = c->tx[0], xmax = xmin, ymin = c->ty[0], ymax = ymin;
-    for (int32_t it = 1; it < c->nt; it++) {
-        xmin = c->tx[it] < xmin ? c->tx[it] : xmin;
-        xmax = c->tx[it] > xmax ? c->tx[it] : xmax;
-        ymin = c->ty[it] < ymin ? c->ty[it] : ymin;
-        ymax = c->ty[it] > ymax ? c->ty[it] : ymax;
-    }
-    /* Positions are relative to the raster origin in 1/256 mm; a vote lands in the
-     * raster when centroid - origin - test is in [0, width) for some heading. */
-    int64_t bx0 = xmin, bx1 = (int64_t)xmax + c->width_q8;
-    int64_t by0 = ymin, by1 = (int64_t)ymax + c->height_q8;
-    const hl_vgroups_t *g = &loc->groups;
-    if (g->ngroups == 0)
-        return 0;
-    int32_t r0 = hl_vgroups_row_y(g, by0), r1 = hl_vgroups_row_y(g, by1 - 1);
-    int32_t sq0 = hl_vgroups_square_x(g, bx0), sq1 = hl_vgroups_square_x(g, bx1 - 1);
-    r0 = r0 < 0 ? 0 : r0;
-    r1 = r1 >= g->nrows ? g->nrows - 1 : r1;
-    /* the normal sectors that some member passing the gate under some heading is in */
-    uint32_t span = (uint32_t)(c->nt - 1) * s->theta_step + 2u * (uint32_t)gate;
-    uint32_t sec0 = 0, nsec = HL_VGROUP_SECTORS;
-    if (span < 65536u - (1u << HL_VGROUP_SECTOR_SHIFT)) {
-        sec0 = (uint16_t)(tn0 - gate) >> HL_VGROUP_SECTOR_SHIFT;
-        uint32_t sec1 = (uint16_t)(tn0 - gate + span) >> HL_VGROUP_SECTOR_SHIFT;
-        nsec = (sec1 - sec0) % HL_VGROUP_SECTORS + 1;
-    }
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < nsec; i++) {
-        uint32_t sec = (sec0 + i) % HL_VGROUP_SECTORS;
-        for (int32_t r = r0; r <= r1; r++) {
-            uint32_t end = hl_vgroups_row_end(g, sec, r);
-            for (uint32_t k = hl_vgroups_seek(g, sec, r, sq0); k < end && g->gcx[k] <= sq1; k++) {
-                if (g->gx[k] >= bx0 && g->gx[k] < bx1 && g->gy[k] >= by0 && g->gy[k] < by1)
-                    loc->cand[n++] = k;
-            }
-        }
-    }
-    return n;
+    return hl_vgroups_gather(&loc->groups, c->tx, c->ty, c->nt, c->width_q8, c->height_q8,
+                             (uint32_t)s->theta_step, tn0, gate, loc->cand);
 }
 
 /* The hot loop: every candidate group votes under each heading where some member passes
@@ -379,21 +339,11 @@ static HL_ALWAYS_INLINE void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t 
 static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
                             hl_bam_t tn0, const gate_t *gate, uint16_t *votes)
 {
-    hl_votelone_t *v = &loc->lone;
-    if (v->capacity) {  /* lone vectors, weight 1 (votelone.h) */
-        const hl_vgroups_t *g = &loc->groups;
-        hl_votelone_clear(v);
-        for (uint32_t i = 0; i < ncand; i++) {
-            uint32_t k = loc->cand[i];
-            int32_t lo, hi;
-            if (gated_slices(gate, (int16_t)(uint16_t)(g->normal[g->first[k]] - tn0), &lo, &hi)) {
-                hl_votelone_push(v, k, lo, hi);
-                c->pairs += (uint32_t)(hi - lo + 1);
-            }
-        }
+    if (loc->lone.capacity) {   /* lone vectors, weight 1 (votelone.h) */
         hl_votelone_raster_t r = { c->nx, c->ny, c->nt, c->width_q8, c->height_q8,
                                    c->cell_q8, c->tx, c->ty, votes, c->most, c->ntx };
-        c->votes += hl_votelone_cast(v, &r);
+        c->votes += hl_votelone_vote(&loc->lone, &loc->groups, loc->cand, ncand, gate, tn0,
+                                     &r, &c->pairs);
     } else if (c->most) {
         if (loc->stamps)
             vote_candidates_as(loc, c, ncand, tn0, gate, votes, true, true);

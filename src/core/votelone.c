@@ -162,3 +162,19 @@ void hl_votelone_fold(hl_votelone_t *v, uint16_t *most, uint32_t n)
         l1[t] = l2[t] = l3[t] = 0;
     }
 }
+
+uint32_t hl_votelone_vote(hl_votelone_t *v, const hl_vgroups_t *g, const uint32_t *cand,
+                          uint32_t n, const gate_t *gate, uint16_t tn0,
+                          const hl_votelone_raster_t *r, uint32_t *pairs)
+{
+    hl_votelone_clear(v);
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t k = cand[i];
+        int32_t lo, hi;
+        if (gated_slices(gate, (int16_t)(uint16_t)(g->normal[g->first[k]] - tn0), &lo, &hi)) {
+            hl_votelone_push(v, k, lo, hi);
+            *pairs += (uint32_t)(hi - lo + 1);
+        }
+    }
+    return hl_votelone_cast(v, r);
+}

@@ -29,6 +29,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "gate.h"
+#include "vgroup.h"
+
 typedef struct hl_votelone {
     uint32_t capacity, n;
     int32_t lo_min, hi_max;  /* the listed candidates' slices */
@@ -90,6 +93,13 @@ static inline void hl_votelone_push(hl_votelone_t *v, uint32_t k, int32_t lo, in
     v->lo_min = lo < v->lo_min ? lo : v->lo_min;
     v->hi_max = hi > v->hi_max ? hi : v->hi_max;
 }
+
+/** Lists the candidate groups @p cand (@p n of them, lone vectors of @p g) that pass
+ *  @p gate about the reading's normal @p tn0, adds their pairs to @p pairs and casts
+ *  their votes into @p r; @return how many. */
+uint32_t hl_votelone_vote(hl_votelone_t *v, const hl_vgroups_t *g, const uint32_t *cand,
+                          uint32_t n, const gate_t *gate, uint16_t tn0,
+                          const hl_votelone_raster_t *r, uint32_t *pairs);
 
 /** Casts the listed candidates' votes into @p r; @return how many. */
 uint32_t hl_votelone_cast(hl_votelone_t *v, const hl_votelone_raster_t *r);
