@@ -14,20 +14,18 @@
 #include <string.h>
 
 #include "houghloc-internal/fixed.h"
+#include "houghloc/rng.h"
 #include "tiles.h"
 #include "votelone.h"
 
 enum { MAX_SIDE = 150, MAX_NT = 17, MAX_CELLS = MAX_SIDE * MAX_SIDE * MAX_NT,
        MAX_GROUPS = 600, MAX_TILES = 64 };
 
-static uint32_t rng_state = 4242;
+static hl_rng_t rng;
 
-static uint32_t rnd(uint32_t n)  /* 0 .. n - 1 (xorshift32) */
+static uint32_t rnd(uint32_t n)  /* 0 .. n - 1, n >= 1 */
 {
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 17;
-    rng_state ^= rng_state << 5;
-    return rng_state % n;
+    return hl_rng_below(&rng, n);
 }
 
 static int64_t floor_div(int64_t a, int64_t b)
@@ -50,6 +48,7 @@ static void test_lone_is_the_general_loop(void **state)
     int32_t gx[MAX_GROUPS], gy[MAX_GROUPS], lo[MAX_GROUPS], hi[MAX_GROUPS];
     int32_t tx[MAX_NT], ty[MAX_NT];
     hl_votelone_t v;
+    hl_rng_seed(&rng, 4242);
     assert_non_null(votes);
     assert_non_null(ref);
     assert_true(hl_votelone_init(&v, MAX_GROUPS, MAX_TILES));
