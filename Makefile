@@ -81,7 +81,7 @@ TRIG_SRC  := $(BUILD)/gen/trig_table.c
 # The blur, peak and vote kernels are plain loops over contiguous runs, written to be
 # vectorized; GCC's -O2 cost model would leave them scalar.
 VECTOR_FLAGS := -ftree-vectorize -fvect-cost-model=dynamic
-KERNEL_SRCS  := src/core/blur.c src/core/peak.c src/core/localize.c
+KERNEL_SRCS  := src/core/blur.c src/core/peak.c src/core/localize.c src/core/votelone.c
 
 # ---- LCM types, generated at build time (never committed) -----------------------------
 LCM_DEFS   := $(wildcard lcmtypes/*.lcm)

@@ -24,6 +24,7 @@
 #include "loc_params.h"
 #include "valid_scan.h"
 #include "vgroup.h"
+#include "votelone.h"
 
 struct hl_localizer {
     hl_loc_params_t p;
@@ -40,6 +41,7 @@ struct hl_localizer {
     /* the map as the vote loop reads it, and the groups one reading can reach */
     hl_vgroups_t groups;
     uint32_t *cand;
+    hl_votelone_t lone;     /* the loop of a map of lone vectors (votelone.h), if capacity */
     int32_t slice_diff[2 * HL_LOC_MAX_HALF_STEPS + 2];  /* a group's weights, differenced */
 
     /* the valid readings of the scan */
@@ -75,6 +77,7 @@ void hl_loc_destroy(hl_localizer_t *loc)
     free(loc->wy);
     free(loc->wt);
     hl_vgroups_free(&loc->groups);
+    hl_votelone_free(&loc->lone);
     free(loc->cand);
     free(loc->range);
     free(loc->bearing);
@@ -114,6 +117,8 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
     bool groups_ok = hl_vgroups_init(&loc->groups, p->max_map_vectors, p->group_mm);
     loc->mem_bytes += hl_vgroups_mem_bytes(&loc->groups);
     loc->cand = alloc_counted(loc, p->max_map_vectors, sizeof *loc->cand);
+    bool lone = p->group_mm == 0 && !p->vote_once;
+
     loc->range = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->range);
     loc->bearing = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->bearing);
     loc->tilt = alloc_counted(loc, HL_SCAN_MAX_READINGS, sizeof *loc->tilt);
@@ -124,8 +129,11 @@ hl_localizer_t *hl_loc_create(const hl_loc_params_t *params)
         tiles_ok = loc->tiles_on = hl_tiles_init(&loc->tiles, p->max_cells, loc->wlen, max_nt);
         loc->mem_bytes += hl_tiles_mem_bytes(&loc->tiles);
     }
+    bool lone_ok = !lone || hl_votelone_init(&loc->lone, p->max_map_vectors,
+                                             loc->tiles_on ? loc->tiles.capacity : 0);
+    loc->mem_bytes += hl_votelone_mem_bytes(&loc->lone);
     if (!loc->votes || !loc->buf_a || !loc->buf_b || !loc->wx || !loc->wy || !loc->wt ||
-        !groups_ok || !loc->cand || !loc->range || !loc->bearing || !loc->tilt ||
+        !groups_ok || !lone_ok || !loc->cand || !loc->range || !loc->bearing || !loc->tilt ||
         (p->vote_once && !loc->stamps) || !tiles_ok) {
         hl_loc_destroy(loc);
         return NULL;
@@ -232,55 +240,16 @@ typedef struct vote_ctx {
     uint16_t tag;           /* vote_once: the reading's stamp, index + 1 */
     uint16_t *most;         /* the sparse path's notes of its tiles (tiles.h), or NULL */
     uint32_t ntx;           /* ... tiles a row */
+    int32_t cell_q8;
 } vote_ctx_t;
 
-/*
- * The groups that can pair with one reading under some heading of the slice: those
- * whose centroid is close enough that centroid - reading lands in the raster for some
- * heading. The normal gate is left to the vote loop, member by member. Returns how many
- * were listed in loc->cand.
- */
+/* The groups that can pair with one reading under some heading (hl_vgroups_gather),
+ * listed in loc->cand; returns how many. */
 static uint32_t gather_candidates(hl_localizer_t *loc, const vote_ctx_t *c,
                                   const hl_loc_surface_t *s, hl_bam_t tn0, int32_t gate)
 {
-    int32_t xmin = c->tx[0], xmax = xmin, ymin = c->ty[0], ymax = ymin;
-    for (int32_t it = 1; it < c->nt; it++) {
-        xmin = c->tx[it] < xmin ? c->tx[it] : xmin;
-        xmax = c->tx[it] > xmax ? c->tx[it] : xmax;
-        ymin = c->ty[it] < ymin ? c->ty[it] : ymin;
-        ymax = c->ty[it] > ymax ? c->ty[it] : ymax;
-    }
-    /* Positions are relative to the raster origin in 1/256 mm; a vote lands in the
-     * raster when centroid - origin - test is in [0, width) for some heading. */
-    int64_t bx0 = xmin, bx1 = (int64_t)xmax + c->width_q8;
-    int64_t by0 = ymin, by1 = (int64_t)ymax + c->height_q8;
-    const hl_vgroups_t *g = &loc->groups;
-    if (g->ngroups == 0)
-        return 0;
-    int32_t r0 = hl_vgroups_row_y(g, by0), r1 = hl_vgroups_row_y(g, by1 - 1);
-    int32_t sq0 = hl_vgroups_square_x(g, bx0), sq1 = hl_vgroups_square_x(g, bx1 - 1);
-    r0 = r0 < 0 ? 0 : r0;
-    r1 = r1 >= g->nrows ? g->nrows - 1 : r1;
-    /* the normal sectors that some member passing the gate under some heading is in */
-    uint32_t span = (uint32_t)(c->nt - 1) * s->theta_step + 2u * (uint32_t)gate;
-    uint32_t sec0 = 0, nsec = HL_VGROUP_SECTORS;
-    if (span < 65536u - (1u << HL_VGROUP_SECTOR_SHIFT)) {
-        sec0 = (uint16_t)(tn0 - gate) >> HL_VGROUP_SECTOR_SHIFT;
-        uint32_t sec1 = (uint16_t)(tn0 - gate + span) >> HL_VGROUP_SECTOR_SHIFT;
-        nsec = (sec1 - sec0) % HL_VGROUP_SECTORS + 1;
-    }
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < nsec; i++) {
-        uint32_t sec = (sec0 + i) % HL_VGROUP_SECTORS;
-        for (int32_t r = r0; r <= r1; r++) {
-            uint32_t end = hl_vgroups_row_end(g, sec, r);
-            for (uint32_t k = hl_vgroups_seek(g, sec, r, sq0); k < end && g->gcx[k] <= sq1; k++) {
-                if (g->gx[k] >= bx0 && g->gx[k] < bx1 && g->gy[k] >= by0 && g->gy[k] < by1)
-                    loc->cand[n++] = k;
-            }
-        }
-    }
-    return n;
+    return hl_vgroups_gather(&loc->groups, c->tx, c->ty, c->nt, c->width_q8, c->height_q8,
+                             (uint32_t)s->theta_step, tn0, gate, loc->cand);
 }
 
 /* The hot loop: every candidate group votes under each heading where some member passes
@@ -370,7 +339,12 @@ static HL_ALWAYS_INLINE void vote_candidates_as(hl_localizer_t *loc, vote_ctx_t 
 static void vote_candidates(hl_localizer_t *loc, vote_ctx_t *c, uint32_t ncand,
                             hl_bam_t tn0, const gate_t *gate, uint16_t *votes)
 {
-    if (c->most) {
+    if (loc->lone.capacity) {   /* lone vectors, weight 1 (votelone.h) */
+        hl_votelone_raster_t r = { c->nx, c->ny, c->nt, c->width_q8, c->height_q8,
+                                   c->cell_q8, c->tx, c->ty, votes, c->most, c->ntx };
+        c->votes += hl_votelone_vote(&loc->lone, &loc->groups, loc->cand, ncand, gate, tn0,
+                                     &r, &c->pairs);
+    } else if (c->most) {
         if (loc->stamps)
             vote_candidates_as(loc, c, ncand, tn0, gate, votes, true, true);
         else
@@ -492,8 +466,14 @@ static hl_status_t run(hl_localizer_t *loc, const hl_vector_t *map, uint32_t n,
                      .height_q8 = (uint32_t)(s.ny * s.cell_mm) * 256u,
                      .recip = (1ull << 32) / (uint32_t)s.cell_mm + 1,
                      .most = tiled ? loc->tiles.most : NULL,
-                     .ntx = tiled ? (uint32_t)loc->tiles.ntx : 0 };
+                     .ntx = tiled ? (uint32_t)loc->tiles.ntx : 0,
+                     .cell_q8 = s.cell_mm * 256 };
+    if (loc->lone.capacity)
+        hl_votelone_prepare(&loc->lone, loc->groups.gx, loc->groups.gy, loc->groups.ngroups,
+                            c.cell_q8);
     cast_votes(loc, nread, &s, &c);
+    if (tiled && loc->lone.capacity)
+        hl_votelone_fold(&loc->lone, loc->tiles.most, (uint32_t)(loc->tiles.ntx * loc->tiles.nty));
     if (tiled)
         hl_tiles_take_votes(&loc->tiles);
     result->votes = c.votes;

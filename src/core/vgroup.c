@@ -218,3 +218,47 @@ uint32_t hl_vgroups_seek(const hl_vgroups_t *g, uint32_t sector, int32_t row,
     }
     return lo;
 }
+
+uint32_t hl_vgroups_gather(const hl_vgroups_t *g, const int32_t *tx, const int32_t *ty,
+                           int32_t nt, uint32_t width_q8, uint32_t height_q8,
+                           uint32_t theta_step, uint16_t tn0, int32_t gate, uint32_t *out)
+{
+    int32_t xmin = tx[0], xmax = xmin, ymin = ty[0], ymax = ymin;
+    for (int32_t it = 1; it < nt; it++) {
+        xmin = tx[it] < xmin ? tx[it] : xmin;
+        xmax = tx[it] > xmax ? tx[it] : xmax;
+        ymin = ty[it] < ymin ? ty[it] : ymin;
+        ymax = ty[it] > ymax ? ty[it] : ymax;
+    }
+    /* Positions are relative to the raster origin in 1/256 mm; a vote lands in the
+     * raster when centroid - origin - test is in [0, width) for some heading. */
+    int64_t bx0 = xmin, bx1 = (int64_t)xmax + width_q8;
+    int64_t by0 = ymin, by1 = (int64_t)ymax + height_q8;
+    if (g->ngroups == 0)
+        return 0;
+    int32_t r0 = hl_vgroups_row_y(g, by0), r1 = hl_vgroups_row_y(g, by1 - 1);
+    int32_t sq0 = hl_vgroups_square_x(g, bx0), sq1 = hl_vgroups_square_x(g, bx1 - 1);
+    r0 = r0 < 0 ? 0 : r0;
+    r1 = r1 >= g->nrows ? g->nrows - 1 : r1;
+    /* the normal sectors that some member passing the gate under some heading is in */
+    uint32_t span = (uint32_t)(nt - 1) * theta_step + 2u * (uint32_t)gate;
+    uint32_t sec0 = 0, nsec = HL_VGROUP_SECTORS;
+    if (span < 65536u - (1u << HL_VGROUP_SECTOR_SHIFT)) {
+        sec0 = (uint16_t)(tn0 - gate) >> HL_VGROUP_SECTOR_SHIFT;
+        uint32_t sec1 = (uint16_t)(tn0 - gate + span) >> HL_VGROUP_SECTOR_SHIFT;
+        nsec = (sec1 - sec0) % HL_VGROUP_SECTORS + 1;
+    }
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < nsec; i++) {
+        uint32_t sec = (sec0 + i) % HL_VGROUP_SECTORS;
+        for (int32_t r = r0; r <= r1; r++) {
+            uint32_t end = hl_vgroups_row_end(g, sec, r);
+            for (uint32_t k = hl_vgroups_seek(g, sec, r, sq0); k < end && g->gcx[k] <= sq1; k++) {
+                if (g->gx[k] >= bx0 && g->gx[k] < bx1 && g->gy[k] >= by0 && g->gy[k] < by1)
+                    out[n++] = k;
+            }
+        }
+    }
+    return n;
+}
+

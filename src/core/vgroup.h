@@ -14,7 +14,7 @@
  *
  * Index. Groups are sorted by normal sector, then tile row (row_cells squares tall), then
  * by x square, then by y square, so that the groups a reading can reach, a box around where its votes
- * land, are a few runs found by binary search (localize.c, gather_candidates): a search
+ * land, are a few runs found by binary search (hl_vgroups_gather): a search
  * touches the part of the map near the robot, not all of it.
  *
  * merge = false (group_mm 0 in the parameters) keeps every vector its own group at its
@@ -90,5 +90,17 @@ int32_t hl_vgroups_row_y(const hl_vgroups_t *g, int64_t q8);
 uint32_t hl_vgroups_seek(const hl_vgroups_t *g, uint32_t sector, int32_t row,
                          int32_t square);
 uint32_t hl_vgroups_row_end(const hl_vgroups_t *g, uint32_t sector, int32_t row);
+
+/**
+ * The groups that can pair with one reading under some heading of a search: those whose
+ * centroid lands in the raster (@p width_q8 x @p height_q8, 1/256 mm) less the reading's
+ * offset (@p tx, @p ty: 1/256 mm, for each of the @p nt headings, @p theta_step apart)
+ * under some heading, in the normal sectors that the gate (@p gate, BAM, about the
+ * reading's normal under the first heading, @p tn0) can reach. The gate itself is left
+ * to the vote loop, member by member. @return how many were listed in @p out.
+ */
+uint32_t hl_vgroups_gather(const hl_vgroups_t *g, const int32_t *tx, const int32_t *ty,
+                           int32_t nt, uint32_t width_q8, uint32_t height_q8,
+                           uint32_t theta_step, uint16_t tn0, int32_t gate, uint32_t *out);
 
 #endif
