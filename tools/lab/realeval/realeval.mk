@@ -15,9 +15,9 @@
 # first true pose (truth, for reference). Imports are cached in EVAL_OUT/input/, one per
 # (building, input, selection), shared by the modes and starts. report.sh then writes
 # EVAL_OUT/real.tsv and real.md (the origin rows beside the peers' figures from
-# BASELINES, every start and their spread below); run_one.sh map draws EVAL_OUT/B.png,
-# the final map of the improved mode from the origin on every laser scan with its path
-# and the true path aligned into its frame. A row is remade when its import, the
+# BASELINES, every start and their spread below); run_one.sh map draws EVAL_OUT/B.png and
+# B-sonar.png, the final maps of the improved mode from the origin on every laser scan and
+# every pseudo-sonar scan with their paths and the true path aligned into their frames. A row is remade when its import, the
 # programs, the configuration or the script change.
 
 DATA      ?= ../shared/data
@@ -37,7 +37,8 @@ REALEVAL_ROWS := $(foreach b,$(BUILDINGS),$(foreach i,$(REALEVAL_INPUTS),\
                    $(foreach m,$(REALEVAL_MODES),$(foreach s,$(REALEVAL_SELECTIONS),\
                      $(foreach t,$(call realeval_starts,$(m)),\
                        $(EVAL_OUT)/rows/$(b)_$(i)_$(m)_$(s)_$(t).tsv)))))
-REALEVAL_PNGS := $(patsubst %,$(EVAL_OUT)/%.png,$(BUILDINGS))
+REALEVAL_PNGS := $(patsubst %,$(EVAL_OUT)/%.png,$(BUILDINGS)) \
+                 $(patsubst %,$(EVAL_OUT)/%-sonar.png,$(BUILDINGS))
 REALEVAL_ENV = BUILD='$(BUILD)' DATA='$(DATA)' EVAL_OUT='$(EVAL_OUT)' \
                REALEVAL_TOTAL=$(words $(REALEVAL_ROWS))
 
@@ -83,6 +84,9 @@ $(foreach b,$(BUILDINGS),$(foreach i,$(REALEVAL_INPUTS),$(foreach m,$(REALEVAL_M
 $(EVAL_OUT)/%.png: $(EVAL_OUT)/rows/%_laser_improved_every_origin.tsv $(BUILD)/bin/houghloc-map \
         tools/lab/realeval/run_one.sh
 	$(Q)$(REALEVAL_ENV) sh tools/lab/realeval/run_one.sh map $*
+$(EVAL_OUT)/%-sonar.png: $(EVAL_OUT)/rows/%_sonar_improved_every_origin.tsv \
+        $(BUILD)/bin/houghloc-map tools/lab/realeval/run_one.sh
+	$(Q)$(REALEVAL_ENV) sh tools/lab/realeval/run_one.sh map $* sonar
 
 $(EVAL_OUT)/real.tsv: $(REALEVAL_ROWS) tools/lab/realeval/report.sh
 	$(Q)sh tools/lab/realeval/report.sh tsv '$(EVAL_OUT)' '$(BUILDINGS)' >$@.tmp && mv $@.tmp $@ || \

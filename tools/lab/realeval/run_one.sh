@@ -11,10 +11,11 @@
 #       through houghlocd's batch path (tools/lab/realeval/INPUT.conf for improved,
 #       INPUT-paper.conf for paper) from START and scores its POSE; writes the row
 #       EVAL_OUT/rows/BUILDING_INPUT_MODE_SELECTION_START.tsv
-#   run_one.sh map BUILDING
-#       draws EVAL_OUT/BUILDING.png: the final map of the laser, improved, every, origin
-#       run with its POSE path and the true path moved into the estimate's frame by the
-#       ATE's alignment (houghloc-map --start; the daemon never sees the truth)
+#   run_one.sh map BUILDING [INPUT]
+#       draws EVAL_OUT/BUILDING.png (INPUT laser, the default) or BUILDING-sonar.png: the
+#       final map of the INPUT, improved, every, origin run with its POSE path and the
+#       true path moved into the estimate's frame by the ATE's alignment (houghloc-map
+#       --start; the daemon never sees the truth)
 #
 # INPUT is laser or sonar, SELECTION every or moved, MODE odometry, paper or improved.
 # START (default origin) is where the daemon's map frame begins:
@@ -53,7 +54,7 @@ HERE=$(dirname "$0")
 usage() {
     echo "usage: run_one.sh import BUILDING INPUT SELECTION" >&2
     echo "       run_one.sh cell BUILDING INPUT SELECTION MODE [origin|turned30|turned45|truth]" >&2
-    echo "       run_one.sh map BUILDING" >&2
+    echo "       run_one.sh map BUILDING [laser|sonar]" >&2
     exit 2
 }
 
@@ -96,9 +97,9 @@ first_pose() {
 # T is drawn at S (+) F^-1 (+) T; S = A^-1 (+) F draws it at A^-1 (+) T, in the estimate's
 # frame as the ATE compares them.
 do_map() {
-    cell=${b}_laser_improved_every_origin
+    cell=${b}_${input}_improved_every_origin
     run=$EVAL_OUT/runs/$cell
-    in_log=$EVAL_OUT/input/${b}_laser_every.lcmlog
+    in_log=$EVAL_OUT/input/${b}_${input}_every.lcmlog
     "$BIN/houghloc-eval" --tum-gt "$run/truth.tum" "$in_log" "$run/out.lcmlog" \
         >"$run/align.txt" 2>"$run/align.err" || die align "$(lasterr "$run/align.err")"
     first=$(first_pose "$run/truth.tum") || die align "no pose in $run/truth.tum"
@@ -114,14 +115,18 @@ do_map() {
     "$BIN/houghloc-map" --start "$start" --trajectory "$run/out.lcmlog" \
         --trajectory "$in_log" "$run/map.hlmap" "$run/map" >"$run/map.err" 2>&1 ||
         die map "$(lasterr "$run/map.err")"
-    cp "$run/map.png" "$EVAL_OUT/$b.png" || die map "cannot copy $run/map.png"
+    png=$EVAL_OUT/$b.png
+    [ "$input" = laser ] || png=$EVAL_OUT/$b-$input.png
+    cp "$run/map.png" "$png" || die map "cannot copy $run/map.png"
 }
 
 [ $# -ge 2 ] || usage
 cmd=$1 b=$2
 if [ "$cmd" = map ]; then
-    [ $# -eq 2 ] || usage
-    what="$b laser every improved origin"
+    [ $# -eq 2 ] || [ $# -eq 3 ] || usage
+    input=${3:-laser}
+    case $input in laser | sonar) ;; *) usage ;; esac
+    what="$b $input every improved origin"
     do_map
     exit 0
 fi

@@ -214,8 +214,8 @@ check "real.md: the peers' CSM and BreezySLAM figures beside ours" sh -c '
     ! grep -q "elsewhere" "$1"' - "$md"
 check "real.md: our improved row for room, laser, every" \
     grep -q '^| room | houghloc, improved mode, every | '"$n_room"' | [0-9.]* | [0-9.]* / [0-9.]* | ' "$md"
-for b in room hall; do
-    check "$b.png: a PNG" sh -c 'test "$(head -c 4 "$1" | od -An -c | tr -d " ")" = "211PNG"' - "$out/$b.png"
+for png in room hall room-sonar hall-sonar; do
+    check "$png.png: a PNG" sh -c 'test "$(head -c 4 "$1" | od -An -c | tr -d " ")" = "211PNG"' - "$out/$png.png"
 done
 
 # Up to date: a second make reruns no cell.
