@@ -91,8 +91,8 @@ static bool move_reading(const hl_reading_t *r, hl_pose_t at, hl_reading_t *out)
     *out = *r;
     out->range_mm = (int32_t)lround(range);
     out->bearing = hl_bam_from_rad(atan2(y, x));
-    hl_bam_t normal = (hl_bam_t)(at.theta + r->bearing + (int32_t)HL_BAM_HALF_TURN + r->tilt);
-    int32_t tilt = (int16_t)(uint16_t)(normal - out->bearing - (int32_t)HL_BAM_HALF_TURN);
+    int32_t tilt = hl_bam_diff(hl_reading_normal(r, at.theta),
+                               (hl_bam_t)(out->bearing + HL_BAM_HALF_TURN));
     if (tilt <= -(int32_t)HL_BAM_QUARTER_TURN || tilt >= (int32_t)HL_BAM_QUARTER_TURN)
         return false;
     out->tilt = (int16_t)tilt;

@@ -13,21 +13,17 @@ EVAL_OUT=${EVAL_OUT:-$BUILD/eval}
 BIN=$BUILD/bin
 HERE=$(dirname "$0")
 [ $# -gt 0 ] || set -- intel aces freiburg-079
-tmp=$(mktemp -d) || exit 1
-trap 'rm -rf "$tmp"' EXIT
 die() { echo "sonar_study: $1" >&2; exit 1; }
 for b in "$@"; do
     for input in sonar laser; do
         log=$EVAL_OUT/input/${b}_${input}_every.lcmlog
         [ -s "$log" ] || BUILD=$BUILD EVAL_OUT=$EVAL_OUT sh "$HERE/run_one.sh" import "$b" "$input" every ||
             die "$b: import $input failed"
-        "$BIN/hl-eval" text "$log" SONAR "$tmp/$b.$input" || die "$b: hl-eval text $input failed"
     done
-    "$BIN/hl-eval" text "$EVAL_OUT/input/${b}_sonar_every.lcmlog" GROUND_TRUTH "$tmp/$b.truth" ||
-        die "$b: hl-eval text GROUND_TRUTH failed"
+    sonar=$EVAL_OUT/input/${b}_sonar_every.lcmlog laser=$EVAL_OUT/input/${b}_laser_every.lcmlog
     while read -r name settings; do
         # shellcheck disable=SC2086
-        line=$("$BIN/hl-sonar-study" echo "$tmp/$b.sonar" "$tmp/$b.laser" $settings) ||
+        line=$("$BIN/hl-sonar-study" echo "$sonar" "$laser" $settings) ||
             die "$b: hl-sonar-study echo $name failed"
         echo "$b $name $line"
     done <<'VARIANTS'
@@ -38,7 +34,7 @@ flank-normals echo.flank_normals=true
 VARIANTS
     while read -r name window settings; do
         # shellcheck disable=SC2086
-        line=$(WINDOW=$window "$BIN/hl-sonar-study" oracle "$tmp/$b.sonar" "$tmp/$b.truth" 30 $settings) ||
+        line=$(WINDOW=$window "$BIN/hl-sonar-study" oracle "$sonar" 30 $settings) ||
             die "$b: hl-sonar-study oracle $name failed"
         echo "$b $name $line"
     done <<'VARIANTS'

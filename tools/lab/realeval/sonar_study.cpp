@@ -2,14 +2,14 @@
  * sonar_study.c - hl-sonar-study: where the pseudo-sonar ring's error comes from, on a
  * real building (docs/results/real-buildings.md, "Where the sonar's error goes").
  *
- *   hl-sonar-study echo SONAR.txt LASER.txt [KEY=VALUE ...]
+ *   hl-sonar-study echo SONAR.lcmlog LASER.lcmlog [KEY=VALUE ...]
  *       each pseudo-sonar reading, prepared as the tracker prepares it (echo bearings,
  *       normals), against the laser scan it was made from: the true echo is the nearest
  *       laser return in the reading's 22-degree cone, the true normal that of the line
  *       through the laser returns within 3 beams and 300 mm of it. Prints one line:
  *         echo readings=N bearing_median_deg=X bearing_p90_deg=X point_median_mm=X
  *              point_p90_mm=X normal_median_deg=X normal_p90_deg=X normal_over30_pct=X
- *   hl-sonar-study oracle SONAR.txt TRUTH.txt NPREV [KEY=VALUE ...]
+ *   hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]
  *       each scan localized (hl_slam_localize) against a map of the NPREV scans
  *       before it drawn at their TRUE poses, from the true pose before it moved by the
  *       odometry: the localizer's own precision, with no drift in the map. With WINDOW=W
@@ -19,17 +19,21 @@
  *         oracle scans=N failed=N heading_rms_deg=X position_rms_mm=X
  *                odometry_heading_rms_deg=X odometry_position_rms_mm=X
  *
- * SONAR.txt, LASER.txt and TRUTH.txt are `hl-eval text LOG SONAR|GROUND_TRUTH FILE` of
- * houghloc-import-carmen's --input sonar and --input laser logs of one building (the
- * laser log for its scans only: both have one scan per laser scan, in order). The
- * tracker's settings are the sonar-continuous profile's, then each KEY=VALUE
+ * SONAR.lcmlog and LASER.lcmlog are houghloc-import-carmen's --input sonar and --input
+ * laser logs of one building, read with the experiments' reader (dataset.hpp): both have
+ * one scan per laser scan, in order, each with its true pose. The tracker's settings are the sonar-continuous profile's, then each KEY=VALUE
  * (hl_params_set). Exit status 0, 1 on an unreadable file, 2 on bad usage.
  */
-#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "dataset.hpp"
 
 #include "houghloc-internal/multiscan.h"
 #include "houghloc-internal/params.h"
@@ -38,78 +42,45 @@
 #include "houghloc/params.h"
 #include "houghloc/slam.h"
 
-#define MAX_SCANS 8000
 #define CONE_BAM 2003           /* 11 degrees: the importer's cone */
 #define PI 3.14159265358979323846
 
-typedef struct log {
-    int n;
-    hl_scan_t *scans;           /* [MAX_SCANS] */
-    hl_pose_t *poses;           /* the odometry (SONAR) or the truth (GROUND_TRUTH) */
-} log_t;
+/* One import's scans, their odometry and true poses, in log order. */
+struct run_log {
+    std::vector<hl_scan_t> scans;
+    std::vector<hl_pose_t> odometry, truth;
+    int n = 0;
+};
 
 static int usage(void)
 {
-    fprintf(stderr, "usage: hl-sonar-study echo SONAR.txt LASER.txt [KEY=VALUE ...]\n"
-                    "       hl-sonar-study oracle SONAR.txt TRUTH.txt NPREV [KEY=VALUE ...]\n");
+    fprintf(stderr, "usage: hl-sonar-study echo SONAR.lcmlog LASER.lcmlog [KEY=VALUE ...]\n"
+                    "       hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]\n");
     return 2;
 }
 
-static long field(const char *line, const char *key)
+static int read_log(const char *path, run_log *out)
 {
-    const char *at = strstr(line, key);
-    return at ? strtol(at + strlen(key), NULL, 10) : 0;
-}
-
-/* One `hl-eval text` file: scans with their odometry, or poses alone. */
-static int read_log(const char *path, bool scans, log_t *out)
-{
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "hl-sonar-study: cannot read %s\n", path);
+    hlexp::Soundings all;
+    std::string err;
+    if (!hlexp::read_soundings(path, &all, &err)) {
+        fprintf(stderr, "hl-sonar-study: %s\n", err.c_str());
         return 1;
     }
-    static char line[1 << 18];
-    out->n = 0;
-    while (out->n < MAX_SCANS && fgets(line, sizeof line, f)) {
-        hl_pose_t *p = &out->poses[out->n];
-        const char *prefix = scans ? "odometry." : " ";
-        char key[32];
-        snprintf(key, sizeof key, "%sx_mm=", prefix);
-        p->x_mm = (hl_mm_t)field(line, key);
-        snprintf(key, sizeof key, "%sy_mm=", prefix);
-        p->y_mm = (hl_mm_t)field(line, key);
-        snprintf(key, sizeof key, "%sheading_bam=", prefix);
-        p->theta = (hl_bam_t)field(line, key);
-        if (scans) {
-            hl_scan_t *s = &out->scans[out->n];
-            hl_scan_clear(s);
-            const char *r = strstr(line, " readings=");
-            for (r = r ? r + 10 : NULL; r && *r && *r != '\n';) {
-                int i, b, range, valid;
-                if (sscanf(r, "%d:%d:%d:%d", &i, &b, &range, &valid) != 4)
-                    break;
-                hl_scan_add(s, (hl_bam_t)b, range, -1, valid != 0);
-                r = strchr(r, ',');
-                r = r ? r + 1 : NULL;
-            }
-        }
-        out->n++;
+    for (const hlexp::Sounding *s : hlexp::on_channel(all, "SONAR")) {
+        out->scans.push_back(s->msg.scan);
+        out->odometry.push_back(s->msg.odometry);
+        out->truth.push_back(s->truth);
     }
-    fclose(f);
+    out->n = (int)out->scans.size();
     return 0;
 }
 
-static int by_value(const void *a, const void *b)
+/* The q-quantile of @p v (sorted here). */
+static double quantile(std::vector<double> &v, double q)
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double quantile(double *v, int n, double q)
-{
-    qsort(v, n, sizeof *v, by_value);
-    return n ? v[(int)(q * (n - 1))] : 0;
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0 : v[(size_t)(q * (double)(v.size() - 1))];
 }
 
 /* The nearest laser return within the cone of @p bearing, or -1. */
@@ -161,19 +132,15 @@ static bool true_normal(const hl_scan_t *laser, int at, double *normal)
     return true;
 }
 
-static int study_echo(const hl_slam_params_t *sp, const log_t *sonar, const log_t *laser)
+static int study_echo(const hl_slam_params_t *sp, const run_log *sonar, const run_log *laser)
 {
-    enum { MAX = 1 << 20 };
-    double *bearing = malloc(MAX * sizeof *bearing), *place = malloc(MAX * sizeof *place),
-           *normal = malloc(MAX * sizeof *normal);
-    hl_scan_t *echoed = malloc(sizeof *echoed), *fitted = malloc(sizeof *fitted);
-    if (!bearing || !place || !normal || !echoed || !fitted)
-        return 1;
-    int m = 0, over30 = 0;
+    std::vector<double> bearing, place, normal;
+    hl_scan_t echoed, fitted;
+    int over30 = 0;
     for (int k = 0; k < sonar->n && k < laser->n; k++) {
         const hl_scan_t *in = &sonar->scans[k];
-        const hl_scan_t *ready = hl_slam_prepare(sp, in, echoed, fitted);
-        for (uint32_t i = 0; i < ready->count && m < MAX; i++) {
+        const hl_scan_t *ready = hl_slam_prepare(sp, in, &echoed, &fitted);
+        for (uint32_t i = 0; i < ready->count; i++) {
             const hl_reading_t *r = &ready->readings[i];
             int t = r->valid ? true_echo(&laser->scans[k], in->readings[i].bearing) : -1;
             double n_true;
@@ -184,20 +151,18 @@ static int study_echo(const hl_slam_params_t *sp, const log_t *sonar, const log_
             double ex, ey, tx, ty;
             point(r, &ex, &ey);
             point(tr, &tx, &ty);
-            bearing[m] = abs(hl_bam_diff(r->bearing, tr->bearing)) * 360.0 / 65536;
-            place[m] = hypot(ex - tx, ey - ty);
-            normal[m] = fabs(remainder(hl_bam_to_rad(hl_reading_normal(r, 0)) - n_true, 2 * PI)) *
-                        180 / PI;
-            over30 += normal[m] > 30;
-            m++;
+            bearing.push_back(abs(hl_bam_diff(r->bearing, tr->bearing)) * 360.0 / 65536);
+            place.push_back(hypot(ex - tx, ey - ty));
+            normal.push_back(fabs(remainder(hl_bam_to_rad(hl_reading_normal(r, 0)) - n_true,
+                                            2 * PI)) * 180 / PI);
+            over30 += normal.back() > 30;
         }
     }
     printf("echo readings=%d bearing_median_deg=%.2f bearing_p90_deg=%.2f point_median_mm=%.0f "
            "point_p90_mm=%.0f normal_median_deg=%.1f normal_p90_deg=%.1f normal_over30_pct=%.0f\n",
-           m, quantile(bearing, m, .5), quantile(bearing, m, .9), quantile(place, m, .5),
-           quantile(place, m, .9), quantile(normal, m, .5), quantile(normal, m, .9),
-           m ? 100.0 * over30 / m : 0);
-    free(bearing), free(place), free(normal), free(echoed), free(fitted);
+           (int)normal.size(), quantile(bearing, .5), quantile(bearing, .9), quantile(place, .5),
+           quantile(place, .9), quantile(normal, .5), quantile(normal, .9),
+           normal.empty() ? 0 : 100.0 * over30 / (double)normal.size());
     return 0;
 }
 
@@ -206,21 +171,20 @@ static double sdeg(hl_bam_t a)
     return hl_bam_diff(a, 0) * 360.0 / 65536;
 }
 
-static int study_oracle(hl_slam_t *s, const hl_slam_params_t *sp, const log_t *sonar,
-                        const log_t *truth, int nprev, int window)
+static int study_oracle(hl_slam_t *s, const hl_slam_params_t *sp, const run_log *sonar,
+                        int nprev, int window)
 {
-    hl_scan_t *ready = malloc((size_t)sonar->n * sizeof *ready);
-    hl_scan_t *echoed = malloc(sizeof *echoed), *fitted = malloc(sizeof *fitted);
-    hl_scan_t *seen = malloc(sizeof *seen);
+    std::vector<hl_scan_t> ready(sonar->scans.size());
+    hl_scan_t echoed, fitted, seen;
     hl_multiscan_t *ms = hl_multiscan_create(HL_MULTISCAN_MAX_SCANS, 100000, HL_BAM_HALF_TURN);
-    if (!ready || !echoed || !fitted || !seen || !ms)
+    if (!ms)
         return 1;
     for (int k = 0; k < sonar->n; k++)
-        ready[k] = *hl_slam_prepare(sp, &sonar->scans[k], echoed, fitted);
+        ready[k] = *hl_slam_prepare(sp, &sonar->scans[k], &echoed, &fitted);
     double h2 = 0, p2 = 0, oh2 = 0, op2 = 0;
     int m = 0, failed = 0;
-    const hl_pose_t *odo = sonar->poses, *gt = truth->poses;
-    for (int k = nprev + window; k < sonar->n && k < truth->n; k++) {
+    const hl_pose_t *odo = sonar->odometry.data(), *gt = sonar->truth.data();
+    for (int k = nprev + window; k < sonar->n; k++) {
         hl_map_t *map = hl_slam_map(s);
         hl_map_clear(map);
         for (int j = k - window - nprev; j < k - window; j++)
@@ -228,14 +192,14 @@ static int study_oracle(hl_slam_t *s, const hl_slam_params_t *sp, const log_t *s
         hl_multiscan_clear(ms);
         for (int j = k - window; j < k; j++)
             hl_multiscan_push(ms, &ready[j], odo[j], gt[j], true);
-        hl_multiscan_assemble(ms, &ready[k], odo[k], seen);
+        hl_multiscan_assemble(ms, &ready[k], odo[k], &seen);
         hl_pose_t predicted, pose;
         hl_loc_result_t loc;
         hl_pose_predict(gt[k - 1], odo[k - 1], odo[k], &predicted);
         double odh = sdeg((hl_bam_t)(predicted.theta - gt[k].theta));
         oh2 += odh * odh;
         op2 += pow(hypot(predicted.x_mm - gt[k].x_mm, predicted.y_mm - gt[k].y_mm), 2);
-        if (hl_slam_localize(s, seen, predicted, &loc, &pose) != HL_OK) {
+        if (hl_slam_localize(s, &seen, predicted, &loc, &pose) != HL_OK) {
             failed++;
             continue;
         }
@@ -250,19 +214,18 @@ static int study_oracle(hl_slam_t *s, const hl_slam_params_t *sp, const log_t *s
            m ? sqrt(h2 / m) : 0, m ? sqrt(p2 / m) : 0, all ? sqrt(oh2 / all) : 0,
            all ? sqrt(op2 / all) : 0);
     hl_multiscan_destroy(ms);
-    free(ready), free(echoed), free(fitted), free(seen);
     return 0;
 }
 
 int main(int argc, char **argv)
 {
     if (argc == 2 && strcmp(argv[1], "--help") == 0) {
-        printf("usage: hl-sonar-study echo SONAR.txt LASER.txt [KEY=VALUE ...]\n"
-               "       hl-sonar-study oracle SONAR.txt TRUTH.txt NPREV [KEY=VALUE ...]\n"
+        printf("usage: hl-sonar-study echo SONAR.lcmlog LASER.lcmlog [KEY=VALUE ...]\n"
+               "       hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]\n"
                "The pseudo-sonar ring against the laser it is made from (echo), or one\n"
                "sounding against a map at the true poses (oracle; WINDOW=W: a multiscan of\n"
-               "the W scans before). Inputs: hl-eval text of the imports' SONAR and\n"
-               "GROUND_TRUTH. See tools/lab/realeval/sonar_study.sh.\n");
+               "the W scans before). Inputs: houghloc-import-carmen's logs of one\n"
+               "building. See tools/lab/realeval/sonar_study.sh.\n");
         return 0;
     }
     if (argc < 4)
@@ -270,8 +233,8 @@ int main(int argc, char **argv)
     bool oracle = strcmp(argv[1], "oracle") == 0;
     if (!oracle && strcmp(argv[1], "echo") != 0)
         return usage();
-    int first_key = oracle ? 5 : 4, nprev = 0, window = 0;
-    if (oracle && (argc < 5 || (nprev = atoi(argv[4])) < 1 || nprev > 1000))
+    int first_key = 4, nprev = 0, window = 0;
+    if (oracle && ((nprev = atoi(argv[3])) < 1 || nprev > 1000))
         return usage();
     if (oracle && getenv("WINDOW"))
         window = atoi(getenv("WINDOW"));
@@ -292,23 +255,20 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    log_t a = { .scans = malloc(MAX_SCANS * sizeof(hl_scan_t)),
-                .poses = malloc(MAX_SCANS * sizeof(hl_pose_t)) };
-    log_t b = { .scans = oracle ? NULL : malloc(MAX_SCANS * sizeof(hl_scan_t)),
-                .poses = malloc(MAX_SCANS * sizeof(hl_pose_t)) };
     /* The scans are prepared once with the settings; the tracker that localizes them
      * takes them as they are (no second echo estimate or normals fit). */
     hl_params_t as_is = params;
     hl_params_set(&as_is, "slam.echo_bearings", "false");
     hl_params_set(&as_is, "slam.fit_normals", "false");
     hl_slam_t *s = hl_slam_create(&as_is);
-    if (!a.scans || !a.poses || (!oracle && !b.scans) || !b.poses || !s)
+    run_log sonar, laser;
+    if (!s || read_log(argv[2], &sonar) || (!oracle && read_log(argv[3], &laser))) {
+        hl_slam_destroy(s);
         return 1;
-    if (read_log(argv[2], true, &a) || read_log(argv[3], !oracle, &b))
-        return 1;
+    }
     const hl_slam_params_t *sp = hl_params_slam_const(&params);
-    int st = oracle ? study_oracle(s, sp, &a, &b, nprev, window) : study_echo(sp, &a, &b);
+    int st = oracle ? study_oracle(s, sp, &sonar, nprev, window)
+                    : study_echo(sp, &sonar, &laser);
     hl_slam_destroy(s);
-    free(a.scans), free(a.poses), free(b.scans), free(b.poses);
     return st;
 }
