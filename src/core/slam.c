@@ -463,6 +463,8 @@ hl_status_t hl_slam_restore(hl_slam_t *s, const hl_slam_state_t *state,
     s->pose = state->pose;
     s->odom = state->odom;
     s->peak_avg = state->peak_avg;
+    if (s->multi)       /* the window's scans belonged to the run before */
+        hl_multiscan_clear(s->multi);
     /* unconfirmed until the watch's search agrees, at most until its next period */
     s->unconfirmed = s->p.search_every > 0 ? (uint32_t)s->p.search_every : 0;
     if (s->closure)     /* the stops are not saved: the restored vectors stay put */
