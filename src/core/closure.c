@@ -26,6 +26,8 @@ struct hl_closure {
                                its scan's, worked out once when recorded rather than a
                                sine and a cosine a reading of every stop at every fit) */
     double *wall_sigma;     /* ... its sigma, radians; 0: the stop says nothing of walls */
+    double *path;           /* the path driven to the stop since the record began, mm */
+    double closed_path;     /* ... to the newest stop a match was taken for */
     hl_pg_heading_t *headings;  /* [cap] scratch: the stops' headings for a fit */
     bool square_walls;
     double building_axis;   /* radians */
@@ -36,6 +38,14 @@ struct hl_closure {
     uint32_t map_capacity;
     hl_map_t *sub;          /* the map a match is sought in */
     hl_scan_t *query;       /* the scan a match is sought for, thinned (hl_closure_query) */
+    hl_corr_t *corr;        /* the correlative search (hl_closure_seek) ... */
+    hl_corr_point_t *sub_points, *query_points; /* ... its submap's and query's points */
+    struct pending {        /* ... the matches it found for one query, not yet settled */
+        uint32_t stamp;
+        hl_pose_t found;
+        double gate_mm, gate_rad;
+    } pending[HL_CLOSURE_MAX_MATCHES];
+    uint32_t n_pending, pending_query;
     /* A redraw spread over the scans that follow a fit (hl_closure_fit_spread): */
     bool redrawing;
     uint32_t next_drawn;    /* ... the stamp of the next stop to draw into the shadow map */
@@ -63,6 +73,7 @@ hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t 
     c->rng_before = malloc((size_t)stops * sizeof *c->rng_before);
     c->wall_axis = malloc((size_t)stops * sizeof *c->wall_axis);
     c->wall_sigma = malloc((size_t)stops * sizeof *c->wall_sigma);
+    c->path = malloc((size_t)stops * sizeof *c->path);
     c->headings = malloc((size_t)stops * sizeof *c->headings);
     c->edges = malloc((size_t)c->max_edges * sizeof *c->edges);
     c->graph = hl_posegraph_create(stops, c->max_edges);
@@ -70,10 +81,13 @@ hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t 
     c->kept = malloc((size_t)map_capacity * sizeof *c->kept);
     c->sub = hl_map_create(map_capacity, seed);
     c->query = malloc(sizeof *c->query);
+    c->corr = hl_corr_create();
+    c->sub_points = malloc(HL_CORR_MAX_POINTS * sizeof *c->sub_points);
+    c->query_points = malloc(HL_CORR_MAX_POINTS * sizeof *c->query_points);
     hl_rng_seed(&c->sub_rng, seed);
     if (!c->scans || !c->poses || !c->placed || !c->rng_before || !c->wall_axis ||
-        !c->wall_sigma || !c->headings || !c->edges || !c->graph || !c->kept || !c->sub ||
-        !c->query) {
+        !c->wall_sigma || !c->path || !c->headings || !c->edges || !c->graph || !c->kept || !c->sub ||
+        !c->query || !c->corr || !c->sub_points || !c->query_points) {
         hl_closure_destroy(c);
         return NULL;
     }
@@ -91,9 +105,13 @@ void hl_closure_destroy(hl_closure_t *c)
     free(c->rng_before);
     free(c->wall_axis);
     free(c->wall_sigma);
+    free(c->path);
     free(c->headings);
     free(c->edges);
     free(c->kept);
+    hl_corr_destroy(c->corr);
+    free(c->sub_points);
+    free(c->query_points);
     hl_posegraph_destroy(c->graph);
     hl_map_destroy(c->sub);
     free(c->query);
@@ -136,6 +154,7 @@ void hl_closure_reset(hl_closure_t *c)
     c->first = c->next;
     c->count = 0;
     c->n_edges = 0;
+    c->n_pending = 0;
     c->redrawing = false;
     c->undrawn = false;
 }
@@ -160,6 +179,7 @@ static void forget_oldest(hl_closure_t *c)
     memmove(c->rng_before, c->rng_before + 1, (c->count - 1) * sizeof *c->rng_before);
     memmove(c->wall_axis, c->wall_axis + 1, (c->count - 1) * sizeof *c->wall_axis);
     memmove(c->wall_sigma, c->wall_sigma + 1, (c->count - 1) * sizeof *c->wall_sigma);
+    memmove(c->path, c->path + 1, (c->count - 1) * sizeof *c->path);
     uint32_t kept = 0;
     for (uint32_t k = 0; k < c->n_edges; k++) {
         hl_pg_edge_t e = c->edges[k];
@@ -218,6 +238,11 @@ void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
     c->rng_before[i] = rng_before;
     c->wall_sigma[i] = 0;
     c->wall_axis[i] = c->square_walls ? walls_seen(placed, &c->wall_sigma[i]) : 0;
+    c->path[i] = i > 0 ? c->path[i - 1] + hypot(c->poses[i].x - c->poses[i - 1].x,
+                                                 c->poses[i].y - c->poses[i - 1].y)
+                       : 0;
+    if (i == 0)
+        c->closed_path = 0;
     if (i > 0 && c->n_edges < c->max_edges)
         c->edges[c->n_edges++] = (hl_pg_edge_t){ i - 1, i,
                                                  hl_pg_between(c->poses[i - 1], c->poses[i]),
@@ -282,13 +307,45 @@ hl_pose_t hl_closure_newest(const hl_closure_t *c)
 uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t query, uint32_t *stamps,
                                uint32_t max)
 {
+    return hl_closure_candidates_within(c, query, HL_CLOSURE_RADIUS_MM, stamps, max);
+}
+
+uint32_t hl_closure_candidates_within(const hl_closure_t *c, uint32_t query, double radius_mm,
+                                      uint32_t *stamps, uint32_t max)
+{
     uint32_t n = 0, k = query - c->first;
     if (k >= c->count || k < HL_CLOSURE_GAP)
         return 0;
     hl_pg_pose_t q = c->poses[k];
     for (uint32_t i = 0; i + HL_CLOSURE_GAP <= k && n < max; i++)
-        if (hypot(c->poses[i].x - q.x, c->poses[i].y - q.y) <= HL_CLOSURE_RADIUS_MM)
+        if (hypot(c->poses[i].x - q.x, c->poses[i].y - q.y) <= radius_mm)
             stamps[n++] = c->first + i;
+    return n;
+}
+
+void hl_closure_search_region(const hl_closure_t *c, uint32_t query, double *mm, double *rad)
+{
+    uint32_t k = query - c->first;
+    double driven = k < c->count ? fmax(0, c->path[k] - c->closed_path) : 0;
+    *mm = fmin(HL_CLOSURE_SEARCH_MAX_MM,
+               HL_CLOSURE_SEARCH_MM + HL_CLOSURE_SEARCH_GROWTH * driven);
+    *rad = fmin(HL_CLOSURE_SEARCH_MAX_DEG,
+                HL_CLOSURE_SEARCH_DEG + HL_CLOSURE_SEARCH_DEG_PER_M * driven / 1000) *
+           (PI / 180);
+}
+
+uint32_t hl_closure_submap_points(const hl_closure_t *c, uint32_t stamp, uint32_t query,
+                                  hl_corr_point_t *out, uint32_t max)
+{
+    uint32_t i = stamp - c->first, k = query - c->first, n = 0;
+    if (i >= c->count || k >= c->count)
+        return 0;
+    for (int32_t d = -HL_CLOSURE_SIDE; d <= HL_CLOSURE_SIDE; d++) {
+        int64_t q = (int64_t)i + d;
+        if (q >= 0 && q + HL_CLOSURE_GAP <= k)
+            n = hl_corr_points(&c->scans[(c->first + (uint32_t)q) % c->cap],
+                               hl_pg_from_pose(c->placed[q]), out, n, max);
+    }
     return n;
 }
 
@@ -343,6 +400,13 @@ bool hl_closure_counts(const hl_loc_result_t *loc, hl_pose_t found, hl_pose_t es
 
 bool hl_closure_match(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found)
 {
+    return hl_closure_match_within(c, stamp, query, found, HL_CLOSURE_GATE_MM,
+                                   HL_CLOSURE_GATE_DEG * (PI / 180));
+}
+
+bool hl_closure_match_within(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found,
+                             double gate_mm, double gate_rad)
+{
     uint32_t i = stamp - c->first, k = query - c->first;
     if (i >= c->count || k >= c->count || i + HL_CLOSURE_GAP > k ||
         c->n_edges >= c->max_edges)
@@ -354,12 +418,85 @@ bool hl_closure_match(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t
      * out of every earlier result (the goldens, the lab tours). */
     hl_pg_pose_t at = c->undrawn ? hl_pg_from_pose(c->placed[i]) : c->poses[i];
     hl_pg_pose_t said = hl_pg_between(at, hl_pg_from_pose(found));
-    double turn_deg = fabs(remainder(now.theta - said.theta, 2 * PI)) * (180 / PI);
-    if (hypot(now.x - said.x, now.y - said.y) > HL_CLOSURE_GATE_MM ||
-        turn_deg > HL_CLOSURE_GATE_DEG)
+    if (hypot(now.x - said.x, now.y - said.y) > gate_mm ||
+        fabs(remainder(now.theta - said.theta, 2 * PI)) > gate_rad)
         return false;
     c->edges[c->n_edges++] = (hl_pg_edge_t){ i, k, said, true };
+    c->closed_path = fmax(c->closed_path, c->path[k]);
     return true;
+}
+
+bool hl_closure_seek(hl_closure_t *c, uint32_t stamp, uint32_t query, uint32_t max_readings,
+                     hl_pose_t *found)
+{
+    const hl_scan_t *scan = hl_closure_query(c, query, max_readings);
+    uint32_t n_sub = hl_closure_submap_points(c, stamp, query, c->sub_points, HL_CORR_MAX_POINTS);
+    uint32_t n_query = scan ? hl_corr_points(scan, (hl_pg_pose_t){ 0, 0, 0 }, c->query_points,
+                                             0, HL_CORR_MAX_POINTS)
+                            : 0;
+    double mm, rad;
+    hl_closure_search_region(c, query, &mm, &rad);
+    /* From where the map has the query, as the submap is drawn where the map has its
+     * stops. */
+    hl_pg_pose_t center = hl_pg_from_pose(hl_closure_pose(c, query));
+    hl_corr_params_t search = { mm, rad, HL_CLOSURE_CORR_MIN_SCORE, HL_CLOSURE_CORR_RUNNER_UP,
+                                HL_CLOSURE_CORR_DISTINCT_MM,
+                                HL_CLOSURE_CORR_DISTINCT_DEG * (PI / 180) };
+    hl_corr_result_t r;
+    if (!hl_corr_search(c->corr, c->sub_points, n_sub, c->query_points, n_query, center,
+                        &search, &r) ||
+        !r.matched)
+        return false;
+    *found = hl_pg_to_pose(r.pose);
+    return true;
+}
+
+void hl_closure_pend(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found)
+{
+    if (c->n_pending > 0 && c->pending_query != query)
+        c->n_pending = 0;
+    if (c->n_pending == HL_CLOSURE_MAX_MATCHES)
+        return;
+    double mm, rad;
+    hl_closure_search_region(c, query, &mm, &rad);
+    /* The region is a square about the centre, and a polish may leave it by a cell. */
+    c->pending[c->n_pending++] = (struct pending){ stamp, found, mm * sqrt(2) + HL_CORR_CELL_MM,
+                                                   rad * 1.1 };
+    c->pending_query = query;
+}
+
+/* Whether pending matches @p a and @p b put the query at the same place in the map. */
+static bool agree(const struct pending *a, const struct pending *b)
+{
+    double dx = (double)a->found.x_mm - b->found.x_mm, dy = (double)a->found.y_mm - b->found.y_mm;
+    return hypot(dx, dy) <= HL_CLOSURE_CORR_AGREE_MM &&
+           abs(hl_bam_diff(a->found.theta, b->found.theta)) <=
+               hl_bam_from_deg(HL_CLOSURE_CORR_AGREE_DEG);
+}
+
+uint32_t hl_closure_settle(hl_closure_t *c, uint32_t query)
+{
+    uint32_t n = c->pending_query == query ? c->n_pending : 0, best = 0, size = 0;
+    c->n_pending = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t m = 0;
+        for (uint32_t j = 0; j < n; j++)
+            m += agree(&c->pending[i], &c->pending[j]);
+        if (m > size) {
+            size = m;
+            best = i;
+        }
+    }
+    if (size < HL_CLOSURE_CORR_AGREEING)
+        return 0;
+    uint32_t taken = 0;
+    for (uint32_t j = 0; j < n; j++) {
+        const struct pending *p = &c->pending[j];
+        if (agree(&c->pending[best], p))
+            taken += hl_closure_match_within(c, p->stamp, query, p->found, p->gate_mm,
+                                             p->gate_rad);
+    }
+    return taken;
 }
 
 /* The map drawn again: the vectors of stops no longer recorded where they are, then every

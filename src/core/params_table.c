@@ -102,7 +102,10 @@ const hl_param_entry_t hl_param_table[] = {
     INT("slam.keyframe_mm", E, I32, keyframe_mm, 0, 100000, "0",
         "... a mapped scan is a stop of its own (a node of the fit) when the robot has moved "
         "this far (or turned 20 degrees) since the last stop (0: every scan is a stop)"),
-    REAL("slam.closure_match_weight", E, closure_match_weight, 0.001, 1, "1",
+    FLAG("slam.closure_correlative", E, closure_correlative, "false",
+         "... match a stop by a correlative search of a region growing with the path since the "
+         "last match, taken when unambiguous and two agree (false: the vote within 0.5 m)"),
+    REAL("slam.closure_match_weight", S, closure_match_weight, 0.001, 1, "1",
          "... a match counts this share of a step in the fit (1: as much)"),
     INT("slam.closure_matches_per_scan", E, U32, closure_matches_per_scan, 0, 16, "0",
         "... seek this many of a stop's matches a scan, in the scans after it, then fit in "
@@ -283,9 +286,11 @@ const size_t hl_param_table_len = sizeof hl_param_table / sizeof hl_param_table[
     { "slam.keyframe_mm", "500", \
       "with loop closure: a stop of its own every 0.5 m (or 20 degrees) of a continuous " \
       "drive, the scans between joining it, rather than a stop a scan" }, \
-    { "slam.closure_match_weight", "0.1", \
-      "... a match counting a tenth of a step: keyframes joined by many scans' tracking " \
-      "are surer than a match against a few stops" }, \
+    { "slam.closure_stops", "1024", \
+      "... remembering 1,024 keyframes (500 m): each real building measured whole" }, \
+    { "slam.closure_correlative", "true", \
+      "... a keyframe matched by a correlative search of the region its drift allows: on " \
+      "five real buildings better than the vote within 0.5 m on most" }, \
     { "slam.closure_matches_per_scan", "4", \
       "... and a stop's matches sought 4 a scan in the scans after it, its fit in the next" }, \
     { "slam.closure_redraw_readings", "50000", \

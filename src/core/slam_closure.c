@@ -22,19 +22,52 @@ void hl_slam_closure_reset(hl_slam_t *s)
     s->matching = (hl_slam_matching_t){ 0 };
 }
 
-/* Stop @p query localized in stop @p stamp's submap from where the map has it: a match
- * when it counts (hl_closure_counts) and passes the gate. */
-static bool match(hl_slam_t *s, uint32_t stamp, uint32_t query)
+/* Stop @p query localized in stop @p stamp's submap by the tracker's own search from
+ * @p from: whether it counts (hl_closure_counts) within @p wild_mm of it. */
+static bool localize_in_submap(hl_slam_t *s, uint32_t stamp, uint32_t query, hl_pose_t from,
+                               hl_mm_t wild_mm, hl_pose_t *found)
 {
     const hl_map_t *sub = hl_closure_submap(s->closure, stamp, query);
     const hl_scan_t *scan = hl_closure_query(s->closure, query,
                                             s->p.closure_match_readings);
-    hl_pose_t at = hl_closure_pose(s->closure, query);
     hl_loc_result_t loc;
-    hl_pose_t found;
-    return sub && scan && hl_slam_localize_in(s, sub, scan, at, &loc, &found) == HL_OK &&
-           hl_closure_counts(&loc, found, at, HL_SLAM_MIN_VOTES, HL_SLAM_WILD_MM) &&
+    return sub && scan && hl_slam_localize_in(s, sub, scan, from, &loc, found) == HL_OK &&
+           hl_closure_counts(&loc, *found, from, HL_SLAM_MIN_VOTES, wild_mm);
+}
+
+/* Stop @p query matched with stop @p stamp: localized in its submap from where the map has
+ * it, a match when it counts and passes the gate. With the correlative search: found
+ * anywhere in the region, then, when the tracker polishes its own answers (slam.refine),
+ * polished by the tracker's search from there (its peak and point-to-line fit are finer
+ * than the search's 50 mm field; a sonar sounding's Hough peak is not) if that agrees, and
+ * held
+ * until the stop's matches are settled (hl_closure_settle). */
+static bool match(hl_slam_t *s, uint32_t stamp, uint32_t query)
+{
+    hl_pose_t found, polished;
+    if (s->p.closure_correlative) {
+        if (!hl_closure_seek(s->closure, stamp, query, s->p.closure_match_readings, &found))
+            return false;
+        if (s->p.refine &&
+            localize_in_submap(s, stamp, query, found, HL_CLOSURE_CORR_POLISH_MM, &polished))
+            found = polished;
+        hl_closure_pend(s->closure, stamp, query, found);
+        return false;
+    }
+    return localize_in_submap(s, stamp, query, hl_closure_pose(s->closure, query),
+                              HL_SLAM_WILD_MM, &found) &&
            hl_closure_match(s->closure, stamp, query, found);
+}
+
+/* The earlier stops stop @p query is to be matched against: those near it, or with a
+ * correlative search those near the region it searches. */
+static uint32_t candidates(const hl_slam_t *s, uint32_t query, uint32_t *stamps)
+{
+    double radius = HL_CLOSURE_RADIUS_MM, mm = 0, rad;
+    if (s->p.closure_correlative)
+        hl_closure_search_region(s->closure, query, &mm, &rad);
+    return hl_closure_candidates_within(s->closure, query, radius + mm, stamps,
+                                        HL_CLOSURE_MAX_MATCHES);
 }
 
 /* Every stop fitted to the matches; the map drawn again at once (*pose carried into the
@@ -66,10 +99,12 @@ static uint32_t query_stop(const hl_slam_t *s)
 static uint32_t close_at_once(hl_slam_t *s, hl_pose_t *pose)
 {
     uint32_t stamps[HL_CLOSURE_MAX_MATCHES], query = query_stop(s);
-    uint32_t n = hl_closure_candidates(s->closure, query, stamps, HL_CLOSURE_MAX_MATCHES);
+    uint32_t n = candidates(s, query, stamps);
     uint32_t taken = 0;
     for (uint32_t k = 0; k < n; k++)
         taken += match(s, stamps[k], query);
+    if (s->p.closure_correlative)
+        taken = hl_closure_settle(s->closure, query);
     if (taken)
         fit(s, pose);
     return taken;
@@ -95,12 +130,14 @@ static uint32_t close_a_share(hl_slam_t *s, bool stop, hl_pose_t *pose)
     }
     if (m->next == m->n && stop) {
         m->query = query_stop(s);
-        m->n = hl_closure_candidates(s->closure, m->query, m->stamps, HL_CLOSURE_MAX_MATCHES);
+        m->n = candidates(s, m->query, m->stamps);
         m->next = m->taken = 0;
     }
     uint32_t taken = 0;
     for (uint32_t k = 0; k < s->p.closure_matches_per_scan && m->next < m->n; k++)
         taken += match(s, m->stamps[m->next++], m->query);
+    if (s->p.closure_correlative)     /* found, to be settled once all are sought */
+        taken = m->next == m->n ? hl_closure_settle(s->closure, m->query) : 0;
     m->taken += taken;
     if (m->next == m->n && m->taken) {
         m->fit_due = true;

@@ -117,6 +117,65 @@ static void test_a_stop_back_near_an_old_one_is_matched_and_pulled_back(void **s
     free(l);
 }
 
+/* The correlative search finds a stop drifted beyond the tracker's gate (600 mm and 6
+ * degrees): its region has grown with the 12 m driven since the record began. Its
+ * matches are held until settled, and taken only when two agree. */
+static void test_a_correlative_search_finds_a_stop_drifted_far_and_two_must_agree(void **state)
+{
+    (void)state;
+    loop_t *l = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_closure_t *c = hl_closure_create(16, CAP, 1);
+    hl_map_t *map = hl_map_create(CAP, 1);
+    hl_pose_t truth = l->truth[6];
+    hl_pose_t drifted = { truth.x_mm + 600, truth.y_mm - 400, hl_bam_from_deg(6.0) };
+    record_loop(l, c, map, drifted, scan);
+    double mm, rad;
+    hl_closure_search_region(c, 7, &mm, &rad);
+    assert_true(mm > 800 && mm < 1000);                 /* 300 mm + a twentieth of ~12 m */
+    assert_true(rad * 180 / 3.14159265 > 8.5 && rad * 180 / 3.14159265 < 9.5);
+
+    /* Stops 0 and 1 are near enough to the region; stop 5 is too recent. */
+    uint32_t stamps[HL_CLOSURE_MAX_MATCHES];
+    assert_int_equal(hl_closure_candidates_within(c, 7, HL_CLOSURE_RADIUS_MM + mm, stamps,
+                                                  HL_CLOSURE_MAX_MATCHES), 2);
+    hl_pose_t found[2];
+    for (int k = 0; k < 2; k++) {
+        assert_true(hl_closure_seek(c, stamps[k], 7, 0, &found[k]));
+        assert_true(dist(found[k], truth) < 30);
+        assert_true(abs(hl_bam_diff(found[k].theta, truth.theta)) < hl_bam_from_deg(0.5));
+    }
+    assert_false(hl_closure_seek(c, 99, 7, 0, &found[0]));
+
+    /* One match alone, or two that disagree, are not taken; two that agree are. */
+    hl_closure_pend(c, stamps[0], 7, found[0]);
+    assert_int_equal(hl_closure_settle(c, 7), 0);
+    hl_pose_t elsewhere = { found[1].x_mm + 400, found[1].y_mm, found[1].theta };
+    hl_closure_pend(c, stamps[0], 7, found[0]);
+    hl_closure_pend(c, stamps[1], 7, elsewhere);
+    assert_int_equal(hl_closure_settle(c, 7), 0);
+    hl_closure_pend(c, stamps[0], 7, found[0]);
+    hl_closure_pend(c, stamps[1], 7, found[1]);
+    assert_int_equal(hl_closure_settle(c, 99), 0);      /* held for another stop */
+    hl_closure_pend(c, stamps[0], 7, found[0]);
+    hl_closure_pend(c, stamps[1], 7, found[1]);
+    assert_int_equal(hl_closure_settle(c, 7), 2);
+    assert_int_equal(hl_closure_settle(c, 7), 0);       /* settled once */
+
+    /* Two matches 14 of their sigmas from what six steps say: the fit's kernel weighs them
+     * next to nothing and drops them (the steps are trusted over matches that far off; a
+     * kernel widened with the region kept them, and lost on the real buildings). */
+    assert_int_equal(hl_closure_fit(c, map), 2);
+    assert_true(dist(hl_closure_newest(c), drifted) < 5);
+    /* A match taken, though dropped: the region shrinks back to its start. */
+    hl_closure_search_region(c, 7, &mm, &rad);
+    assert_true(mm == HL_CLOSURE_SEARCH_MM);
+    hl_map_destroy(map);
+    hl_closure_destroy(c);
+    free(scan);
+    free(l);
+}
+
 /* Candidates are sought for a given stop: with keyframes the slam asks for the stop before
  * the newest, whose scan is complete. Stop 6 (stamp 7) is back near stop 0; a stop 8 m
  * on is near nothing. */
@@ -600,6 +659,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_a_stop_back_near_an_old_one_is_matched_and_pulled_back),
+        cmocka_unit_test(test_a_correlative_search_finds_a_stop_drifted_far_and_two_must_agree),
         cmocka_unit_test(test_candidates_are_those_of_the_stop_asked_for),
         cmocka_unit_test(test_a_query_is_thinned_evenly),
         cmocka_unit_test(test_forgotten_stops_are_not_offered),

@@ -9,8 +9,9 @@
 # Every (building, input, mode, selection, start) is one file target, a row of the table
 # in EVAL_OUT/rows/, made by tools/lab/realeval/run_one.sh: odometry alone (houghloc-eval
 # --odometry; one row, start origin), or a replay through houghlocd's batch path (the
-# daemon the robot runs, configured by tools/lab/realeval/INPUT.conf, or INPUT-paper.conf
-# for the paper mode) scored by houghloc-eval, from each of four starts: the robot's own
+# daemon the robot runs, configured by tools/lab/realeval/INPUT.conf, INPUT-paper.conf
+# for the paper mode, INPUT-loops.conf for the improved mode with loop closure) scored by
+# houghloc-eval, from each of four starts: the robot's own
 # frame (origin, the daemon's default), that frame turned 30 and 45 degrees, and the
 # first true pose (truth, for reference). Imports are cached in EVAL_OUT/input/, one per
 # (building, input, selection), shared by the modes and starts. report.sh then writes
@@ -26,7 +27,7 @@ BUILDINGS ?= intel aces freiburg-079 csail freiburg-101
 EVAL_OUT  ?= $(BUILD)/eval
 
 REALEVAL_INPUTS     := laser sonar
-REALEVAL_MODES      := odometry paper improved
+REALEVAL_MODES      := odometry paper improved loops
 REALEVAL_SELECTIONS := every moved
 REALEVAL_STARTS     := origin turned30 turned45 truth
 REALEVAL_PROGS := $(BUILD)/bin/houghlocd $(BUILD)/bin/hl-eval $(BUILD)/bin/houghloc-eval \
@@ -70,6 +71,7 @@ endef
 define realeval_cell
 $(EVAL_OUT)/rows/$(1)_$(2)_$(3)_$(4)_$(5).tsv: $(EVAL_OUT)/input/$(1)_$(2)_$(4).lcmlog \
         $(REALEVAL_PROGS) tools/lab/realeval/$(2).conf tools/lab/realeval/$(2)-paper.conf \
+        tools/lab/realeval/$(2)-loops.conf \
         tools/lab/realeval/run_one.sh
 	$$(Q)$$(REALEVAL_ENV) sh tools/lab/realeval/run_one.sh cell $(1) $(2) $(4) $(3) $(5)
 endef

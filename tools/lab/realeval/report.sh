@@ -4,7 +4,7 @@
 #   report.sh tsv EVAL_OUT 'BUILDING ...'
 #       prints real.tsv: the header, then the row files
 #       EVAL_OUT/rows/B_INPUT_MODE_SEL_START.tsv that run_one.sh wrote, in the order
-#       building (as given), input (laser, sonar), mode (odometry, paper, improved),
+#       building (as given), input (laser, sonar), mode (odometry, paper, improved, loops),
 #       selection (every, moved), start (origin, turned30, turned45, truth; odometry: origin)
 #   report.sh md EVAL_OUT 'BUILDING ...' BASELINES
 #       prints real.md from EVAL_OUT/real.tsv: one table per input of the origin rows,
@@ -28,7 +28,7 @@ tsv() {     # tsv EVAL_OUT BUILDINGS
     printf '%s\n' "$HEADER"
     for b in $2; do
         for i in laser sonar; do
-            for m in odometry paper improved; do
+            for m in odometry paper improved loops; do
                 starts="origin turned30 turned45 truth"
                 [ "$m" = odometry ] && starts=origin
                 for s in every moved; do for t in $starts; do
@@ -117,11 +117,12 @@ EOF
     { key = $1 SUBSEP $2 SUBSEP $3 SUBSEP $4; ate[key, $13] = $6; if ($13 == "origin") row[key] = $0 }
     END {
         split("odometry alone|CSM|BreezySLAM", peers, "|")
-        split("odometry|paper|improved", modes, "|")
+        split("odometry|paper|improved|loops", modes, "|")
         split("every|moved", sels, "|")
         label["odometry"] = "odometry alone"
         label["paper"] = "houghloc, paper mode"
         label["improved"] = "houghloc, improved mode"
+        label["loops"] = "houghloc, improved mode with loop closure"
         for (ii = 1; ii <= 2; ii++) {
             inp = ii == 1 ? "laser" : "sonar"
             printf "\n## %s input\n\n", inp == "laser" ? "Laser" : "Pseudo-sonar"
@@ -136,7 +137,7 @@ EOF
                         p == 1 ? "" : ", every", pscans[k], pate[k], prpe[k], pms[k]
                 }
                 for (si = 1; si <= 2; si++)
-                    for (mi = 1; mi <= 3; mi++) {
+                    for (mi = 1; mi <= 4; mi++) {
                         k = b SUBSEP inp SUBSEP modes[mi] SUBSEP sels[si]
                         if (!(k in row)) continue
                         split(row[k], v, "\t")
@@ -154,7 +155,7 @@ EOF
             print "| building | method | origin | turned 30 | turned 45 | spread: max - min (of the median) | first true pose (reference) |"
             print "|---|---|---|---|---|---|---|"
             for (bi = 1; bi <= nb; bi++)
-                for (mi = 3; mi >= 2; mi--)
+                for (mi = 4; mi >= 2; mi--)
                     for (si = 1; si <= 2; si++) {
                         k = bs[bi] SUBSEP inp SUBSEP modes[mi] SUBSEP sels[si]
                         if (!((k, "origin") in ate)) continue

@@ -7,9 +7,10 @@
 #       modes; written under a temporary name and renamed, so it is whole or absent)
 #   run_one.sh cell BUILDING INPUT SELECTION MODE [START]
 #       imports if the import is missing, then for MODE odometry scores the odometry
-#       alone (houghloc-eval --odometry); for MODE paper or improved replays the import
-#       through houghlocd's batch path (tools/lab/realeval/INPUT.conf for improved,
-#       INPUT-paper.conf for paper) from START and scores its POSE; writes the row
+#       alone (houghloc-eval --odometry); for MODE paper, improved or loops replays the
+#       import through houghlocd's batch path (tools/lab/realeval/INPUT.conf for improved,
+#       INPUT-paper.conf for paper, INPUT-loops.conf for loops: the improved mode with
+#       loop closure) from START and scores its POSE; writes the row
 #       EVAL_OUT/rows/BUILDING_INPUT_MODE_SELECTION_START.tsv
 #   run_one.sh map BUILDING [INPUT]
 #       draws EVAL_OUT/BUILDING.png (INPUT laser, the default) or BUILDING-sonar.png: the
@@ -17,7 +18,8 @@
 #       true path moved into the estimate's frame by the ATE's alignment (houghloc-map
 #       --start; the daemon never sees the truth)
 #
-# INPUT is laser or sonar, SELECTION every or moved, MODE odometry, paper or improved.
+# INPUT is laser or sonar, SELECTION every or moved, MODE odometry, paper, improved or
+# loops.
 # START (default origin) is where the daemon's map frame begins:
 #   origin     the robot's own start frame: no start pose given, the daemon's default
 #              (0, 0, 0), as a robot runs it
@@ -138,7 +140,7 @@ case $cmd in
 import) [ $# -eq 4 ] || usage ;;
 cell) [ $# -eq 5 ] || [ $# -eq 6 ] || usage
     mode=$5 start=${6:-origin}
-    case $mode in odometry | paper | improved) ;; *) usage ;; esac
+    case $mode in odometry | paper | improved | loops) ;; *) usage ;; esac
     case $start in origin | turned30 | turned45 | truth) ;; *) usage ;; esac
     [ "$mode" != odometry ] || [ "$start" = origin ] || usage ;;
 *) usage ;;
@@ -189,6 +191,7 @@ if [ "$mode" = odometry ]; then
 else
     conf=$HERE/$input.conf          # the improved mode
     [ "$mode" = paper ] && conf=$HERE/$input-paper.conf
+    [ "$mode" = loops ] && conf=$HERE/$input-loops.conf
     [ -r "$conf" ] || die replay "no $conf"
     # The start pose (none for origin: the daemon's default).
     case $start in

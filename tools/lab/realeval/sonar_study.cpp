@@ -18,6 +18,16 @@
  *       Prints one line:
  *         oracle scans=N failed=N heading_rms_deg=X position_rms_mm=X
  *                odometry_heading_rms_deg=X odometry_position_rms_mm=X
+ *   hl-sonar-study truth LASER.lcmlog
+ *       how well the ground truth itself agrees with the laser: each laser scan matched
+ *       (corrmatch.h, +-150 mm and 3 degrees about its true pose) against the scan before
+ *       it drawn at its true pose, and against the scan two before; the first match's
+ *       answer against the true pose is the truth's disagreement with the laser from one
+ *       scan to the next, and the two matches' triangle (one step and the next against
+ *       the two at once) the matcher's own. Pairs whose three matches all score 0.8 or
+ *       more count. Prints one line:
+ *         truth pairs=N heading_rms_deg=X position_rms_mm=X triangle_heading_rms_deg=X
+ *               triangle_position_rms_mm=X
  *
  * SONAR.lcmlog and LASER.lcmlog are houghloc-import-carmen's --input sonar and --input
  * laser logs of one building, read with the experiments' reader (dataset.hpp): both have
@@ -35,6 +45,9 @@
 
 #include "dataset.hpp"
 
+extern "C" {
+#include "houghloc-internal/corrmatch.h"
+}
 #include "houghloc-internal/multiscan.h"
 #include "houghloc-internal/params.h"
 #include "houghloc-internal/slam_params.h"
@@ -55,7 +68,8 @@ struct run_log {
 static int usage(void)
 {
     fprintf(stderr, "usage: hl-sonar-study echo SONAR.lcmlog LASER.lcmlog [KEY=VALUE ...]\n"
-                    "       hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]\n");
+                    "       hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]\n"
+                    "       hl-sonar-study truth LASER.lcmlog\n");
     return 2;
 }
 
@@ -217,16 +231,77 @@ static int study_oracle(hl_slam_t *s, const hl_slam_params_t *sp, const run_log 
     return 0;
 }
 
+/* Scan @p k matched against scan @p j drawn at its true pose, from its own true pose:
+ * the answer less the true pose (world frame, mm and degrees); false unless it scores
+ * TRUTH_MIN_SCORE. */
+#define TRUTH_MIN_SCORE 0.8
+static bool match_truth(hl_corr_t *c, const run_log *l, int j, int k, double err[3])
+{
+    static hl_corr_point_t map[HL_CORR_MAX_POINTS], query[HL_CORR_MAX_POINTS];
+    const hl_pose_t *gt = l->truth.data();
+    uint32_t n_map = hl_corr_points(&l->scans[j], hl_pg_from_pose(gt[j]), map, 0,
+                                    HL_CORR_MAX_POINTS);
+    uint32_t n_query = hl_corr_points(&l->scans[k], hl_pg_pose_t{ 0, 0, 0 }, query, 0,
+                                      HL_CORR_MAX_POINTS);
+    hl_corr_params_t p = { 150, 3 * PI / 180, TRUTH_MIN_SCORE, 1, 0, 0 };
+    hl_corr_result_t r;
+    hl_pg_pose_t at = hl_pg_from_pose(gt[k]);
+    if (!hl_corr_search(c, map, n_map, query, n_query, at, &p, &r) || !r.matched)
+        return false;
+    err[0] = r.pose.x - at.x;
+    err[1] = r.pose.y - at.y;
+    err[2] = remainder(r.pose.theta - at.theta, 2 * PI) * 180 / PI;
+    return true;
+}
+
+static int study_truth(const run_log *laser)
+{
+    hl_corr_t *c = hl_corr_create();
+    if (!c)
+        return 1;
+    std::vector<std::vector<double>> one(laser->n);
+    std::vector<bool> ok(laser->n, false);
+    double h2 = 0, p2 = 0, th2 = 0, tp2 = 0;
+    int m = 0;
+    for (int k = 1; k < laser->n; k++) {
+        one[k].resize(3);
+        ok[k] = match_truth(c, laser, k - 1, k, one[k].data());
+        double two[3];
+        if (k < 2 || !ok[k] || !ok[k - 1] || !match_truth(c, laser, k - 2, k, two))
+            continue;
+        /* Scan k-1 to k and k-2 to k-1, added, against k-2 to k at once: the steps are a
+         * few centimetres, so their errors add in the world frame. */
+        double tx = one[k][0] + one[k - 1][0] - two[0], ty = one[k][1] + one[k - 1][1] - two[1];
+        double th = one[k][2] + one[k - 1][2] - two[2];
+        h2 += one[k][2] * one[k][2];
+        p2 += one[k][0] * one[k][0] + one[k][1] * one[k][1];
+        th2 += th * th;
+        tp2 += tx * tx + ty * ty;
+        m++;
+    }
+    printf("truth pairs=%d heading_rms_deg=%.3f position_rms_mm=%.1f triangle_heading_rms_deg=%.3f "
+           "triangle_position_rms_mm=%.1f\n", m, m ? sqrt(h2 / m) : 0, m ? sqrt(p2 / m) : 0,
+           m ? sqrt(th2 / m) : 0, m ? sqrt(tp2 / m) : 0);
+    hl_corr_destroy(c);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc == 2 && strcmp(argv[1], "--help") == 0) {
         printf("usage: hl-sonar-study echo SONAR.lcmlog LASER.lcmlog [KEY=VALUE ...]\n"
                "       hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]\n"
-               "The pseudo-sonar ring against the laser it is made from (echo), or one\n"
+               "       hl-sonar-study truth LASER.lcmlog\n"
+               "The pseudo-sonar ring against the laser it is made from (echo), one\n"
                "sounding against a map at the true poses (oracle; WINDOW=W: a multiscan of\n"
-               "the W scans before). Inputs: houghloc-import-carmen's logs of one\n"
-               "building. See tools/lab/realeval/sonar_study.sh.\n");
+               "the W scans before), or the ground truth against the laser (truth).\n"
+               "Inputs: houghloc-import-carmen's logs of one building. See\n"
+               "tools/lab/realeval/sonar_study.sh.\n");
         return 0;
+    }
+    if (argc == 3 && strcmp(argv[1], "truth") == 0) {
+        run_log laser;
+        return read_log(argv[2], &laser) ? 1 : study_truth(&laser);
     }
     if (argc < 4)
         return usage();

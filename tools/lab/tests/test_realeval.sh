@@ -2,7 +2,7 @@
 # Integration test of `make eval-real` (tools/lab/realeval/) without the real data: two small
 # buildings written here (a laser going twice round a pillar in a rectangular room, with
 # odometry that drifts), run through the whole pipeline with DATA= and BUILDINGS=, two
-# jobs at a time. Checks real.tsv's header, its 72 rows in order with their starts
+# jobs at a time. Checks real.tsv's header, its 104 rows in order with their starts
 # (origin, turned30, turned45, truth; odometry origin only), that each start is the one
 # the daemon ran from (its first POSE), the `-` cells of the odometry rows and the numbers
 # everywhere else, the scan counts of both selections, real.md's tables (the origin rows
@@ -111,11 +111,11 @@ check "make eval-real on two small buildings exits 0" test $rc -eq 0
 tsv=$out/real.tsv
 
 check "real.tsv's header: the columns as before, start last" test "$(head -n 1 "$tsv")" = "$(printf 'dataset\tinput\tmode\tselection\tscans\tate_rmse_m\trpe_trans_rmse_m\trpe_trans_mean_m\tmax_err_m\tms_per_scan\twall_ms_per_scan\trejected\tstart')"
-check "real.tsv: 72 rows (2 buildings x 2 inputs x 2 selections x (odometry + 2 modes x 4 starts))" \
-    test "$(wc -l <"$tsv")" -eq 73
+check "real.tsv: 104 rows (2 buildings x 2 inputs x 2 selections x (odometry + 3 modes x 4 starts))" \
+    test "$(wc -l <"$tsv")" -eq 105
 # The order: building as given, input, mode, selection, start.
 awk -F '\t' 'NR > 1 { print $1, $2, $3, $4, $13 }' "$tsv" >"$tmp/keys"
-for b in room hall; do for i in laser sonar; do for m in odometry paper improved; do
+for b in room hall; do for i in laser sonar; do for m in odometry paper improved loops; do
     starts="origin turned30 turned45 truth"
     [ $m = odometry ] && starts=origin
     for s in every moved; do for t in $starts; do echo "$b $i $m $s $t"; done; done
@@ -180,17 +180,17 @@ check "rejected = the daemon's rejected_wild (room laser every improved turned30
     awk -F "\t" -v w="$w" "\$1 == \"room\" && \$2 == \"laser\" && \$3 == \"improved\" && \$4 == \"every\" && \$13 == \"turned30\" { f = (\$12 == w) } END { exit !f }" "$2"' \
     - "$out" "$tsv"
 check "progress on stderr, one line per row" \
-    test "$(grep -c '^eval-real: .*: done, ATE .* rows)$' "$tmp/make.err")" -eq 72
+    test "$(grep -c '^eval-real: .*: done, ATE .* rows)$' "$tmp/make.err")" -eq 104
 
 md=$out/real.md
 check "real.md exists" test -s "$md"
 check "real.md: a laser and a pseudo-sonar table" \
     sh -c 'grep -q "^## Laser input" "$1" && grep -q "^## Pseudo-sonar input" "$1"' - "$md"
-check "real.md: the origin tables, 2 x (3 peers + 12 of ours) rows, then the starts', 2 x 8" sh -c '
+check "real.md: the origin tables, 2 x (3 peers + 16 of ours) rows, then the starts', 2 x 12" sh -c '
     sed "/^## Start frames/q" "$2" >"$1.methods"
-    test "$(grep -c "^| \(room\|hall\) |" "$1.methods")" -eq 30 &&
+    test "$(grep -c "^| \(room\|hall\) |" "$1.methods")" -eq 38 &&
     test "$(grep -c "^## Start frames, " "$2")" -eq 2 &&
-    test "$(sed -n "/^## Start frames/,\$p" "$2" | grep -c "^| \(room\|hall\) |")" -eq 16' \
+    test "$(sed -n "/^## Start frames/,\$p" "$2" | grep -c "^| \(room\|hall\) |")" -eq 24' \
     - "$tmp/md" "$md"
 # The headline rows are the origin's: real.md's improved row for room, laser, every, up
 # to its times (which differ from run to run).
@@ -273,6 +273,13 @@ for pair in laser:laser sonar-continuous:sonar; do
     "$BIN/houghlocd" --config "tools/lab/realeval/${pair#*:}.conf" --print-config=all >"$tmp/prof.b"
     check "tools/lab/realeval/${pair#*:}.conf is slam.profile=${pair%%:*}, nothing else changed" \
         cmp -s "$tmp/prof.a" "$tmp/prof.b"
+    # The loops mode: the same profile with loop closure turned on, and nothing else.
+    "$BIN/houghlocd" --config /dev/null --set slam.profile=${pair%%:*} --set slam.close_loops=true \
+        --print-config=all >"$tmp/prof.c"
+    "$BIN/houghlocd" --config "tools/lab/realeval/${pair#*:}-loops.conf" --print-config=all >"$tmp/prof.d"
+    check "tools/lab/realeval/${pair#*:}-loops.conf is slam.profile=${pair%%:*} with close_loops = true" \
+        sh -c 'cmp -s "$1" "$2" && grep -q "^close_loops = true$" "$2" &&
+               grep -q "^closure_correlative = true$" "$2"' - "$tmp/prof.c" "$tmp/prof.d"
 done
 
 exit $fail

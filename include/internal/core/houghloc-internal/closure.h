@@ -8,8 +8,10 @@
  * scan is matched against, and nothing takes it back. Here, when the robot comes back
  * within HL_CLOSURE_RADIUS_MM of a stop made at least HL_CLOSURE_GAP stops before, the new
  * scan is matched against that stop and its neighbours alone, and all the stops are
- * fitted to all such matches at once. The study and the figures behind the constants
- * below: docs/design/loop-closure.md.
+ * fitted to all such matches at once. A continuous sensor's keyframes are matched instead
+ * by a correlative search of the region their drift allows (hl_closure_seek, corrmatch.h),
+ * held until all of a keyframe's are found and taken when two agree (hl_closure_settle).
+ * The study and the figures behind the constants below: docs/design/loop-closure.md.
  *
  * The record holds `stops` stops (each with its scan: about 12 KB a stop); when full, the
  * oldest is forgotten with its matches, and the oldest left is held where it is. Vectors
@@ -24,6 +26,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "houghloc-internal/corrmatch.h"
 #include "houghloc-internal/localize.h"
 #include "houghloc-internal/map.h"
 #include "houghloc/rng.h"
@@ -46,6 +49,29 @@
 #define HL_CLOSURE_SIGMA_DEG 1.5
 #define HL_CLOSURE_OUTLIER 3.0      /* a match this many sigmas off the fit is dropped */
 #define HL_CLOSURE_MAX_STOPS 4096
+
+/* The correlative search (slam.closure_correlative, corrmatch.h): its region is the
+ * drift the tracking may have gathered since the last match taken, so that it grows with
+ * the path driven since then (the graph's own uncertainty, as the steps between add it
+ * up), and the candidates are the stops within HL_CLOSURE_RADIUS_MM of that region. */
+#define HL_CLOSURE_SEARCH_MM 300.0          /* +- in x and y, just after a match ... */
+#define HL_CLOSURE_SEARCH_GROWTH 0.05       /* ... and a twentieth of the path since */
+#define HL_CLOSURE_SEARCH_MAX_MM 3000.0
+#define HL_CLOSURE_SEARCH_DEG 3.0           /* +- in heading, just after a match ... */
+#define HL_CLOSURE_SEARCH_DEG_PER_M 0.5     /* ... and this a metre driven since */
+#define HL_CLOSURE_SEARCH_MAX_DEG 20.0
+#define HL_CLOSURE_CORR_MIN_SCORE 0.4       /* a match's points at least this near the
+                                               submap's on average (corrmatch.h) ... */
+#define HL_CLOSURE_CORR_RUNNER_UP 0.9       /* ... and the best pose elsewhere in the region
+                                               at most this share of its score */
+#define HL_CLOSURE_CORR_DISTINCT_MM 250.0   /* elsewhere: this far from it, ... */
+#define HL_CLOSURE_CORR_DISTINCT_DEG 5.0    /* ... or turned this much */
+#define HL_CLOSURE_CORR_AGREEING 2          /* and at least this many of a stop's matches
+                                               put it at one place in the map: */
+#define HL_CLOSURE_CORR_AGREE_MM 150.0      /* ... within this */
+#define HL_CLOSURE_CORR_AGREE_DEG 2.0       /* ... and this */
+#define HL_CLOSURE_CORR_POLISH_MM 100       /* the tracker's search polishes a match found
+                                               when it lands this near it */
 
 /* Square walls (hl_closure_square_walls). A stop's readings, their normals folded four
  * times round (a wall and the walls square to it alike), point along the building's axis
@@ -114,6 +140,20 @@ hl_pose_t hl_closure_newest(const hl_closure_t *c);
 uint32_t hl_closure_candidates(const hl_closure_t *c, uint32_t query, uint32_t *stamps,
                                uint32_t max);
 
+/** As hl_closure_candidates, the stops within @p radius_mm. */
+uint32_t hl_closure_candidates_within(const hl_closure_t *c, uint32_t query, double radius_mm,
+                                      uint32_t *stamps, uint32_t max);
+
+/** The region a correlative search for stop @p query's matches covers (+- @p mm in x and
+ *  y, +- @p rad in heading): HL_CLOSURE_SEARCH_* from the path driven since the newest
+ *  stop a match was taken for. */
+void hl_closure_search_region(const hl_closure_t *c, uint32_t query, double *mm, double *rad);
+
+/** The points of the stop stamped @p stamp and its neighbours (as hl_closure_submap's),
+ *  at their places in the map, into @p out (at most @p max). @return how many. */
+uint32_t hl_closure_submap_points(const hl_closure_t *c, uint32_t stamp, uint32_t query,
+                                  hl_corr_point_t *out, uint32_t max);
+
 /** A map of the stop stamped @p stamp and its neighbours at their poses in the map (those
  *  at least HL_CLOSURE_GAP before the stop @p query, the one to be matched), valid until
  *  the next call; NULL if either is not recorded. */
@@ -143,6 +183,32 @@ bool hl_closure_counts(const hl_loc_result_t *loc, hl_pose_t found, hl_pose_t es
  * @return whether it was taken.
  */
 bool hl_closure_match(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found);
+
+/** As hl_closure_match, with the gate @p gate_mm and @p gate_rad (a correlative search's
+ *  region). */
+bool hl_closure_match_within(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found,
+                             double gate_mm, double gate_rad);
+
+/**
+ * Stop @p query sought in stop @p stamp's submap by a correlative search (corrmatch.h)
+ * over the region hl_closure_search_region gives, with at most @p max_readings of its
+ * readings (0: all): found (at *@p found, in the map's frame) when its score is
+ * HL_CLOSURE_CORR_MIN_SCORE or more and no pose distinct from it scores
+ * HL_CLOSURE_CORR_RUNNER_UP of it. @return whether it was found.
+ */
+bool hl_closure_seek(hl_closure_t *c, uint32_t stamp, uint32_t query, uint32_t max_readings,
+                     hl_pose_t *found);
+
+/** Holds the match of stop @p query at @p found in stop @p stamp's submap until
+ *  hl_closure_settle (the matches held for another query are dropped). */
+void hl_closure_pend(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found);
+
+/** The matches held for stop @p query (hl_closure_pend) taken (hl_closure_match_within,
+ *  the region its gate) when HL_CLOSURE_CORR_AGREEING or more of them agree where the
+ *  stop lies in the map: those of the largest group that agree. One place can look like
+ *  another to one submap, seldom to several along the robot's earlier path. The rest are
+ *  dropped. @return how many were taken. */
+uint32_t hl_closure_settle(hl_closure_t *c, uint32_t query);
 
 /**
  * Fits every recorded stop to its steps and matches, and draws @p map again: its vectors

@@ -88,6 +88,9 @@ typedef struct hl_slam_params {
                                    HL_SLAM_KEYFRAME_DEG); the scans between join the stop
                                    before them. 0: every mapped scan is a stop (a robot
                                    that sounds at stops) */
+    bool closure_correlative;   /* ... matches by a correlative search over a region that
+                                   grows with the path since the last match (corrmatch.h,
+                                   hl_closure_seek) rather than the tracker's Hough vote */
     double closure_match_weight; /* ... a match counts this share of a step in the fit,
                                    (0, 1] */
     uint32_t closure_matches_per_scan; /* ... seek this many of a stop's matches a scan,
