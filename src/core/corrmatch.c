@@ -342,22 +342,16 @@ static hl_pg_pose_t polish(const hl_corr_t *c, const hl_corr_point_t *q, hl_pg_p
     return p;
 }
 
-bool hl_corr_search(hl_corr_t *c, const hl_corr_point_t *map, uint32_t n_map,
+/* The search's sizes for @p p and the query's reach, the field framed and its memory
+ * made: @return false when the region is out of range or the field too large. */
+static bool prepare(hl_corr_t *c, const hl_corr_point_t *map, uint32_t n_map,
                     const hl_corr_point_t *query, uint32_t n_query, hl_pg_pose_t center,
-                    const hl_corr_params_t *p, hl_corr_result_t *out)
+                    const hl_corr_params_t *p, int *n_top)
 {
-    *out = (hl_corr_result_t){ false, center, 0, 0 };
-    if (n_map == 0 || n_query == 0 || n_map > HL_CORR_MAX_POINTS ||
-        n_query > HL_CORR_MAX_POINTS || !(p->window_mm >= 0) || !(p->window_rad >= 0) ||
-        !(p->min_score >= 0 && p->min_score <= 1) ||
-        !(p->runner_share >= 0 && p->runner_share <= 1))
-        return false;
     double far = 0;
     for (uint32_t k = 0; k < n_query; k++)
         far = fmax(far, hypot(query[k].x, query[k].y));
     far = fmax(far, HL_CORR_CELL_MM);
-    if (p->window_mm / HL_CORR_CELL_MM > (1 << 14))
-        return false;
     c->wc = (int32_t)ceil(p->window_mm / HL_CORR_CELL_MM);
     c->step = fmax(HL_CORR_MIN_STEP_RAD,
                    acos(1 - HL_CORR_CELL_MM * HL_CORR_CELL_MM / (2 * far * far)));
@@ -371,9 +365,8 @@ bool hl_corr_search(hl_corr_t *c, const hl_corr_point_t *map, uint32_t n_map,
         return false;
     size_t cells = (size_t)c->w * (size_t)c->hgt;
     size_t n_angles = (size_t)(2 * c->na + 1);
-    int32_t top_side = 1 << (c->n_levels - 1);
-    int32_t per_side = (2 * c->wc) / top_side + 1;
-    size_t n_top = n_angles * (size_t)per_side * (size_t)per_side;
+    int32_t per_side = (2 * c->wc) / (1 << (c->n_levels - 1)) + 1;
+    *n_top = (int)(n_angles * (size_t)per_side * (size_t)per_side);
     if (cells > c->level_cap) {
         free(c->levels);
         c->level_cap = 0;
@@ -382,22 +375,43 @@ bool hl_corr_search(hl_corr_t *c, const hl_corr_point_t *map, uint32_t n_map,
             return false;
         c->level_cap = cells;
     }
-    if (!reserve((void **)&c->cells, &c->cells_cap, n_angles * n_query * 2, sizeof *c->cells) ||
-        !reserve((void **)&c->top, &c->top_cap, n_top, sizeof *c->top))
-        return false;
     c->n_query = n_query;
-    draw_field(c, map, n_map);
-    turn_query(c, query, center);
+    return reserve((void **)&c->cells, &c->cells_cap, n_angles * n_query * 2,
+                   sizeof *c->cells) &&
+           reserve((void **)&c->top, &c->top_cap, (size_t)*n_top, sizeof *c->top);
+}
 
+/* The coarsest squares covering the region at every turn, best first. */
+static void seed_top(hl_corr_t *c)
+{
+    int32_t side = 1 << (c->n_levels - 1);
     int n = 0;
     for (int32_t a = -c->na; a <= c->na; a++)
-        for (int32_t ty = -c->wc; ty <= c->wc; ty += top_side)
-            for (int32_t tx = -c->wc; tx <= c->wc; tx += top_side) {
+        for (int32_t ty = -c->wc; ty <= c->wc; ty += side)
+            for (int32_t tx = -c->wc; tx <= c->wc; tx += side) {
                 cand_t k = { 0, tx, ty, (int16_t)a, (int16_t)(c->n_levels - 1) };
                 k.score = score(c, k);
                 c->top[n++] = k;
             }
     qsort(c->top, (size_t)n, sizeof *c->top, by_score);
+}
+
+bool hl_corr_search(hl_corr_t *c, const hl_corr_point_t *map, uint32_t n_map,
+                    const hl_corr_point_t *query, uint32_t n_query, hl_pg_pose_t center,
+                    const hl_corr_params_t *p, hl_corr_result_t *out)
+{
+    *out = (hl_corr_result_t){ false, center, 0, 0 };
+    int n = 0;
+    if (n_map == 0 || n_query == 0 || n_map > HL_CORR_MAX_POINTS ||
+        n_query > HL_CORR_MAX_POINTS || !(p->window_mm >= 0) ||
+        !(p->window_mm <= HL_CORR_MAX_WINDOW_MM) || !(p->window_rad >= 0) ||
+        !(p->min_score >= 0 && p->min_score <= 1) ||
+        !(p->runner_share >= 0 && p->runner_share <= 1) ||
+        !prepare(c, map, n_map, query, n_query, center, p, &n))
+        return false;
+    draw_field(c, map, n_map);
+    turn_query(c, query, center);
+    seed_top(c);
     /* Only a leaf above the floor is an answer: every square whose bound is below it is
      * pruned unseen, which is most of a region where the stop is not. */
     double full = 255.0 * n_query;

@@ -188,7 +188,7 @@ static void test_bad_arguments_refused(void **state)
     assert_false(hl_corr_search(c, p, 2, p, 2, o, &bad, &r));
     bad = ok, bad.runner_share = NAN;
     assert_false(hl_corr_search(c, p, 2, p, 2, o, &bad, &r));
-    bad = ok, bad.window_mm = 1e9;     /* a field too large */
+    bad = ok, bad.window_mm = HL_CORR_MAX_WINDOW_MM + 1;     /* a region too large */
     assert_false(hl_corr_search(c, p, 2, p, 2, o, &bad, &r));
     hl_corr_point_t long_p[2] = { { 20000, 0 }, { 0, 20000 } };
     bad = ok, bad.window_rad = 7;      /* too many turns */

@@ -36,6 +36,7 @@
                                        would grow with its square) */
 #define HL_CORR_MAX_CELLS (1u << 21)  /* a level's cells at most (a 72 x 72 m field) */
 #define HL_CORR_MAX_POINTS 4096     /* map or query points a search at most */
+#define HL_CORR_MAX_WINDOW_MM 10000.0 /* a region's half-width at most */
 #define HL_CORR_MIN_STEP_RAD 0.002  /* the finest turn searched (0.11 degrees) */
 
 typedef struct hl_corr_point {
@@ -44,7 +45,7 @@ typedef struct hl_corr_point {
 
 /* What a search covers and what it answers. */
 typedef struct hl_corr_params {
-    double window_mm;       /* +- in x and y about the centre, >= 0 */
+    double window_mm;       /* +- in x and y about the centre, 0..HL_CORR_MAX_WINDOW_MM */
     double window_rad;      /* +- in heading, >= 0 */
     double min_score;       /* a best pose scoring less is no answer (0..1): the search
                                prunes every square that cannot reach it */
