@@ -9,7 +9,7 @@
 #include "closure_internal.h"
 
 #define PI 3.14159265358979323846
-#define MAX_EDGES_A_STOP (1 + HL_CLOSURE_MAX_MATCHES)   /* its step and its matches */
+#define MAX_EDGES_A_STOP (1 + HL_CLOSURE_MAX_TAKEN)   /* its step and its matches */
 
 hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t seed)
 {
@@ -325,12 +325,21 @@ bool hl_closure_match(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t
                                    HL_CLOSURE_GATE_DEG * (PI / 180));
 }
 
+/* The matches stop @p k has taken. */
+static uint32_t matches_taken(const hl_closure_t *c, uint32_t k)
+{
+    uint32_t n = 0;
+    for (uint32_t e = 0; e < c->n_edges; e++)
+        n += c->edges[e].loop && c->edges[e].to == k;
+    return n;
+}
+
 bool hl_closure_match_within(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found,
                              double gate_mm, double gate_rad)
 {
     uint32_t i = stamp - c->first, k = query - c->first;
     if (i >= c->count || k >= c->count || i + HL_CLOSURE_GAP > k ||
-        c->n_edges >= c->max_edges)
+        c->n_edges >= c->max_edges || matches_taken(c, k) >= HL_CLOSURE_MAX_TAKEN)
         return false;
     hl_pg_pose_t now = hl_pg_between(c->poses[i], c->poses[k]);
     /* found is where the submap, drawn at the stops' places in the map, has the query.

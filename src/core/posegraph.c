@@ -9,8 +9,12 @@
 
 #define GN_STEPS 10             /* Gauss-Newton steps at most ... */
 #define GN_STEPS_AFTER_DROP 3   /* ... and after matches are dropped, from the fit before */
-#define GN_DONE_MM 0.01         /* ... until no pose moves more than this */
-#define GN_DONE_RAD 1e-7
+/* ... until no pose moves more than this share of one edge's sigma in x, y and heading
+ * (0.1 mm and 0.003 degrees at the daemon's): the last steps about halve each, so the
+ * fit stops within about one more such step of where more steps would take it, far
+ * below a map's 50 mm squares. The rule it replaced (0.01 mm, 1e-7 rad) took 13 steps
+ * a refit of 4,096 stops, not 3 (docs/results/pose-graph-solver.md). */
+#define GN_DONE_SHARE 0.002
 #define MAX_DROPS 8             /* outliers dropped a fit at most */
 /* A step is solved by conjugate gradients preconditioned by the last factorization (no
  * new one) while the poses have moved less than this since it was made ... */
@@ -176,6 +180,7 @@ static double squared_sigmas(const edge_terms_t *t, const double w[3])
 typedef struct problem {
     const hl_pg_heading_t *headings;
     uint32_t n_headings;
+    double sigma_mm, sigma_rad;
     double w[3];            /* steps' and matches' weights: 1 / sigma^2 */
     double kernel;
 } problem_t;
@@ -295,7 +300,7 @@ static void solve(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n, const hl_p
         }
         g->moved_mm += most_mm;
         g->moved_rad += most_rad;
-        if (most_mm < GN_DONE_MM && most_rad < GN_DONE_RAD)
+        if (most_mm < GN_DONE_SHARE * pb->sigma_mm && most_rad < GN_DONE_SHARE * pb->sigma_rad)
             break;
     }
 }
@@ -379,9 +384,10 @@ uint32_t hl_posegraph_fit(hl_posegraph_t *g, hl_pg_pose_t *poses, uint32_t n,
                           double sigma_mm, double sigma_rad, double kernel, double gate)
 {
     if (!g || !poses || !edges || !n_edges || n < 2 || n > g->max_poses ||
-        *n_edges > g->max_edges || !(kernel >= 0) || !headings_fit(headings, n_headings, n))
+        *n_edges > g->max_edges || !(kernel >= 0) || !(sigma_mm > 0) || !(sigma_rad > 0) ||
+        !headings_fit(headings, n_headings, n))
         return 0;
-    const problem_t pb = { headings, n_headings,
+    const problem_t pb = { headings, n_headings, sigma_mm, sigma_rad,
                            { 1 / (sigma_mm * sigma_mm), 1 / (sigma_mm * sigma_mm),
                              1 / (sigma_rad * sigma_rad) },
                            kernel };

@@ -1,5 +1,6 @@
 /* Tests for src/core/closure.c and loop closure in the slam (slam.close_loops): a stop
- * back near an old one is matched with it, a match beyond the gate is refused, the fit
+ * back near an old one is matched with it, a match beyond the gate is refused, a stop
+ * takes a bounded number of matches, the fit
  * pulls a drifted stop back and the map is drawn again with it, forgotten stops are not
  * offered, a stop's candidates are those near it (not the newest's), a stop's readings
  * are thinned evenly for matching, scans between stops (keyframes) join the last one, a
@@ -179,7 +180,7 @@ static void test_a_correlative_search_finds_a_stop_drifted_far_and_two_must_agre
 /* Candidates are sought for a given stop: with keyframes the slam asks for the stop before
  * the newest, whose scan is complete. Stop 6 (stamp 7) is back near stop 0; a stop 8 m
  * on is near nothing. */
-static void test_candidates_are_those_of_the_stop_asked_for(void **state)
+static void test_candidates_are_those_of_the_stop_asked_for_and_matches_are_bounded(void **state)
 {
     (void)state;
     loop_t *l = make_loop();
@@ -197,6 +198,14 @@ static void test_candidates_are_those_of_the_stop_asked_for(void **state)
     assert_int_equal(stamps[0], 1);
     assert_int_equal(hl_closure_candidates(c, 5, stamps, HL_CLOSURE_MAX_MATCHES), 0);
     assert_int_equal(hl_closure_candidates(c, 99, stamps, HL_CLOSURE_MAX_MATCHES), 0);
+    /* ... and a stop takes at most HL_CLOSURE_MAX_TAKEN matches (the graph's degree
+     * bounded), however wide the gate. */
+    for (int k = 0; k < HL_CLOSURE_MAX_TAKEN; k++)
+        assert_true(hl_closure_match(c, 1, 7, l->truth[6]));
+    assert_false(hl_closure_match(c, 1, 7, l->truth[6]));
+    assert_false(hl_closure_match_within(c, 1, 7, l->truth[6], 1e6, 1.0));
+    assert_int_equal(hl_closure_fit(c, map), 0);
+    assert_true(dist(hl_closure_pose(c, 7), l->truth[6]) < 5);
     hl_map_destroy(map);
     hl_closure_destroy(c);
     free(scan);
@@ -660,7 +669,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_a_stop_back_near_an_old_one_is_matched_and_pulled_back),
         cmocka_unit_test(test_a_correlative_search_finds_a_stop_drifted_far_and_two_must_agree),
-        cmocka_unit_test(test_candidates_are_those_of_the_stop_asked_for),
+        cmocka_unit_test(test_candidates_are_those_of_the_stop_asked_for_and_matches_are_bounded),
         cmocka_unit_test(test_a_query_is_thinned_evenly),
         cmocka_unit_test(test_forgotten_stops_are_not_offered),
         cmocka_unit_test(test_scans_between_stops_join_the_last_one),

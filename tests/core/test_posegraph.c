@@ -330,6 +330,9 @@ static void test_bad_calls_change_nothing(void **state)
     assert_int_equal(fit(g, poses, edges, &n, -1.0, 3.0), 0);
     assert_int_equal(fit(g, poses, edges, &n, NAN, 3.0), 0);
     assert_true(worst_mm(poses, t) > 1000);               /* a bad kernel: not fitted */
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, NULL, 0, 0.0, SIGMA_RAD, 1.0, 3.0), 0);
+    assert_int_equal(hl_posegraph_fit(g, poses, N, edges, &n, NULL, 0, SIGMA_MM, NAN, 1.0, 3.0), 0);
+    assert_true(worst_mm(poses, t) > 1000);               /* a bad sigma: not fitted */
     hl_posegraph_destroy(g);
     hl_posegraph_destroy(NULL);
 }

@@ -7,7 +7,7 @@
  *
  * The graph: N stops (default 256, 2..4096) back and forth along a 28 m corridor, 0.6 m
  * apart and weaving 1 m either side of its middle; a step between consecutive stops and,
- * for each stop, a match with up to 16 of the stops at least 5 before it within 1.5 m
+ * for each stop, a match with up to 8 of the stops at least 5 before it within 1.5 m
  * (closure.h's rules at their most), every one measured with 30 mm and 1.1 degrees of
  * noise, PCT per cent of the matches (default 5) 2 m and 29 degrees wrong. The fit starts
  * from the stops chained by their steps, as a tour's drift leaves them, under the

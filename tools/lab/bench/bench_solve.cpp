@@ -8,7 +8,7 @@
  *
  * The graph is bench_posegraph.c's, made the same way (its generator copied below, on the
  * core's hl_pg_between / hl_pg_compose and the same seed): N stops (default 256, 2..4096)
- * back and forth along a 28 m corridor, a step between consecutive stops and up to 16
+ * back and forth along a 28 m corridor, a step between consecutive stops and up to 8
  * matches a stop, 5 % of them wrong. The normal equations are those of the first
  * Gauss-Newton step from the stops chained by their steps, every edge weighed the same
  * (the daemon's sigmas, no kernel), pose 0 held (left out: N - 1 unknown blocks). The

@@ -22,7 +22,7 @@ static hl_pg_pose_t measured(hl_rng_t *rng, hl_pg_pose_t from, hl_pg_pose_t to)
 
 uint32_t sr_corridor_max_edges(uint32_t n)
 {
-    return n * (1 + HL_CLOSURE_MAX_MATCHES);
+    return n * (1 + HL_CLOSURE_MAX_TAKEN);
 }
 
 uint32_t sr_corridor(uint32_t n, double wrong_pct, hl_pg_pose_t *truth, hl_pg_pose_t *chained,
@@ -46,7 +46,7 @@ uint32_t sr_corridor(uint32_t n, double wrong_pct, hl_pg_pose_t *truth, hl_pg_po
         chained[i] = hl_pg_compose(chained[i - 1], edges[n_edges++].rel);
     }
     for (uint32_t k = 0; k < n; k++)
-        for (uint32_t j = 0, m = 0; j + HL_CLOSURE_GAP <= k && m < HL_CLOSURE_MAX_MATCHES; j++)
+        for (uint32_t j = 0, m = 0; j + HL_CLOSURE_GAP <= k && m < HL_CLOSURE_MAX_TAKEN; j++)
             if (hypot(truth[j].x - truth[k].x, truth[j].y - truth[k].y) <= HL_CLOSURE_RADIUS_MM) {
                 hl_pg_pose_t rel = measured(&rng, truth[j], truth[k]);
                 if (hl_rng_below(&rng, 10000) < wrong_pct * 100) {

@@ -1,7 +1,7 @@
 /* corridor.h - the benchmarks' synthetic loop-closure graph (hl-bench-posegraph,
  * hl-bench-solve): N stops back and forth along a 28 m corridor, 0.6 m apart and weaving
  * 1 m either side of its middle; a step between consecutive stops and, for each stop, a
- * match with up to HL_CLOSURE_MAX_MATCHES of the stops at least HL_CLOSURE_GAP before it
+ * match with up to HL_CLOSURE_MAX_TAKEN of the stops at least HL_CLOSURE_GAP before it
  * within HL_CLOSURE_RADIUS_MM (closure.h's rules at their most), every one measured with
  * 30 mm and 1.1 degrees of noise, a share of the matches 2 m and 29 degrees wrong. A
  * function of N and that share alone (a fixed seed). */

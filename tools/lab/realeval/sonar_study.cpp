@@ -29,6 +29,15 @@
  *         truth pairs=N heading_rms_deg=X position_rms_mm=X triangle_heading_rms_deg=X
  *               triangle_position_rms_mm=X
  *
+ *   hl-sonar-study views SONAR.lcmlog LASER.lcmlog N GAP [odometry|truth] [SUPPORT]
+ *       echo placement from several views: each reading's bearing within its cone from the
+ *       contradictions of this scan's readings and of N earlier scans' (every GAP-th, N
+ *       0..16, placed by the odometry or the true poses), and with SUPPORT > 0 the earlier
+ *       views' range arcs through it (below); scored against the laser as echo does.
+ *       Prints one line:
+ *         views n=N gap=GAP poses=P support=S readings=N bearing_median_deg=X
+ *               bearing_p90_deg=X point_median_mm=X point_p90_mm=X
+ *
  * SONAR.lcmlog and LASER.lcmlog are houghloc-import-carmen's --input sonar and --input
  * laser logs of one building, read with the experiments' reader (dataset.hpp): both have
  * one scan per laser scan, in order, each with its true pose. The tracker's settings are the sonar-continuous profile's, then each KEY=VALUE
@@ -69,7 +78,9 @@ static int usage(void)
 {
     fprintf(stderr, "usage: hl-sonar-study echo SONAR.lcmlog LASER.lcmlog [KEY=VALUE ...]\n"
                     "       hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]\n"
-                    "       hl-sonar-study truth LASER.lcmlog\n");
+                    "       hl-sonar-study truth LASER.lcmlog\n"
+                    "       hl-sonar-study views SONAR.lcmlog LASER.lcmlog N GAP "
+                    "[odometry|truth] [SUPPORT]\n");
     return 2;
 }
 
@@ -177,6 +188,100 @@ static int study_echo(const hl_slam_params_t *sp, const run_log *sonar, const ru
            (int)normal.size(), quantile(bearing, .5), quantile(bearing, .9), quantile(place, .5),
            quantile(place, .9), quantile(normal, .5), quantile(normal, .9),
            normal.empty() ? 0 : 100.0 * over30 / (double)normal.size());
+    return 0;
+}
+
+/* Echo placement from several views (views): a ring reading's candidate bearings within
+ * its cone, each scored by how much the readings of this scan and of N earlier ones
+ * (every GAP-th, placed by the odometry or the truth) contradict an echo there: a
+ * reading whose cone holds the candidate point nearer than its own range would have
+ * heard it first ((excess / sigma)^2 / 2, capped at 8, sigma 10 mm + 1 %, as echo.h
+ * scores one scan). With SUPPORT > 0 an earlier view's reading whose range arc passes
+ * within 2 sigma of the point takes SUPPORT off (the arcs' intersection). The reading
+ * goes to the middle of the least contradicted bearings (within 0.5). */
+struct views_setup {
+    int n, gap;
+    bool truth;
+    double support;
+};
+
+struct view {
+    double x, y, theta;             /* the view's sensor in the scan's frame */
+    const hl_scan_t *scan;
+};
+
+static double wrap_rad(double a)
+{
+    return remainder(a, 2 * PI);
+}
+
+/* The contradiction (less the support) of an echo at (px, py) of reading @p self. */
+static double views_score(const std::vector<view> &vs, const hl_reading_t *self, double px,
+                          double py, double support)
+{
+    const double half = hl_bam_to_rad(CONE_BAM);
+    double score = 0;
+    for (size_t v = 0; v < vs.size(); v++)
+        for (uint32_t j = 0; j < vs[v].scan->count; j++) {
+            const hl_reading_t *q = &vs[v].scan->readings[j];
+            if (!q->valid || q == self)
+                continue;
+            double dx = px - vs[v].x, dy = py - vs[v].y, d = hypot(dx, dy);
+            if (fabs(wrap_rad(atan2(dy, dx) - vs[v].theta - hl_bam_to_rad(q->bearing))) > half)
+                continue;
+            double z = (q->range_mm - d) / (10 + 0.01 * q->range_mm);
+            if (support > 0 && v > 0 && fabs(z) < 2)
+                score -= support;
+            if (z > 0)
+                score += fmin(8, z * z / 2);
+        }
+    return score;
+}
+
+static int study_views(const run_log *sonar, const run_log *laser, views_setup vp)
+{
+    const double half = hl_bam_to_rad(CONE_BAM), step = 0.5 * PI / 180;
+    const int candidates = (int)lround(2 * half / step) + 1;
+    const std::vector<hl_pose_t> &at = vp.truth ? sonar->truth : sonar->odometry;
+    std::vector<double> bearing, place, score(candidates);
+    for (int k = vp.n * vp.gap; k < sonar->n && k < laser->n; k++) {
+        const hl_scan_t *in = &sonar->scans[k];
+        std::vector<view> vs;
+        for (int v = 0; v <= vp.n; v++) {
+            hl_pose_t rel = hl_pose_between(at[k], at[k - v * vp.gap]);
+            vs.push_back({ (double)rel.x_mm, (double)rel.y_mm, hl_bam_to_rad(rel.theta),
+                           &sonar->scans[k - v * vp.gap] });
+        }
+        for (uint32_t i = 0; i < in->count; i++) {
+            const hl_reading_t *r = &in->readings[i];
+            int t = r->valid ? true_echo(&laser->scans[k], r->bearing) : -1;
+            if (t < 0 || abs(laser->scans[k].readings[t].range_mm - r->range_mm) > 15)
+                continue;
+            double axis = hl_bam_to_rad(r->bearing);
+            for (int c = 0; c < candidates; c++) {
+                double psi = axis - half + c * step;
+                score[c] = views_score(vs, r, r->range_mm * cos(psi), r->range_mm * sin(psi),
+                                       vp.support);
+            }
+            double least = *std::min_element(score.begin(), score.end());
+            int first = -1, last = -1;
+            for (int c = 0; c < candidates; c++)
+                if (score[c] <= least + 0.5) {
+                    first = first < 0 ? c : first;
+                    last = c;
+                }
+            double est = axis - half + (first + last) / 2.0 * step;
+            const hl_reading_t *tr = &laser->scans[k].readings[t];
+            double tb = hl_bam_to_rad(tr->bearing);
+            bearing.push_back(fabs(wrap_rad(est - tb)) * 180 / PI);
+            place.push_back(hypot(r->range_mm * cos(est) - tr->range_mm * cos(tb),
+                                  r->range_mm * sin(est) - tr->range_mm * sin(tb)));
+        }
+    }
+    printf("views n=%d gap=%d poses=%s support=%g readings=%d bearing_median_deg=%.2f "
+           "bearing_p90_deg=%.2f point_median_mm=%.0f point_p90_mm=%.0f\n", vp.n, vp.gap,
+           vp.truth ? "truth" : "odometry", vp.support, (int)bearing.size(),
+           quantile(bearing, .5), quantile(bearing, .9), quantile(place, .5), quantile(place, .9));
     return 0;
 }
 
@@ -292,12 +397,27 @@ int main(int argc, char **argv)
         printf("usage: hl-sonar-study echo SONAR.lcmlog LASER.lcmlog [KEY=VALUE ...]\n"
                "       hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]\n"
                "       hl-sonar-study truth LASER.lcmlog\n"
-               "The pseudo-sonar ring against the laser it is made from (echo), one\n"
+               "       hl-sonar-study views SONAR.lcmlog LASER.lcmlog N GAP [odometry|truth] [SUPPORT]\n"
+               "The pseudo-sonar ring against the laser it is made from (echo; views: echo\n"
+               "bearings from N earlier scans too, N 0..16, every GAP-th), one\n"
                "sounding against a map at the true poses (oracle; WINDOW=W: a multiscan of\n"
                "the W scans before), or the ground truth against the laser (truth).\n"
                "Inputs: houghloc-import-carmen's logs of one building. See\n"
                "tools/lab/realeval/sonar_study.sh.\n");
         return 0;
+    }
+    if (argc >= 6 && argc <= 8 && strcmp(argv[1], "views") == 0) {
+        char *end_n, *end_gap, *end_support = NULL;
+        views_setup vp = { (int)strtol(argv[4], &end_n, 10), (int)strtol(argv[5], &end_gap, 10),
+                           argc > 6 && strcmp(argv[6], "truth") == 0,
+                           argc > 7 ? strtod(argv[7], &end_support) : 0 };
+        if (*end_n || *end_gap || (end_support && *end_support) || vp.n < 0 || vp.n > 16 ||
+            vp.gap < 1 || vp.gap > 100 || !(vp.support >= 0 && vp.support <= 100) ||
+            (argc > 6 && !vp.truth && strcmp(argv[6], "odometry") != 0))
+            return usage();
+        run_log sonar, laser;
+        return read_log(argv[2], &sonar) || read_log(argv[3], &laser)
+                   ? 1 : study_views(&sonar, &laser, vp);
     }
     if (argc == 3 && strcmp(argv[1], "truth") == 0) {
         run_log laser;

@@ -37,6 +37,13 @@
 #define HL_CLOSURE_RADIUS_MM 1500   /* ... whose poses lie this near */
 #define HL_CLOSURE_SIDE 1           /* the matched stop's neighbours drawn with it */
 #define HL_CLOSURE_MAX_MATCHES 16   /* matches sought a stop, oldest stops first */
+/* ... and taken at most, the first found (so with the oldest stops): each stop adds at
+ * most nine edges to the graph, its step and its matches, so that the edges grow with
+ * the stops alone. On hl-bench-posegraph's corridor of 4,096 stops (each near dozens of
+ * earlier ones) that halves the edges against taking all 16; on the real buildings the
+ * laser keeps its error (taking 4 cost freiburg-101 a centimetre)
+ * (docs/results/pose-graph-solver.md). */
+#define HL_CLOSURE_MAX_TAKEN 8
 #define HL_CLOSURE_MIN_CONFIDENCE 0.3 /* a match's peak at least this distinct
                                        (hl_loc_confidence), far above the guard's 0.05 as
                                        a match moves every stop */
@@ -179,7 +186,7 @@ bool hl_closure_counts(const hl_loc_result_t *loc, hl_pose_t found, hl_pose_t es
 /**
  * The stop @p query found at @p found in stop @p stamp's submap. Taken as a match unless it
  * lies farther than the gate from the query's fitted pose (or the two are nearer than
- * HL_CLOSURE_GAP, or either is not recorded).
+ * HL_CLOSURE_GAP, or either is not recorded, or the query has taken HL_CLOSURE_MAX_TAKEN).
  * @return whether it was taken.
  */
 bool hl_closure_match(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found);

@@ -94,7 +94,9 @@ bool hl_posegraph_weigh_matches(hl_posegraph_t *g, double weight);
  * are dropped from @p edges (*n_edges shrinks, the order kept), worst first, and the rest
  * fitted again, until none is that far off or 8 are dropped: under a kernel all such
  * edges at once, then a few steps from the fit before; without, one at a time, each time
- * a whole fit. n <= max_poses, *n_edges <= max_edges; edges must name poses below n. A
+ * a whole fit. Each fit's Gauss-Newton steps end when no pose moves more than 1/500 of
+ * @p sigma_mm and @p sigma_rad (both positive, else the call is refused).
+ * n <= max_poses, *n_edges <= max_edges; edges must name poses below n. A
  * pose that no chain of edges ties to pose 0 makes the system singular: the solver
  * refuses it and the poses stay as they are.
  * @return the number of loop edges dropped.
