@@ -276,12 +276,10 @@ const hl_map_t *hl_closure_submap(hl_closure_t *c, uint32_t stamp, uint32_t quer
     if (i >= c->count || k >= c->count)
         return NULL;
     hl_map_restore(c->sub, NULL, 0, 0, c->sub_rng);
-    for (int32_t d = -HL_CLOSURE_SIDE; d <= HL_CLOSURE_SIDE; d++) {
-        int64_t q = (int64_t)i + d;
-        if (q >= 0 && q + HL_CLOSURE_GAP <= k)
-            hl_map_add_scan(c->sub, scan_of(c, (uint32_t)q),
-                            c->placed[q], NULL);
-    }
+    uint32_t q;
+    for (int32_t d = -HL_CLOSURE_SIDE; d <= HL_CLOSURE_SIDE; d++)
+        if (submap_stop(i, d, k, &q))
+            hl_map_add_scan(c->sub, scan_of(c, q), c->placed[q], NULL);
     return c->sub;
 }
 

@@ -60,9 +60,21 @@ struct hl_closure {
 
 /* The record's scan of the stop @p i stops after the oldest recorded (its stamp is
  * first + i; the scans are kept by stamp, round the record). */
-static inline hl_scan_t *scan_of(hl_closure_t *c, uint32_t i)
+static inline hl_scan_t *scan_of(const hl_closure_t *c, uint32_t i)
 {
     return &c->scans[(c->first + i) % c->cap];
+}
+
+/* Stop @p i's neighbour @p d (-HL_CLOSURE_SIDE..HL_CLOSURE_SIDE) in the submap that stop
+ * @p k is matched against: whether it is drawn there (recorded, and HL_CLOSURE_GAP stops
+ * or more before k), and its index in *@p q. */
+static inline bool submap_stop(uint32_t i, int32_t d, uint32_t k, uint32_t *q)
+{
+    int64_t at = (int64_t)i + d;
+    if (at < 0 || at + HL_CLOSURE_GAP > k)
+        return false;
+    *q = (uint32_t)at;
+    return true;
 }
 
 #endif

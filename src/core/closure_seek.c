@@ -26,12 +26,11 @@ uint32_t hl_closure_submap_points(const hl_closure_t *c, uint32_t stamp, uint32_
     uint32_t i = stamp - c->first, k = query - c->first, n = 0;
     if (i >= c->count || k >= c->count)
         return 0;
-    for (int32_t d = -HL_CLOSURE_SIDE; d <= HL_CLOSURE_SIDE; d++) {
-        int64_t q = (int64_t)i + d;
-        if (q >= 0 && q + HL_CLOSURE_GAP <= k)
-            n = hl_corr_points(&c->scans[(c->first + (uint32_t)q) % c->cap],
-                               hl_pg_from_pose(c->placed[q]), out, n, max);
-    }
+    uint32_t q;
+    for (int32_t d = -HL_CLOSURE_SIDE; d <= HL_CLOSURE_SIDE; d++)
+        if (submap_stop(i, d, k, &q))
+            n = hl_corr_points(scan_of(c, q), hl_pg_from_pose(c->placed[q]),
+                               out, n, max);
     return n;
 }
 

@@ -367,16 +367,9 @@ static bool prepare(hl_corr_t *c, const hl_corr_point_t *map, uint32_t n_map,
     size_t n_angles = (size_t)(2 * c->na + 1);
     int32_t per_side = (2 * c->wc) / (1 << (c->n_levels - 1)) + 1;
     *n_top = (int)(n_angles * (size_t)per_side * (size_t)per_side);
-    if (cells > c->level_cap) {
-        free(c->levels);
-        c->level_cap = 0;
-        c->levels = malloc(MAX_LEVELS * cells);
-        if (!c->levels)
-            return false;
-        c->level_cap = cells;
-    }
     c->n_query = n_query;
-    return reserve((void **)&c->cells, &c->cells_cap, n_angles * n_query * 2,
+    return reserve((void **)&c->levels, &c->level_cap, cells, MAX_LEVELS) &&
+           reserve((void **)&c->cells, &c->cells_cap, n_angles * n_query * 2,
                    sizeof *c->cells) &&
            reserve((void **)&c->top, &c->top_cap, (size_t)*n_top, sizeof *c->top);
 }
