@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "closure_internal.h"
+#include "houghloc-internal/walls.h"
 
 #define PI 3.14159265358979323846
 #define MAX_EDGES_A_STOP (1 + HL_CLOSURE_MAX_TAKEN)   /* its step and its matches */
@@ -146,25 +147,14 @@ static void forget_oldest(hl_closure_t *c)
  * its sigma; 0 when the scan has too few readings to tell. */
 static double walls_seen(const hl_scan_t *placed, double *sigma)
 {
-    double c4 = 0, s4 = 0;
-    uint32_t n = 0;
-    for (uint32_t k = 0; k < placed->count; k++) {
-        const hl_reading_t *r = &placed->readings[k];
-        if (!r->valid)
-            continue;
-        double normal = hl_bam_to_rad(hl_reading_normal(r, 0));   /* the robot's frame */
-        c4 += cos(4 * normal);
-        s4 += sin(4 * normal);
-        n++;
-    }
+    hl_walls_t w = hl_walls_of_scan(placed);
     *sigma = 0;
-    double r = n ? hypot(c4, s4) / n : 0;
-    if (n < HL_CLOSURE_WALL_MIN_READINGS || r < HL_CLOSURE_WALL_MIN_R)
+    if (w.n < HL_CLOSURE_WALL_MIN_READINGS || w.r < HL_CLOSURE_WALL_MIN_R)
         return 0;
-    double deg = HL_CLOSURE_WALL_SIGMA_R / r;
+    double deg = HL_CLOSURE_WALL_SIGMA_R / w.r;
     *sigma = fmin(HL_CLOSURE_WALL_SIGMA_MAX_DEG, fmax(HL_CLOSURE_WALL_SIGMA_MIN_DEG, deg)) *
              (PI / 180);
-    return atan2(s4, c4) / 4;
+    return w.axis;
 }
 
 void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,

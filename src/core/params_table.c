@@ -80,9 +80,13 @@ const hl_param_entry_t hl_param_table[] = {
     REAL("slam.heading_gain", E, heading_gain, 0, 1, "1",
          "the part of a localization's heading correction taken (the rest stays with the "
          "odometry); 1: all"),
+    REAL("slam.wall_gain", E, wall_gain, 0, 1, "0",
+         "the building's walls run square to each other: each accepted scan's heading is "
+         "turned this part of the way to the nearest that puts its walls square to the "
+         "map's (0: off)"),
     FLAG("slam.guarded", E, guarded, "true",
          "reject implausible localizations instead of adding them to the map"),
-    FLAG("slam.interpolate", E, interpolate, "true", "sub-cell peak interpolation"),
+    FLAG("slam.interpolate", S, interpolate, "true", "sub-cell peak interpolation"),
     FLAG("slam.use_prior", E, use_prior, "true", "weigh votes by the odometry prior"),
     INT("slam.window_mm", E, I32, window_mm, 0, 1000000, "1000",
         "half-width of the search around the prediction; 0: the whole map"),
@@ -331,6 +335,9 @@ static const hl_param_setting_t sonar_continuous[] = {
     { "slam.map_per_place", "1",
       "... kept sparse: one vector of a 50 mm square seen from one side (a new one replaces "
       "it at random)" },
+    { "slam.wall_gain", "0.1",
+      "a ring's heading drifts a degree or so a scan between returns: a tenth of the way to "
+      "walls square to the map's (a building's walls mostly are) each scan" },
     CONTINUOUS_CLOSURE
     { "slam.closure_match_readings", "256",
       "... a keyframe matched with 256 of its readings (up to 1,024 joined), which keeps a "

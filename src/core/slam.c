@@ -9,8 +9,11 @@
 
 #include "houghloc-internal/closure.h"
 #include "houghloc-internal/params.h"
+#include "houghloc-internal/walls.h"
 #include "slam_internal.h"
 #include "valid_scan.h"
+
+#define PI 3.14159265358979323846
 
 hl_slam_t *hl_slam_create(const hl_params_t *p)
 {
@@ -277,6 +280,27 @@ static hl_status_t stage_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t
     return HL_OK;
 }
 
+/* Square walls (slam.wall_gain, walls.h): the heading of an accepted @p step turned
+ * part of the way by which the wall normals of @p scan lie off the map's axis. The map's
+ * axis does not drift; the heading tracking gives a sparse scan does, by a degree or so
+ * a scan, and turns the map drawn after it. */
+static void square_to_walls(const hl_slam_t *s, const hl_scan_t *scan, hl_slam_step_t *step)
+{
+    if (s->p.wall_gain <= 0)
+        return;
+    hl_walls_t map = hl_walls_of_vectors(hl_map_vectors(s->map), hl_map_count(s->map));
+    hl_walls_t seen = hl_walls_of_scan(scan);
+    if (map.n < HL_WALLS_MIN_READINGS || map.r < HL_WALLS_MIN_R ||
+        seen.n < HL_WALLS_MIN_READINGS || seen.r < HL_WALLS_MIN_R)
+        return;
+    uint32_t inliers;
+    double off = hl_walls_offset(scan, hl_bam_to_rad(step->pose.theta), map.axis,
+                                 HL_WALLS_WINDOW_DEG * (PI / 180), &inliers);
+    if (inliers >= HL_WALLS_MIN_READINGS)
+        step->pose.theta = (hl_bam_t)(step->pose.theta -
+                                      hl_bam_from_rad(s->p.wall_gain * off));
+}
+
 /* Guard: accept or reject the pose found (guarded mode), the recent-peak average moved
  * with it. @return whether the scan extends the map. */
 static bool stage_guard(const hl_slam_t *s, hl_pose_t found, hl_slam_step_t *step,
@@ -355,6 +379,8 @@ hl_status_t hl_slam_propose(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odom
     hl_status_t st = stage_localize(s, seen, odometry, p, &found);
     if (st == HL_OK)
         p->extend = stage_guard(s, found, &p->step, &p->peak_avg);
+    if (st == HL_OK && p->extend)
+        square_to_walls(s, seen, &p->step);
     else if (st != HL_ERR_EMPTY)
         return st;
     /* HL_ERR_EMPTY: nothing to vote against. The first scan, or a scan that overlaps

@@ -13,6 +13,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "map_capacity must be in 1..1048576";
     if (!(p->heading_gain >= 0.0 && p->heading_gain <= 1.0))
         return "heading_gain must be in 0..1";
+    if (!(p->wall_gain >= 0.0 && p->wall_gain <= 1.0))
+        return "wall_gain must be in 0..1";
     hl_map_params_t mp;
     hl_slam_map_params(p, &mp);
     const char *e = hl_map_params_error(&mp);

@@ -67,6 +67,9 @@ typedef struct hl_slam_params {
                                    complementary filter for sensors whose heading is
                                    noisier than the odometry's over one step, such as a
                                    sonar ring sounded often; 0..1 */
+    double wall_gain;           /* square walls for tracking (walls.h): of the turn that
+                                   puts an accepted scan's walls square to the map's, the
+                                   part taken; 0 = off, 0..1 */
     bool guarded;               /* false = the paper's method: accept every pose */
     bool interpolate;           /* sub-cell interpolation */
     bool use_prior;             /* odometry prior attenuation */
