@@ -77,7 +77,7 @@ const hl_param_entry_t hl_param_table[] = {
              "map_square_mm square and the 8 around it)"),
     INT("slam.seed", E, U64, seed, 0, 9007199254740992, "1",
         "seeds the culling (compare designs over several: a building's error moves with it)"),
-    REAL("slam.heading_gain", E, heading_gain, 0, 1, "1",
+    REAL("slam.heading_gain", S, heading_gain, 0, 1, "1",
          "the part of a localization's heading correction taken (the rest stays with the "
          "odometry); 1: all"),
     REAL("slam.wall_gain", E, wall_gain, 0, 1, "0",
@@ -86,7 +86,7 @@ const hl_param_entry_t hl_param_table[] = {
          "map's (0: off)"),
     FLAG("slam.guarded", E, guarded, "true",
          "reject implausible localizations instead of adding them to the map"),
-    FLAG("slam.interpolate", S, interpolate, "true", "sub-cell peak interpolation"),
+    FLAG("slam.interpolate", E, interpolate, "true", "sub-cell peak interpolation"),
     FLAG("slam.use_prior", E, use_prior, "true", "weigh votes by the odometry prior"),
     INT("slam.window_mm", E, I32, window_mm, 0, 1000000, "1000",
         "half-width of the search around the prediction; 0: the whole map"),
