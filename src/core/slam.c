@@ -9,11 +9,8 @@
 
 #include "houghloc-internal/closure.h"
 #include "houghloc-internal/params.h"
-#include "houghloc-internal/walls.h"
 #include "slam_internal.h"
 #include "valid_scan.h"
-
-#define PI 3.14159265358979323846
 
 hl_slam_t *hl_slam_create(const hl_params_t *p)
 {
@@ -150,15 +147,6 @@ static uint32_t tracked_peak(uint32_t avg, uint32_t peak, bool accepted)
     return (uint32_t)((int64_t)avg + ((int64_t)peak - avg) / 4);
 }
 
-/* predicted + gain * (found - predicted), the short way round; gain 1 gives found. */
-static hl_bam_t blend_heading(hl_bam_t predicted, hl_bam_t found, double gain)
-{
-    if (gain >= 1.0)
-        return found;
-    int32_t d = (int16_t)(uint16_t)(found - predicted);
-    return (hl_bam_t)(predicted + (int32_t)lround(gain * d));
-}
-
 const hl_scan_t *hl_slam_prepare_valid(const hl_slam_params_t *p, const hl_scan_t *scan,
                                        hl_scan_t *echoed, hl_scan_t *fitted)
 {
@@ -280,31 +268,11 @@ static hl_status_t stage_localize(hl_slam_t *s, const hl_scan_t *scan, hl_pose_t
     return HL_OK;
 }
 
-/* Square walls (slam.wall_gain, walls.h): the heading of an accepted @p step turned
- * part of the way by which the wall normals of @p scan lie off the map's axis. The map's
- * axis does not drift; the heading tracking gives a sparse scan does, by a degree or so
- * a scan, and turns the map drawn after it. */
-static void square_to_walls(const hl_slam_t *s, const hl_scan_t *scan, hl_slam_step_t *step)
-{
-    if (s->p.wall_gain <= 0)
-        return;
-    hl_walls_t map = hl_walls_of_vectors(hl_map_vectors(s->map), hl_map_count(s->map));
-    hl_walls_t seen = hl_walls_of_scan(scan);
-    if (map.n < HL_WALLS_MIN_READINGS || map.r < HL_WALLS_MIN_R ||
-        seen.n < HL_WALLS_MIN_READINGS || seen.r < HL_WALLS_MIN_R)
-        return;
-    uint32_t inliers;
-    double off = hl_walls_offset(scan, hl_bam_to_rad(step->pose.theta), map.axis,
-                                 HL_WALLS_WINDOW_DEG * (PI / 180), &inliers);
-    if (inliers >= HL_WALLS_MIN_READINGS)
-        step->pose.theta = (hl_bam_t)(step->pose.theta -
-                                      hl_bam_from_rad(s->p.wall_gain * off));
-}
-
-/* Guard: accept or reject the pose found (guarded mode), the recent-peak average moved
- * with it. @return whether the scan extends the map. */
-static bool stage_guard(const hl_slam_t *s, hl_pose_t found, hl_slam_step_t *step,
-                        uint32_t *peak_avg)
+/* Guard: accept or reject the pose found (guarded mode) in @p scan, the recent-peak
+ * average moved with it; an accepted pose takes its heading by hl_slam_take_heading.
+ * @return whether the scan extends the map. */
+static bool stage_guard(const hl_slam_t *s, const hl_scan_t *scan, hl_pose_t found,
+                        hl_slam_step_t *step, uint32_t *peak_avg)
 {
     /* A turned drive's pose has passed the judge, which weighs more than the guard's
      * rules of thumb (its peak may be low against recent ones: the robot has driven into
@@ -318,7 +286,7 @@ static bool stage_guard(const hl_slam_t *s, hl_pose_t found, hl_slam_step_t *ste
     }
     step->status = HL_SLAM_ACCEPTED;
     step->pose = found;
-    step->pose.theta = blend_heading(step->predicted.theta, found.theta, s->p.heading_gain);
+    step->pose.theta = hl_slam_take_heading(s, scan, step->predicted.theta, found.theta);
     return true;
 }
 
@@ -378,9 +346,7 @@ hl_status_t hl_slam_propose(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odom
     hl_pose_t found;
     hl_status_t st = stage_localize(s, seen, odometry, p, &found);
     if (st == HL_OK)
-        p->extend = stage_guard(s, found, &p->step, &p->peak_avg);
-    if (st == HL_OK && p->extend)
-        square_to_walls(s, seen, &p->step);
+        p->extend = stage_guard(s, seen, found, &p->step, &p->peak_avg);
     else if (st != HL_ERR_EMPTY)
         return st;
     /* HL_ERR_EMPTY: nothing to vote against. The first scan, or a scan that overlaps

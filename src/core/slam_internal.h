@@ -139,6 +139,12 @@ hl_status_t hl_slam_commit(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odome
 hl_status_t hl_slam_track(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t odometry,
                           hl_slam_step_t *out);
 
+/** The heading an accepted localization of @p ready takes (slam_heading.c): @p found's,
+ *  or part of the way to it from @p predicted (slam.heading_gain), then turned toward
+ *  walls square to the map's (slam.wall_gain). */
+hl_bam_t hl_slam_take_heading(const hl_slam_t *s, const hl_scan_t *ready, hl_bam_t predicted,
+                              hl_bam_t found);
+
 /** The tracker's local search of @p ready against its map from @p predicted (memoized
  *  within hl_slam_update). */
 hl_status_t hl_slam_search_local(hl_slam_t *s, const hl_scan_t *ready, hl_pose_t predicted,
