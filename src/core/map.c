@@ -132,9 +132,9 @@ void hl_map_destroy(hl_map_t *map)
 static void index_unlink(hl_map_t *map, uint32_t slot)
 {
     if (map->per_place)
-        hl_mapsq_unlink(&map->places, map->vectors, slot);
+        hl_mapsq_unlink(&map->places, slot);
     if (map->crowd_sq.head)
-        hl_mapsq_unlink(&map->crowd_sq, map->vectors, slot);
+        hl_mapsq_unlink(&map->crowd_sq, slot);
 }
 
 static void index_link(hl_map_t *map, uint32_t slot)
@@ -233,7 +233,7 @@ static bool set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm)
 static uint32_t crowding(const hl_map_t *map, uint32_t c)
 {
     if (map->crowd_sq.head)
-        return hl_mapsq_count(&map->crowd_sq, map->vectors, &map->vectors[c]);
+        return hl_mapsq_count(&map->crowd_sq, &map->vectors[c]);
     int32_t side = map->places.square_mm;
     uint32_t n = 0;
     for (int dy = -1; dy <= 1; dy++)
@@ -245,7 +245,7 @@ static uint32_t crowding(const hl_map_t *map, uint32_t c)
                 continue;
             probe.x_mm = (hl_mm_t)x;
             probe.y_mm = (hl_mm_t)y;
-            n += hl_mapsq_count(&map->places, map->vectors, &probe);
+            n += hl_mapsq_count(&map->places, &probe);
         }
     return n;
 }
@@ -304,11 +304,11 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
     if (map->per_place) {
         /* A full place: drop one of its vectors and the new one, uniformly at random,
          * as the paper's culling does over the whole map. */
-        uint32_t c = hl_mapsq_count(&map->places, map->vectors, v);
+        uint32_t c = hl_mapsq_count(&map->places, v);
         if (c >= map->per_place) {
             uint32_t victim = hl_rng_below(&map->rng, c + 1);
             if (victim < c)
-                replace(map, hl_mapsq_nth(&map->places, map->vectors, v, victim), v);
+                replace(map, hl_mapsq_nth(&map->places, v, victim), v);
             return HL_OK;
         }
     }

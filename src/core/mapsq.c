@@ -10,6 +10,8 @@
 bool hl_mapsq_init(hl_mapsq_t *q, uint32_t capacity, int32_t square_mm)
 {
     memset(q, 0, sizeof *q);
+    if (!hl_floordiv_init(&q->square, square_mm))
+        return false;
     q->square_mm = square_mm;
     uint32_t buckets = 1;
     while (buckets < 2 * capacity)
@@ -17,7 +19,8 @@ bool hl_mapsq_init(hl_mapsq_t *q, uint32_t capacity, int32_t square_mm)
     q->mask = buckets - 1;
     q->head = malloc((size_t)buckets * sizeof *q->head);
     q->next = malloc((size_t)capacity * sizeof *q->next);
-    if (!q->head || !q->next)
+    q->key = calloc(capacity, sizeof *q->key);
+    if (!q->head || !q->next || !q->key)
         return false;
     memset(q->head, 0xff, (size_t)buckets * sizeof *q->head);
     return true;
@@ -27,32 +30,30 @@ void hl_mapsq_free(hl_mapsq_t *q)
 {
     free(q->head);
     free(q->next);
+    free(q->key);
     memset(q, 0, sizeof *q);
 }
 
 size_t hl_mapsq_mem_bytes(const hl_mapsq_t *q, uint32_t capacity)
 {
-    return q->head ? ((size_t)q->mask + 1) * sizeof *q->head + capacity * sizeof *q->next : 0;
+    return q->head ? ((size_t)q->mask + 1) * sizeof *q->head +
+                         capacity * (sizeof *q->next + sizeof *q->key)
+                   : 0;
 }
 
-static int32_t square_of(int32_t v, int32_t side)
+/* The place of @p a as one number: its square's two coordinates and its side. Chains
+ * compare these rather than divide again at every link. */
+static uint64_t place_of(const hl_mapsq_t *q, const hl_vector_t *a)
 {
-    return v >= 0 ? v / side : -((-v + side - 1) / side);
+    /* squares counted from below every coordinate: 24 bits each */
+    return (uint64_t)hl_floordiv_from_base(&q->square, a->x_mm) << 27 |
+           (uint64_t)hl_floordiv_from_base(&q->square, a->y_mm) << 3 |
+           (uint64_t)(a->normal >> SECTOR_SHIFT);
 }
 
-static bool same_place(const hl_mapsq_t *q, const hl_vector_t *a, const hl_vector_t *b)
+static uint32_t bucket_of(const hl_mapsq_t *q, uint64_t place)
 {
-    return square_of(a->x_mm, q->square_mm) == square_of(b->x_mm, q->square_mm) &&
-           square_of(a->y_mm, q->square_mm) == square_of(b->y_mm, q->square_mm) &&
-           a->normal >> SECTOR_SHIFT == b->normal >> SECTOR_SHIFT;
-}
-
-static uint32_t bucket_of(const hl_mapsq_t *q, const hl_vector_t *a)
-{
-    uint32_t k = (uint32_t)square_of(a->x_mm, q->square_mm) * 73856093u ^
-                 (uint32_t)square_of(a->y_mm, q->square_mm) * 19349663u ^
-                 (uint32_t)(a->normal >> SECTOR_SHIFT) * 83492791u;
-    return k & q->mask;
+    return (uint32_t)((place * 0x9E3779B97F4A7C15u) >> 32) & q->mask;
 }
 
 void hl_mapsq_rebuild(hl_mapsq_t *q, const hl_vector_t *v, uint32_t n)
@@ -60,7 +61,8 @@ void hl_mapsq_rebuild(hl_mapsq_t *q, const hl_vector_t *v, uint32_t n)
     memset(q->head, 0xff, ((size_t)q->mask + 1) * sizeof *q->head);
     /* linking in descending order puts every chain in ascending order at its head */
     for (uint32_t s = n; s-- > 0;) {
-        uint32_t b = bucket_of(q, &v[s]);
+        q->key[s] = place_of(q, &v[s]);
+        uint32_t b = bucket_of(q, q->key[s]);
         q->next[s] = q->head[b];
         q->head[b] = s;
     }
@@ -68,35 +70,37 @@ void hl_mapsq_rebuild(hl_mapsq_t *q, const hl_vector_t *v, uint32_t n)
 
 void hl_mapsq_link(hl_mapsq_t *q, const hl_vector_t *v, uint32_t slot)
 {
-    uint32_t *at = &q->head[bucket_of(q, &v[slot])];
+    q->key[slot] = place_of(q, &v[slot]);
+    uint32_t *at = &q->head[bucket_of(q, q->key[slot])];
     while (*at != NONE && *at < slot)
         at = &q->next[*at];
     q->next[slot] = *at;
     *at = slot;
 }
 
-void hl_mapsq_unlink(hl_mapsq_t *q, const hl_vector_t *v, uint32_t slot)
+void hl_mapsq_unlink(hl_mapsq_t *q, uint32_t slot)
 {
-    uint32_t *at = &q->head[bucket_of(q, &v[slot])];
+    uint32_t *at = &q->head[bucket_of(q, q->key[slot])];
     while (*at != NONE && *at != slot)
         at = &q->next[*at];
     if (*at == slot)
         *at = q->next[slot];
 }
 
-uint32_t hl_mapsq_count(const hl_mapsq_t *q, const hl_vector_t *v, const hl_vector_t *x)
+uint32_t hl_mapsq_count(const hl_mapsq_t *q, const hl_vector_t *x)
 {
+    uint64_t place = place_of(q, x);
     uint32_t n = 0;
-    for (uint32_t s = q->head[bucket_of(q, x)]; s != NONE; s = q->next[s])
-        n += same_place(q, &v[s], x);
+    for (uint32_t s = q->head[bucket_of(q, place)]; s != NONE; s = q->next[s])
+        n += q->key[s] == place;
     return n;
 }
 
-uint32_t hl_mapsq_nth(const hl_mapsq_t *q, const hl_vector_t *v, const hl_vector_t *x,
-                      uint32_t r)
+uint32_t hl_mapsq_nth(const hl_mapsq_t *q, const hl_vector_t *x, uint32_t r)
 {
-    for (uint32_t s = q->head[bucket_of(q, x)]; s != NONE; s = q->next[s])
-        if (same_place(q, &v[s], x) && r-- == 0)
+    uint64_t place = place_of(q, x);
+    for (uint32_t s = q->head[bucket_of(q, place)]; s != NONE; s = q->next[s])
+        if (q->key[s] == place && r-- == 0)
             return s;
     return NONE;    /* r >= the count: not reached by map.c */
 }

@@ -16,13 +16,16 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "floordiv.h"
 #include "houghloc-internal/map.h"
 
 typedef struct hl_mapsq {
     int32_t square_mm;
+    hl_floordiv_t square;   /* division by square_mm */
     uint32_t mask;          /* buckets - 1 */
     uint32_t *head;         /* [buckets] first slot of each chain, or UINT32_MAX */
     uint32_t *next;         /* [capacity] next slot in the chain, or UINT32_MAX */
+    uint64_t *key;          /* [capacity] each linked slot's place (square and side) */
 } hl_mapsq_t;
 
 /** @return false when memory is short (hl_mapsq_free releases what was allocated). */
@@ -34,13 +37,12 @@ size_t hl_mapsq_mem_bytes(const hl_mapsq_t *q, uint32_t capacity);
 void hl_mapsq_rebuild(hl_mapsq_t *q, const hl_vector_t *v, uint32_t n);
 /** Indexes slot @p slot, holding @p v[slot]. */
 void hl_mapsq_link(hl_mapsq_t *q, const hl_vector_t *v, uint32_t slot);
-/** Removes slot @p slot from the index; v[slot] must be what it held when linked. */
-void hl_mapsq_unlink(hl_mapsq_t *q, const hl_vector_t *v, uint32_t slot);
+/** Removes slot @p slot from the index (the place it was linked with). */
+void hl_mapsq_unlink(hl_mapsq_t *q, uint32_t slot);
 /** How many indexed slots hold a vector of the place of @p x. */
-uint32_t hl_mapsq_count(const hl_mapsq_t *q, const hl_vector_t *v, const hl_vector_t *x);
+uint32_t hl_mapsq_count(const hl_mapsq_t *q, const hl_vector_t *x);
 /** The slot of the @p r-th (from 0, in slot order) vector of the place of @p x;
  *  r < hl_mapsq_count. */
-uint32_t hl_mapsq_nth(const hl_mapsq_t *q, const hl_vector_t *v, const hl_vector_t *x,
-                      uint32_t r);
+uint32_t hl_mapsq_nth(const hl_mapsq_t *q, const hl_vector_t *x, uint32_t r);
 
 #endif

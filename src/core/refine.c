@@ -9,30 +9,48 @@
 #include "valid_scan.h"
 
 #define TWO_PI 6.28318530717958647692
+#define MARGIN_MM 25            /* a reading's list serves while it moves less than this */
+#define POOL_PER_READING 16     /* room for lists beyond one of the whole map */
+#define RINGS 32                /* a list's order: rings of reach_mm / RINGS */
 
 /*
  * Speed (docs/results/performance.md). The results are those of the plain method: estimate every
  * map vector's surface normal from its neighbours, then for each reading scan the 3 x 3
- * hash cells of normal_radius_mm around it for the nearest facing vector. Two things
- * make it cheaper without changing a bit of them:
- *  - normals are computed lazily, only for the vectors a reading comes near (about one
- *    in seven on the simulated tour), each exactly as the plain method computes it (same
- *    neighbours, same summation order), and kept for the rest of the run;
- *  - matching searches a second hash with cells of match_mm (on the tour 28 candidates
- *    a reading instead of 76: map vectors lie along walls). Only the order of the
- *    candidates differs from the plain scan, and that order matters only between
- *    candidates at exactly the same distance: there the plain scan's order is
- *    recomputed (plain_first) and decides.
+ * hash cells of normal_radius_mm around it for the nearest facing vector. What makes it
+ * cheaper changes not a bit of them:
+ *  - normals are computed lazily, only for the vectors a reading comes near, and kept
+ *    for the rest of the run; each from exactly the plain method's neighbours, in sums
+ *    of integers (exact in any order), found in the cells the radius reaches;
+ *  - each reading keeps a list of the map vectors within reach_mm (match_mm and a
+ *    margin) of where it lay, ring by ring outwards, and walks it only as far as a
+ *    nearer vector could lie while it moves less than the margin: on a laser's dense
+ *    map some 3 vectors a reading in an iteration rather than 47 within match_mm and
+ *    more in the cells, and a normal needed mostly for the nearest alone;
+ *  - the order of the candidates matters only between candidates at exactly the same
+ *    distance: there the plain scan's order is recomputed (plain_first) and decides.
  */
 struct hl_refiner {
     hl_refine_params_t p;
     uint32_t capacity;      /* map vectors */
-    hl_cellhash_t shape;    /* cells of the larger of normal_radius_mm and match_mm */
-    hl_cellhash_t near;     /* cells of match_mm */
+    hl_cellhash_t near;     /* the map by cells of reach_mm */
+    hl_cellhash_t plain;    /* the plain method's cells (its order breaks ties): never
+                               built, only its cell size and bucket count are used */
     double *nx, *ny;        /* [capacity] unit surface normal, towards the sensors ... */
     uint32_t *stamp;        /* [capacity] ... valid when stamp == run */
     uint32_t run;
     double *px, *py;        /* [HL_SCAN_MAX_READINGS] valid readings in the robot frame */
+    struct near_list {      /* [HL_SCAN_MAX_READINGS] each reading's map vectors ... */
+        double ax, ay;      /* ... within reach_mm of this world point (its anchor) */
+        uint32_t first, count;  /* pool entries */
+        uint32_t pass;      /* valid when pass == the refiner's pass */
+    } *lists;
+    struct near_vector {    /* [pool_size] a map vector near an anchor */
+        int32_t x, y;
+        uint32_t j;         /* map index */
+        uint32_t ring;      /* the ring round the anchor it lies in */
+    } *pool, *scratch;      /* scratch: [capacity] a list being sorted */
+    double ring_mm[RINGS];  /* each ring's inner edge: a vector in it is at least so far */
+    uint32_t pool_size, pool_used, pass;
 };
 
 void hl_refine_params_default(hl_refine_params_t *p)
@@ -63,6 +81,20 @@ const char *hl_refine_params_error(const hl_refine_params_t *p)
     return NULL;
 }
 
+/* How far from its anchor a reading's list reaches: the match distance and the margin. */
+static int32_t reach_mm(const hl_refine_params_t *p)
+{
+    return p->match_mm + MARGIN_MM;
+}
+
+/* The hash's cells: a list's reach (its 3 x 3 cells hold a list), or larger so that a
+ * normal's radius spans few cells whatever the parameters. */
+static int32_t cell_mm(const hl_refine_params_t *p)
+{
+    int32_t quarter = (p->normal_radius_mm + 3) / 4;
+    return reach_mm(p) > quarter ? reach_mm(p) : quarter;
+}
+
 hl_refiner_t *hl_refine_create(const hl_refine_params_t *p, uint32_t max_map_vectors)
 {
     if (hl_refine_params_error(p) || max_map_vectors < 1 || max_map_vectors > HL_MAP_MAX_CAPACITY)
@@ -72,15 +104,22 @@ hl_refiner_t *hl_refine_create(const hl_refine_params_t *p, uint32_t max_map_vec
         return NULL;
     r->p = *p;
     r->capacity = max_map_vectors;
-    int32_t shape_cell = p->normal_radius_mm > p->match_mm ? p->normal_radius_mm : p->match_mm;
-    bool ok = hl_cellhash_init(&r->shape, shape_cell, max_map_vectors);
-    ok = hl_cellhash_init(&r->near, p->match_mm, max_map_vectors) && ok;
+    bool ok = hl_cellhash_init(&r->near, cell_mm(p), max_map_vectors);
+    r->plain.cell_mm = p->normal_radius_mm > p->match_mm ? p->normal_radius_mm : p->match_mm;
+    r->plain.buckets = r->near.buckets;
+    for (uint32_t k = 0; k < RINGS; k++)
+        r->ring_mm[k] = (double)k * reach_mm(p) / RINGS;
     r->nx = malloc(max_map_vectors * sizeof *r->nx);
     r->ny = malloc(max_map_vectors * sizeof *r->ny);
     r->stamp = calloc(max_map_vectors, sizeof *r->stamp);
     r->px = malloc(HL_SCAN_MAX_READINGS * sizeof *r->px);
     r->py = malloc(HL_SCAN_MAX_READINGS * sizeof *r->py);
-    if (!ok || !r->nx || !r->ny || !r->stamp || !r->px || !r->py) {
+    r->lists = calloc(HL_SCAN_MAX_READINGS, sizeof *r->lists);
+    r->pool_size = max_map_vectors + POOL_PER_READING * HL_SCAN_MAX_READINGS;
+    r->pool = malloc(r->pool_size * sizeof *r->pool);
+    r->scratch = malloc(max_map_vectors * sizeof *r->scratch);
+    if (!ok || !r->nx || !r->ny || !r->stamp || !r->px || !r->py || !r->lists || !r->pool ||
+        !r->scratch) {
         hl_refine_destroy(r);
         return NULL;
     }
@@ -91,22 +130,24 @@ void hl_refine_destroy(hl_refiner_t *r)
 {
     if (!r)
         return;
-    hl_cellhash_free(&r->shape);
     hl_cellhash_free(&r->near);
     free(r->nx);
     free(r->ny);
     free(r->stamp);
     free(r->px);
     free(r->py);
+    free(r->lists);
+    free(r->pool);
+    free(r->scratch);
     free(r);
 }
 
 size_t hl_refine_mem_bytes(const hl_refiner_t *r)
 {
-    return sizeof *r + hl_cellhash_mem_bytes(&r->shape) +
-           hl_cellhash_mem_bytes(&r->near) +
+    return sizeof *r + hl_cellhash_mem_bytes(&r->near) +
            r->capacity * (sizeof *r->nx + sizeof *r->ny + sizeof *r->stamp) +
-           HL_SCAN_MAX_READINGS * (sizeof *r->px + sizeof *r->py);
+           HL_SCAN_MAX_READINGS * (sizeof *r->px + sizeof *r->py + sizeof *r->lists) +
+           (r->pool_size + r->capacity) * sizeof *r->pool;
 }
 
 /* ---- surface normals ------------------------------------------------------------- */
@@ -119,37 +160,45 @@ static void unit_normal(hl_bam_t a, double *x, double *y)
 
 /* Vector i's surface normal: across the principal axis of the neighbours within
  * normal_radius_mm that face the same way (itself included), oriented towards its
- * sensor; its own normal when fewer than three vectors shape it. The sums run over the
- * 3 x 3 cells of the shape hash, each bucket once, in the plain method's order: they are
- * floating point, so the order is part of the result. */
+ * sensor; its own normal when fewer than three vectors shape it. The neighbours are
+ * sought in the cells that the radius reaches, each entry counted in its own cell only
+ * (a bucket holds every cell hashed to it). Their sums are of integers (map positions
+ * are whole millimetres) and so exact in any order. */
 static void compute_normal(hl_refiner_t *r, const hl_vector_t *map, uint32_t i)
 {
-    const hl_cellhash_t *g = &r->shape;
+    const hl_cellhash_t *g = &r->near;
     const hl_vector_t *a = &map[i];
-    double r2 = (double)r->p.normal_radius_mm * r->p.normal_radius_mm;
-    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
-    int32_t cx = hl_cellhash_cell(g, a->x_mm), cy = hl_cellhash_cell(g, a->y_mm);
-    uint32_t seen[9];
-    int nseen = 0;
-    for (int ddy = -1; ddy <= 1; ddy++) {
-        for (int ddx = -1; ddx <= 1; ddx++) {
-            uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
-            bool dup = false;
-            for (int k = 0; k < nseen; k++)
-                dup = dup || seen[k] == b;
-            if (dup)
-                continue;
-            seen[nseen++] = b;
+    const int32_t rad = r->p.normal_radius_mm, side = g->cell_mm;
+    const int64_t r2 = (int64_t)rad * rad;
+    int64_t n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+    /* map coordinates lie within +-HL_COORD_MAX_MM: none of this overflows */
+    int32_t x0 = hl_cellhash_cell(g, a->x_mm - rad), x1 = hl_cellhash_cell(g, a->x_mm + rad);
+    int32_t y0 = hl_cellhash_cell(g, a->y_mm - rad), y1 = hl_cellhash_cell(g, a->y_mm + rad);
+    for (int32_t cy = y0; cy <= y1; cy++) {
+        int32_t lo_y = cy * side, gap_y = lo_y > a->y_mm ? lo_y - a->y_mm
+                                         : a->y_mm >= lo_y + side ? a->y_mm - (lo_y + side - 1)
+                                                                  : 0;
+        for (int32_t cx = x0; cx <= x1; cx++) {
+            int32_t lo_x = cx * side, gap_x = lo_x > a->x_mm ? lo_x - a->x_mm
+                                             : a->x_mm >= lo_x + side ? a->x_mm - (lo_x + side - 1)
+                                                                      : 0;
+            if ((int64_t)gap_x * gap_x + (int64_t)gap_y * gap_y > r2)
+                continue;   /* the cell lies wholly beyond the radius */
+            uint32_t b = hl_cellhash_bucket(g, cx, cy);
             for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
-                double dx = (double)g->x[e] - a->x_mm, dy = (double)g->y[e] - a->y_mm;
-                if (dx * dx + dy * dy > r2 || abs(hl_bam_diff(a->normal, g->normal[e])) > 10923)
+                int32_t ex = g->x[e], ey = g->y[e];
+                if (ex < lo_x || ex >= lo_x + side || ey < lo_y || ey >= lo_y + side)
+                    continue;   /* another cell's */
+                int32_t dx = ex - a->x_mm, dy = ey - a->y_mm;
+                int64_t ddx2 = (int64_t)dx * dx, ddy2 = (int64_t)dy * dy;
+                if (ddx2 + ddy2 > r2 || abs(hl_bam_diff(a->normal, g->normal[e])) > 10923)
                     continue;   /* 10923: 60 degrees */
                 n += 1;
                 sx += dx;
                 sy += dy;
-                sxx += dx * dx;
-                sxy += dx * dy;
-                syy += dy * dy;
+                sxx += ddx2;
+                sxy += (int64_t)dx * dy;
+                syy += ddy2;
             }
         }
     }
@@ -159,8 +208,10 @@ static void compute_normal(hl_refiner_t *r, const hl_vector_t *map, uint32_t i)
     r->ny[i] = oy;
     if (n < 3)
         return;
-    double mx = sx / n, my = sy / n;
-    double cxx = sxx / n - mx * mx, cxy = sxy / n - mx * my, cyy = syy / n - my * my;
+    double dn = (double)n;
+    double mx = (double)sx / dn, my = (double)sy / dn;
+    double cxx = (double)sxx / dn - mx * mx, cxy = (double)sxy / dn - mx * my,
+           cyy = (double)syy / dn - my * my;
     double axis = 0.5 * atan2(2 * cxy, cxx - cyy);
     double nx = -sin(axis), ny = cos(axis);
     if (nx * ox + ny * oy < 0) {
@@ -184,10 +235,10 @@ static void need_normal(hl_refiner_t *r, const hl_vector_t *map, uint32_t i)
 /* ---- matching -------------------------------------------------------------------- */
 
 /* Where vector j's bucket comes in the plain method's scan around (x, y): the 3 x 3
- * shape-hash cells row by row, each bucket at its first cell. 9 if not there. */
+ * plain cells row by row, each bucket at its first cell. 9 if not there. */
 static int plain_slot(const hl_refiner_t *r, double x, double y, const hl_vector_t *v)
 {
-    const hl_cellhash_t *g = &r->shape;
+    const hl_cellhash_t *g = &r->plain;
     uint32_t bj = hl_cellhash_bucket_of(g, v->x_mm, v->y_mm);
     int32_t cx = hl_cellhash_cell(g, x), cy = hl_cellhash_cell(g, y);
     int slot = 0;
@@ -207,38 +258,96 @@ static bool plain_first(const hl_refiner_t *r, const hl_vector_t *map, double x,
     return sa != sb ? sa < sb : a > b;
 }
 
-/* The nearest map vector closer than match_mm to the world point (wx, wy) whose surface
- * faces the robot at (sx, sy); -1 if none. Of several at the same distance, the one the
- * plain scan meets first. Scans the 3 x 3 cells of match_mm around the point: a bucket
- * that two of them share is scanned twice, which changes nothing. */
-static int32_t nearest_facing(hl_refiner_t *r, const hl_vector_t *map, double wx, double wy,
-                              double sx, double sy)
+/* Reading i's list anew, anchored at the world point (wx, wy): the map vectors within
+ * reach_mm of it, nearest first, from the 3 x 3 cells of reach_mm around it (each
+ * bucket once). The pool starts over, every list gone stale, when it would overflow: it
+ * holds the whole map at least. */
+static void gather_list(hl_refiner_t *r, uint32_t i, double wx, double wy)
 {
     const hl_cellhash_t *g = &r->near;
-    double best2 = (double)r->p.match_mm * r->p.match_mm;
-    int32_t best = -1;
+    double reach = reach_mm(&r->p), reach2 = reach * reach;   /* cells at least as large */
     int32_t cx = hl_cellhash_cell(g, wx), cy = hl_cellhash_cell(g, wy);
+    uint32_t buckets[9], nb = 0, total = 0;
     for (int ddy = -1; ddy <= 1; ddy++) {
         for (int ddx = -1; ddx <= 1; ddx++) {
             uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
-            for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
-                double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
-                if (d2 > best2)
-                    continue;
-                uint32_t j = g->index[e];
-                /* a tie with the gate itself never matches (strictly closer than
-                 * match_mm); a tie with a candidate goes to the plain scan's first */
-                if (d2 == best2 &&
-                    (best < 0 || !plain_first(r, map, wx, wy, j, (uint32_t)best)))
-                    continue;
-                need_normal(r, map, j);
-                /* the surface must face the robot */
-                if (r->nx[j] * (sx - wx) + r->ny[j] * (sy - wy) <= 0)
-                    continue;
-                best2 = d2;
-                best = (int32_t)j;
+            bool dup = false;
+            for (uint32_t k = 0; k < nb; k++)
+                dup = dup || buckets[k] == b;
+            if (!dup) {
+                buckets[nb++] = b;
+                total += g->start[b + 1] - g->start[b];
             }
         }
+    }
+    if (total > r->pool_size - r->pool_used) {
+        r->pool_used = 0;
+        if (++r->pass == 0) {
+            memset(r->lists, 0, HL_SCAN_MAX_READINGS * sizeof *r->lists);
+            r->pass = 1;
+        }
+    }
+    /* nearest first by a counting sort into rings: within a ring the order is the
+     * hash's, which the walk does not depend on */
+    uint32_t ring_start[RINGS + 1] = { 0 };
+    struct near_vector *out = &r->pool[r->pool_used], *tmp = r->scratch;
+    uint32_t n = 0;
+    for (uint32_t k = 0; k < nb; k++) {
+        for (uint32_t e = g->start[buckets[k]]; e < g->start[buckets[k] + 1]; e++) {
+            double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
+            if (d2 < reach2) {
+                uint32_t ring = (uint32_t)(sqrt(d2) * (RINGS / reach));
+                ring = ring < RINGS ? ring : RINGS - 1;
+                tmp[n++] = (struct near_vector){ g->x[e], g->y[e], g->index[e], ring };
+                ring_start[ring + 1]++;
+            }
+        }
+    }
+    for (uint32_t k = 1; k <= RINGS; k++)
+        ring_start[k] += ring_start[k - 1];
+    for (uint32_t k = 0; k < n; k++)
+        out[ring_start[tmp[k].ring]++] = tmp[k];
+    struct near_list *l = &r->lists[i];
+    *l = (struct near_list){ wx, wy, r->pool_used, n, r->pass };
+    r->pool_used += n;
+}
+
+/* The nearest map vector closer than match_mm to reading i's world point (wx, wy) whose
+ * surface faces the robot at (sx, sy); -1 if none. Of several at the same distance, the
+ * one the plain scan meets first. The reading's list, ring by ring out from its anchor,
+ * is walked until no vector further on can be as near: one at least ring_mm from the
+ * anchor lies at least ring_mm - moved from the point (moved < MARGIN_MM, or the list
+ * is drawn anew; the 1e-6 mm covers rounding). So normals are needed mostly for the
+ * nearest vector alone. */
+static int32_t nearest_facing(hl_refiner_t *r, const hl_vector_t *map, uint32_t i,
+                              double wx, double wy, double sx, double sy)
+{
+    struct near_list *l = &r->lists[i];
+    double mx = wx - l->ax, my = wy - l->ay;
+    double moved = l->pass == r->pass ? sqrt(mx * mx + my * my) : INFINITY;
+    if (!(moved < MARGIN_MM)) {
+        gather_list(r, i, wx, wy);
+        moved = 0;
+    }
+    double best2 = (double)r->p.match_mm * r->p.match_mm, bound = r->p.match_mm + moved;
+    int32_t best = -1;
+    const struct near_vector *v = &r->pool[l->first];
+    for (uint32_t k = 0; k < l->count && r->ring_mm[v[k].ring] <= bound + 1e-6; k++) {
+        double dx = wx - v[k].x, dy = wy - v[k].y, d2 = dx * dx + dy * dy;
+        if (d2 > best2)
+            continue;
+        uint32_t j = v[k].j;
+        /* a tie with the gate itself never matches (strictly closer than match_mm); a
+         * tie with a candidate goes to the plain scan's first */
+        if (d2 == best2 && (best < 0 || !plain_first(r, map, wx, wy, j, (uint32_t)best)))
+            continue;
+        need_normal(r, map, j);
+        /* the surface must face the robot */
+        if (r->nx[j] * (sx - wx) + r->ny[j] * (sy - wy) <= 0)
+            continue;
+        best2 = d2;
+        best = (int32_t)j;
+        bound = sqrt(best2) + moved;
     }
     return best;
 }
@@ -291,7 +400,7 @@ static uint32_t gauss_newton_step(hl_refiner_t *r, const hl_vector_t *map, uint3
         double px = r->px[i], py = r->py[i];
         double wx = pose[0] + c * px - s * py;
         double wy = pose[1] + s * px + c * py;
-        int32_t best = nearest_facing(r, map, wx, wy, pose[0], pose[1]);
+        int32_t best = nearest_facing(r, map, i, wx, wy, pose[0], pose[1]);
         if (best < 0)
             continue;
         double nx = r->nx[best], ny = r->ny[best];
@@ -360,7 +469,6 @@ static hl_status_t run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
         return HL_ERR_RANGE;
     if (n == 0)
         return HL_ERR_EMPTY;
-    hl_cellhash_build(&r->shape, map, n);
     hl_cellhash_build(&r->near, map, n);
     /* A new run: every normal is stale (stamps restart before the counter wraps). */
     if (++r->run == 0) {
@@ -368,6 +476,11 @@ static hl_status_t run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
         r->run = 1;
     }
     uint32_t nread = gather_readings(r, scan);
+    r->pool_used = 0;   /* the last run's lists are stale */
+    if (++r->pass == 0) {
+        memset(r->lists, 0, HL_SCAN_MAX_READINGS * sizeof *r->lists);
+        r->pass = 1;
+    }
 
     const double th0 = hl_bam_to_rad(start.theta);
     double pose[3] = { start.x_mm, start.y_mm, th0 };

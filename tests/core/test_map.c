@@ -300,6 +300,46 @@ static hl_map_t *map_with(uint32_t capacity, uint64_t seed, int32_t square_mm,
     return m;
 }
 
+/* floor(v / square_mm), the squares the density bound is meant to have. */
+static int64_t square_index(int64_t v, int64_t side)
+{
+    return v >= 0 ? v / side : -((-v + side - 1) / side);
+}
+
+/* The density bound's squares split exactly where floor(v / square_mm) does (its index
+ * divides by a multiply): two vectors one millimetre apart share a place exactly when
+ * they share a square, at every square's edges tried, on both sides of zero and at the
+ * limits of the coordinates, for square sizes across the allowed range. */
+static void test_density_squares_split_at_edges(void **state)
+{
+    (void)state;
+    const int32_t sides[] = { HL_MAP_MIN_SQUARE_MM, 11, 48, 50, 64, 333, 999,
+                              HL_MAP_MAX_SQUARE_MM };
+    const int64_t max = HL_COORD_MAX_MM;
+    for (size_t k = 0; k < sizeof sides / sizeof *sides; k++) {
+        int64_t d = sides[k];
+        const int64_t edges[] = { 0, d, -d, 7 * d, -7 * d, (max / d) * d, -(max / d) * d,
+                                  max, -max + 1 };
+        for (size_t e = 0; e < sizeof edges / sizeof *edges; e++) {
+            int64_t a = edges[e] - 1, b = edges[e];
+            if (a < -max)
+                continue;   /* -max itself is an edge: nothing below it */
+            for (int axis = 0; axis < 2; axis++) {
+                hl_map_t *m = map_with(10, 1, (int32_t)d, 1, UNIFORM, 1, 0);
+                hl_vector_t va = axis ? vec(5, (int32_t)a) : vec((int32_t)a, 5);
+                hl_vector_t vb = axis ? vec(5, (int32_t)b) : vec((int32_t)b, 5);
+                /* both seen from the side whose sensor lies within the coordinates */
+                va.normal = vb.normal = axis == 0 && b > 0 ? 32768 : 0;
+                assert_int_equal(hl_map_add(m, &va), HL_OK);
+                assert_int_equal(hl_map_add(m, &vb), HL_OK);
+                uint32_t places = square_index(a, d) == square_index(b, d) ? 1 : 2;
+                assert_int_equal(hl_map_count(m), places);
+                hl_map_destroy(m);
+            }
+        }
+    }
+}
+
 /* The density bound: a place keeps at most per_place vectors however often it is seen,
  * other places and the other side of the same place are unaffected, the newest vector
  * gets in at the rate the paper's culling gives (per_place / (per_place + 1) of the
@@ -604,6 +644,7 @@ int main(void)
         cmocka_unit_test(test_crowding_cull_keeps_what_was_seen_once),
         cmocka_unit_test(test_crowding_squares_restore),
         cmocka_unit_test(test_crowding_cull_arguments),
+        cmocka_unit_test(test_density_squares_split_at_edges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
