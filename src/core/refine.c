@@ -10,7 +10,9 @@
 
 #define TWO_PI 6.28318530717958647692
 #define MARGIN_MM 25            /* a reading's list serves while it moves less than this */
-#define POOL_PER_READING 16     /* room for lists beyond one of the whole map */
+#define LIST_MAX 128            /* a longer list is not kept: the reading searches the cells */
+#define POOL_PER_VECTOR 16      /* the lists' room: this many entries a map vector, ... */
+#define POOL_MAX (HL_SCAN_MAX_READINGS * LIST_MAX)     /* ... at most */
 #define RINGS 32                /* a list's order: rings of reach_mm / RINGS */
 
 /*
@@ -40,17 +42,18 @@ struct hl_refiner {
     uint32_t run;
     double *px, *py;        /* [HL_SCAN_MAX_READINGS] valid readings in the robot frame */
     struct near_list {      /* [HL_SCAN_MAX_READINGS] each reading's map vectors ... */
-        double ax, ay;      /* ... within reach_mm of this world point (its anchor) */
-        uint32_t first, count;  /* pool entries */
-        uint32_t pass;      /* valid when pass == the refiner's pass */
+        double ax, ay;      /* ... within reach_mm of this world point (its anchor), */
+        uint32_t first, count;  /* pool[first ...]; count > LIST_MAX: no list this run */
+        uint32_t room;      /* entries pool[first ...] holds */
+        uint32_t run;       /* valid when run == the refiner's run */
     } *lists;
-    struct near_vector {    /* [pool_size] a map vector near an anchor */
+    struct near_vector {    /* a map vector near an anchor */
         int32_t x, y;
         uint32_t j;         /* map index */
         uint32_t ring;      /* the ring round the anchor it lies in */
-    } *pool, *scratch;      /* scratch: [capacity] a list being sorted */
+    } *pool, *scratch;      /* [pool_size] the lists; [capacity] */
+    uint32_t pool_size, pool_used;  /* the lists' room, and how much a run has taken */
     double ring_mm[RINGS];  /* each ring's inner edge: a vector in it is at least so far */
-    uint32_t pool_size, pool_used, pass;
 };
 
 void hl_refine_params_default(hl_refine_params_t *p)
@@ -115,7 +118,8 @@ hl_refiner_t *hl_refine_create(const hl_refine_params_t *p, uint32_t max_map_vec
     r->px = malloc(HL_SCAN_MAX_READINGS * sizeof *r->px);
     r->py = malloc(HL_SCAN_MAX_READINGS * sizeof *r->py);
     r->lists = calloc(HL_SCAN_MAX_READINGS, sizeof *r->lists);
-    r->pool_size = max_map_vectors + POOL_PER_READING * HL_SCAN_MAX_READINGS;
+    r->pool_size = max_map_vectors < POOL_MAX / POOL_PER_VECTOR ? max_map_vectors * POOL_PER_VECTOR
+                                                                : POOL_MAX;
     r->pool = malloc(r->pool_size * sizeof *r->pool);
     r->scratch = malloc(max_map_vectors * sizeof *r->scratch);
     if (!ok || !r->nx || !r->ny || !r->stamp || !r->px || !r->py || !r->lists || !r->pool ||
@@ -147,7 +151,7 @@ size_t hl_refine_mem_bytes(const hl_refiner_t *r)
     return sizeof *r + hl_cellhash_mem_bytes(&r->near) +
            r->capacity * (sizeof *r->nx + sizeof *r->ny + sizeof *r->stamp) +
            HL_SCAN_MAX_READINGS * (sizeof *r->px + sizeof *r->py + sizeof *r->lists) +
-           (r->pool_size + r->capacity) * sizeof *r->pool;
+           ((size_t)r->pool_size + r->capacity) * sizeof *r->pool;
 }
 
 /* ---- surface normals ------------------------------------------------------------- */
@@ -258,81 +262,85 @@ static bool plain_first(const hl_refiner_t *r, const hl_vector_t *map, double x,
     return sa != sb ? sa < sb : a > b;
 }
 
-/* Reading i's list anew, anchored at the world point (wx, wy): the map vectors within
- * reach_mm of it, nearest first, from the 3 x 3 cells of reach_mm around it (each
- * bucket once). The pool starts over, every list gone stale, when it would overflow: it
- * holds the whole map at least. */
-static void gather_list(hl_refiner_t *r, uint32_t i, double wx, double wy)
+/* The map vectors within reach_mm of the world point (wx, wy), from the 3 x 3 cells around
+ * it (each bucket once), into r->scratch with their rings counted into ring_start[1 ..];
+ * their number. */
+static uint32_t gather(hl_refiner_t *r, double wx, double wy, uint32_t ring_start[RINGS + 1])
 {
     const hl_cellhash_t *g = &r->near;
     double reach = reach_mm(&r->p), reach2 = reach * reach;   /* cells at least as large */
     int32_t cx = hl_cellhash_cell(g, wx), cy = hl_cellhash_cell(g, wy);
-    uint32_t buckets[9], nb = 0, total = 0;
+    uint32_t seen[9], nseen = 0, n = 0;
     for (int ddy = -1; ddy <= 1; ddy++) {
         for (int ddx = -1; ddx <= 1; ddx++) {
             uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
             bool dup = false;
-            for (uint32_t k = 0; k < nb; k++)
-                dup = dup || buckets[k] == b;
-            if (!dup) {
-                buckets[nb++] = b;
-                total += g->start[b + 1] - g->start[b];
-            }
-        }
-    }
-    if (total > r->pool_size - r->pool_used) {
-        r->pool_used = 0;
-        if (++r->pass == 0) {
-            memset(r->lists, 0, HL_SCAN_MAX_READINGS * sizeof *r->lists);
-            r->pass = 1;
-        }
-    }
-    /* nearest first by a counting sort into rings: within a ring the order is the
-     * hash's, which the walk does not depend on */
-    uint32_t ring_start[RINGS + 1] = { 0 };
-    struct near_vector *out = &r->pool[r->pool_used], *tmp = r->scratch;
-    uint32_t n = 0;
-    for (uint32_t k = 0; k < nb; k++) {
-        for (uint32_t e = g->start[buckets[k]]; e < g->start[buckets[k] + 1]; e++) {
-            double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
-            if (d2 < reach2) {
+            for (uint32_t k = 0; k < nseen; k++)
+                dup = dup || seen[k] == b;
+            if (dup)
+                continue;
+            seen[nseen++] = b;
+            for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
+                double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
+                if (d2 >= reach2)
+                    continue;
                 uint32_t ring = (uint32_t)(sqrt(d2) * (RINGS / reach));
                 ring = ring < RINGS ? ring : RINGS - 1;
-                tmp[n++] = (struct near_vector){ g->x[e], g->y[e], g->index[e], ring };
+                r->scratch[n++] = (struct near_vector){ g->x[e], g->y[e], g->index[e], ring };
                 ring_start[ring + 1]++;
             }
         }
     }
-    for (uint32_t k = 1; k <= RINGS; k++)
-        ring_start[k] += ring_start[k - 1];
-    for (uint32_t k = 0; k < n; k++)
-        out[ring_start[tmp[k].ring]++] = tmp[k];
-    struct near_list *l = &r->lists[i];
-    *l = (struct near_list){ wx, wy, r->pool_used, n, r->pass };
-    r->pool_used += n;
+    return n;
 }
 
-/* The nearest map vector closer than match_mm to reading i's world point (wx, wy) whose
- * surface faces the robot at (sx, sy); -1 if none. Of several at the same distance, the
- * one the plain scan meets first. The reading's list, ring by ring out from its anchor,
- * is walked until no vector further on can be as near: one at least ring_mm from the
- * anchor lies at least ring_mm - moved from the point (moved < MARGIN_MM, or the list
- * is drawn anew; the 1e-6 mm covers rounding). So normals are needed mostly for the
- * nearest vector alone. */
-static int32_t nearest_facing(hl_refiner_t *r, const hl_vector_t *map, uint32_t i,
-                              double wx, double wy, double sx, double sy)
+/* Reading i's list anew, anchored at the world point (wx, wy): the map vectors within
+ * reach_mm of it, ring by ring outwards (a counting sort: within a ring the order is the
+ * hash's, which the walk does not depend on). Its room in the pool is kept for the run,
+ * with a quarter to spare for the lists drawn after it. @return false when more vectors
+ * lie around than a list holds (LIST_MAX) or the pool has room for: the reading then
+ * searches the cells as they lie for the rest of the run. */
+static bool draw_list(hl_refiner_t *r, uint32_t i, double wx, double wy)
 {
+    uint32_t ring_start[RINGS + 1] = { 0 };
+    uint32_t n = gather(r, wx, wy, ring_start);
     struct near_list *l = &r->lists[i];
-    double mx = wx - l->ax, my = wy - l->ay;
-    double moved = l->pass == r->pass ? sqrt(mx * mx + my * my) : INFINITY;
-    if (!(moved < MARGIN_MM)) {
-        gather_list(r, i, wx, wy);
-        moved = 0;
+    bool kept = l->run == r->run;       /* room taken earlier in this run */
+    l->ax = wx;
+    l->ay = wy;
+    l->count = n;
+    l->run = r->run;
+    if (!kept || n > l->room) {         /* room of its own, from what the run has left */
+        uint32_t left = r->pool_size - r->pool_used, want = n + n / 4 + 4;
+        l->first = r->pool_used;
+        l->room = n > LIST_MAX || n > left ? 0 : want < left ? want : left;
+        r->pool_used += l->room;
     }
+    if (n > l->room) {
+        l->count = LIST_MAX + 1;        /* no list: the cells for the rest of the run */
+        return false;
+    }
+    for (uint32_t k = 1; k <= RINGS; k++)
+        ring_start[k] += ring_start[k - 1];
+    struct near_vector *out = &r->pool[l->first];
+    for (uint32_t k = 0; k < n; k++)
+        out[ring_start[r->scratch[k].ring]++] = r->scratch[k];
+    return true;
+}
+
+/* Of the n vectors v, the nearest closer than match_mm to the world point (wx, wy) whose
+ * surface faces the robot at (sx, sy); -1 if none. Of several at the same distance, the
+ * one the plain scan meets first. With @p rings, v is ring by ring from an anchor
+ * @p moved from the point, and is walked only until no vector further on can be as
+ * near: one at least ring_mm from the anchor lies at least ring_mm - moved from the
+ * point (the 1e-6 mm covers rounding). So a normal is needed mostly for the nearest. */
+static int32_t nearest_of(hl_refiner_t *r, const hl_vector_t *map, const struct near_vector *v,
+                          uint32_t n, bool rings, double moved, double wx, double wy,
+                          double sx, double sy)
+{
     double best2 = (double)r->p.match_mm * r->p.match_mm, bound = r->p.match_mm + moved;
     int32_t best = -1;
-    const struct near_vector *v = &r->pool[l->first];
-    for (uint32_t k = 0; k < l->count && r->ring_mm[v[k].ring] <= bound + 1e-6; k++) {
+    for (uint32_t k = 0; k < n && (!rings || r->ring_mm[v[k].ring] <= bound + 1e-6); k++) {
         double dx = wx - v[k].x, dy = wy - v[k].y, d2 = dx * dx + dy * dy;
         if (d2 > best2)
             continue;
@@ -350,6 +358,65 @@ static int32_t nearest_facing(hl_refiner_t *r, const hl_vector_t *map, uint32_t 
         bound = sqrt(best2) + moved;
     }
     return best;
+}
+
+/* nearest_of over the map vectors in the 3 x 3 cells around (wx, wy) as they lie, for a
+ * reading whose surroundings are too crowded for a list: the plain scan's cost. */
+static int32_t nearest_in_cells(hl_refiner_t *r, const hl_vector_t *map, double wx, double wy,
+                                double sx, double sy)
+{
+    const hl_cellhash_t *g = &r->near;
+    double best2 = (double)r->p.match_mm * r->p.match_mm;
+    int32_t best = -1;
+    int32_t cx = hl_cellhash_cell(g, wx), cy = hl_cellhash_cell(g, wy);
+    uint32_t seen[9], nseen = 0;
+    for (int ddy = -1; ddy <= 1; ddy++) {
+        for (int ddx = -1; ddx <= 1; ddx++) {
+            uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
+            bool dup = false;
+            for (uint32_t k = 0; k < nseen; k++)
+                dup = dup || seen[k] == b;
+            if (dup)
+                continue;
+            seen[nseen++] = b;
+            for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
+                double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
+                if (d2 > best2)
+                    continue;
+                uint32_t j = g->index[e];
+                if (d2 == best2 &&
+                    (best < 0 || !plain_first(r, map, wx, wy, j, (uint32_t)best)))
+                    continue;
+                need_normal(r, map, j);
+                if (r->nx[j] * (sx - wx) + r->ny[j] * (sy - wy) <= 0)
+                    continue;
+                best2 = d2;
+                best = (int32_t)j;
+            }
+        }
+    }
+    return best;
+}
+
+/* The nearest map vector facing the robot at (sx, sy) within match_mm of reading i's
+ * world point (wx, wy) (nearest_of), from the reading's list while it has moved less
+ * than MARGIN_MM from the list's anchor, else from a list drawn anew; where more vectors
+ * lie around than a list holds, from the cells as they lie for the rest of the run. */
+static int32_t nearest_facing(hl_refiner_t *r, const hl_vector_t *map, uint32_t i,
+                              double wx, double wy, double sx, double sy)
+{
+    struct near_list *l = &r->lists[i];
+    if (l->run == r->run && l->count > LIST_MAX)
+        return nearest_in_cells(r, map, wx, wy, sx, sy);
+    double mx = wx - l->ax, my = wy - l->ay;
+    double moved = l->run == r->run ? sqrt(mx * mx + my * my) : INFINITY;
+    if (!(moved < MARGIN_MM)) {
+        if (!draw_list(r, i, wx, wy))
+            return nearest_in_cells(r, map, wx, wy, sx, sy);
+        moved = 0;
+    }
+    const struct near_vector *v = &r->pool[l->first];
+    return nearest_of(r, map, v, l->count, true, moved, wx, wy, sx, sy);
 }
 
 /* Solves the dim x dim system a * x = b (dim 2 or 3) by Gaussian elimination with
@@ -470,17 +537,14 @@ static hl_status_t run(hl_refiner_t *r, const hl_vector_t *map, uint32_t n,
     if (n == 0)
         return HL_ERR_EMPTY;
     hl_cellhash_build(&r->near, map, n);
-    /* A new run: every normal is stale (stamps restart before the counter wraps). */
+    /* A new run: every normal and list is stale (both restart before the counter wraps). */
     if (++r->run == 0) {
         memset(r->stamp, 0, r->capacity * sizeof *r->stamp);
+        memset(r->lists, 0, HL_SCAN_MAX_READINGS * sizeof *r->lists);
         r->run = 1;
     }
     uint32_t nread = gather_readings(r, scan);
-    r->pool_used = 0;   /* the last run's lists are stale */
-    if (++r->pass == 0) {
-        memset(r->lists, 0, HL_SCAN_MAX_READINGS * sizeof *r->lists);
-        r->pass = 1;
-    }
+    r->pool_used = 0;
 
     const double th0 = hl_bam_to_rad(start.theta);
     double pose[3] = { start.x_mm, start.y_mm, th0 };
