@@ -262,6 +262,39 @@ static bool plain_first(const hl_refiner_t *r, const hl_vector_t *map, double x,
     return sa != sb ? sa < sb : a > b;
 }
 
+/* The buckets of the 3 x 3 cells around (wx, wy), each once (cells share buckets), into
+ * out; their number. */
+static uint32_t buckets_around(const hl_cellhash_t *g, double wx, double wy, uint32_t out[9])
+{
+    int32_t cx = hl_cellhash_cell(g, wx), cy = hl_cellhash_cell(g, wy);
+    uint32_t n = 0;
+    for (int ddy = -1; ddy <= 1; ddy++) {
+        for (int ddx = -1; ddx <= 1; ddx++) {
+            uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
+            bool dup = false;
+            for (uint32_t k = 0; k < n; k++)
+                dup = dup || out[k] == b;
+            if (!dup)
+                out[n++] = b;
+        }
+    }
+    return n;
+}
+
+/* Does map vector j, d2 squared from the world point (wx, wy), beat the best so far
+ * (best, best2 squared away; -1 for none)? Nearer, or as near and met first by the plain
+ * scan (a tie with the gate itself never matches: strictly closer than match_mm), and
+ * its surface facing the robot at (sx, sy). */
+static bool beats(hl_refiner_t *r, const hl_vector_t *map, uint32_t j, double d2, int32_t best,
+                  double best2, double wx, double wy, double sx, double sy)
+{
+    if (d2 > best2 ||
+        (d2 == best2 && (best < 0 || !plain_first(r, map, wx, wy, j, (uint32_t)best))))
+        return false;
+    need_normal(r, map, j);
+    return r->nx[j] * (sx - wx) + r->ny[j] * (sy - wy) > 0;
+}
+
 /* The map vectors within reach_mm of the world point (wx, wy), from the 3 x 3 cells around
  * it (each bucket once), into r->scratch with their rings counted into ring_start[1 ..];
  * their number. */
@@ -269,26 +302,16 @@ static uint32_t gather(hl_refiner_t *r, double wx, double wy, uint32_t ring_star
 {
     const hl_cellhash_t *g = &r->near;
     double reach = reach_mm(&r->p), reach2 = reach * reach;   /* cells at least as large */
-    int32_t cx = hl_cellhash_cell(g, wx), cy = hl_cellhash_cell(g, wy);
-    uint32_t seen[9], nseen = 0, n = 0;
-    for (int ddy = -1; ddy <= 1; ddy++) {
-        for (int ddx = -1; ddx <= 1; ddx++) {
-            uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
-            bool dup = false;
-            for (uint32_t k = 0; k < nseen; k++)
-                dup = dup || seen[k] == b;
-            if (dup)
+    uint32_t buckets[9], nb = buckets_around(g, wx, wy, buckets), n = 0;
+    for (uint32_t k = 0; k < nb; k++) {
+        for (uint32_t e = g->start[buckets[k]]; e < g->start[buckets[k] + 1]; e++) {
+            double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
+            if (d2 >= reach2)
                 continue;
-            seen[nseen++] = b;
-            for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
-                double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
-                if (d2 >= reach2)
-                    continue;
-                uint32_t ring = (uint32_t)(sqrt(d2) * (RINGS / reach));
-                ring = ring < RINGS ? ring : RINGS - 1;
-                r->scratch[n++] = (struct near_vector){ g->x[e], g->y[e], g->index[e], ring };
-                ring_start[ring + 1]++;
-            }
+            uint32_t ring = (uint32_t)(sqrt(d2) * (RINGS / reach));
+            ring = ring < RINGS ? ring : RINGS - 1;
+            r->scratch[n++] = (struct near_vector){ g->x[e], g->y[e], g->index[e], ring };
+            ring_start[ring + 1]++;
         }
     }
     return n;
@@ -328,70 +351,43 @@ static bool draw_list(hl_refiner_t *r, uint32_t i, double wx, double wy)
     return true;
 }
 
-/* Of the n vectors v, the nearest closer than match_mm to the world point (wx, wy) whose
- * surface faces the robot at (sx, sy); -1 if none. Of several at the same distance, the
- * one the plain scan meets first. With @p rings, v is ring by ring from an anchor
- * @p moved from the point, and is walked only until no vector further on can be as
- * near: one at least ring_mm from the anchor lies at least ring_mm - moved from the
- * point (the 1e-6 mm covers rounding). So a normal is needed mostly for the nearest. */
+/* Of a list's n vectors v, the nearest closer than match_mm to the world point (wx, wy)
+ * whose surface faces the robot at (sx, sy); -1 if none. Of several at the same
+ * distance, the one the plain scan meets first. v is ring by ring from an anchor @p moved
+ * from the point, and is walked only until no vector further on can be as near: one at
+ * least ring_mm from the anchor lies at least ring_mm - moved from the point (the
+ * 1e-6 mm covers rounding). So a normal is needed mostly for the nearest. */
 static int32_t nearest_of(hl_refiner_t *r, const hl_vector_t *map, const struct near_vector *v,
-                          uint32_t n, bool rings, double moved, double wx, double wy,
-                          double sx, double sy)
+                          uint32_t n, double moved, double wx, double wy, double sx, double sy)
 {
     double best2 = (double)r->p.match_mm * r->p.match_mm, bound = r->p.match_mm + moved;
     int32_t best = -1;
-    for (uint32_t k = 0; k < n && (!rings || r->ring_mm[v[k].ring] <= bound + 1e-6); k++) {
+    for (uint32_t k = 0; k < n && r->ring_mm[v[k].ring] <= bound + 1e-6; k++) {
         double dx = wx - v[k].x, dy = wy - v[k].y, d2 = dx * dx + dy * dy;
-        if (d2 > best2)
-            continue;
-        uint32_t j = v[k].j;
-        /* a tie with the gate itself never matches (strictly closer than match_mm); a
-         * tie with a candidate goes to the plain scan's first */
-        if (d2 == best2 && (best < 0 || !plain_first(r, map, wx, wy, j, (uint32_t)best)))
-            continue;
-        need_normal(r, map, j);
-        /* the surface must face the robot */
-        if (r->nx[j] * (sx - wx) + r->ny[j] * (sy - wy) <= 0)
-            continue;
-        best2 = d2;
-        best = (int32_t)j;
-        bound = sqrt(best2) + moved;
+        if (beats(r, map, v[k].j, d2, best, best2, wx, wy, sx, sy)) {
+            best2 = d2;
+            best = (int32_t)v[k].j;
+            bound = sqrt(best2) + moved;
+        }
     }
     return best;
 }
 
-/* nearest_of over the map vectors in the 3 x 3 cells around (wx, wy) as they lie, for a
- * reading whose surroundings are too crowded for a list: the plain scan's cost. */
+/* As nearest_of, over the map vectors in the 3 x 3 cells around (wx, wy) as they lie, for
+ * a reading whose surroundings are too crowded for a list: the plain scan's cost. */
 static int32_t nearest_in_cells(hl_refiner_t *r, const hl_vector_t *map, double wx, double wy,
                                 double sx, double sy)
 {
     const hl_cellhash_t *g = &r->near;
     double best2 = (double)r->p.match_mm * r->p.match_mm;
     int32_t best = -1;
-    int32_t cx = hl_cellhash_cell(g, wx), cy = hl_cellhash_cell(g, wy);
-    uint32_t seen[9], nseen = 0;
-    for (int ddy = -1; ddy <= 1; ddy++) {
-        for (int ddx = -1; ddx <= 1; ddx++) {
-            uint32_t b = hl_cellhash_bucket(g, cx + ddx, cy + ddy);
-            bool dup = false;
-            for (uint32_t k = 0; k < nseen; k++)
-                dup = dup || seen[k] == b;
-            if (dup)
-                continue;
-            seen[nseen++] = b;
-            for (uint32_t e = g->start[b]; e < g->start[b + 1]; e++) {
-                double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
-                if (d2 > best2)
-                    continue;
-                uint32_t j = g->index[e];
-                if (d2 == best2 &&
-                    (best < 0 || !plain_first(r, map, wx, wy, j, (uint32_t)best)))
-                    continue;
-                need_normal(r, map, j);
-                if (r->nx[j] * (sx - wx) + r->ny[j] * (sy - wy) <= 0)
-                    continue;
+    uint32_t buckets[9], nb = buckets_around(g, wx, wy, buckets);
+    for (uint32_t k = 0; k < nb; k++) {
+        for (uint32_t e = g->start[buckets[k]]; e < g->start[buckets[k] + 1]; e++) {
+            double dx = wx - g->x[e], dy = wy - g->y[e], d2 = dx * dx + dy * dy;
+            if (beats(r, map, g->index[e], d2, best, best2, wx, wy, sx, sy)) {
                 best2 = d2;
-                best = (int32_t)j;
+                best = (int32_t)g->index[e];
             }
         }
     }
@@ -416,7 +412,7 @@ static int32_t nearest_facing(hl_refiner_t *r, const hl_vector_t *map, uint32_t 
         moved = 0;
     }
     const struct near_vector *v = &r->pool[l->first];
-    return nearest_of(r, map, v, l->count, true, moved, wx, wy, sx, sy);
+    return nearest_of(r, map, v, l->count, moved, wx, wy, sx, sy);
 }
 
 /* Solves the dim x dim system a * x = b (dim 2 or 3) by Gaussian elimination with
