@@ -28,6 +28,14 @@
  *       more count. Prints one line:
  *         truth pairs=N heading_rms_deg=X position_rms_mm=X triangle_heading_rms_deg=X
  *               triangle_position_rms_mm=X
+ *   hl-sonar-study revisits LASER.lcmlog [GAP]
+ *       how well the ground truth agrees with itself where the robot comes back: each laser
+ *       scan matched (+-300 mm and 5 degrees about its true pose) against the scan at
+ *       least GAP scans (default 300) before it whose true pose lies nearest, within
+ *       0.5 m and 20 degrees, drawn at its true pose; the answer against the true pose is
+ *       the truth's disagreement between the two visits (the local scatter that truth
+ *       measures included). Matches scoring 0.8 or more count. Prints one line:
+ *         revisits pairs=N heading_rms_deg=X position_rms_mm=X position_p90_mm=X
  *
  *   hl-sonar-study views SONAR.lcmlog LASER.lcmlog N GAP [odometry|truth] [SUPPORT]
  *       echo placement from several views: each reading's bearing within its cone from the
@@ -79,6 +87,7 @@ static int usage(void)
     fprintf(stderr, "usage: hl-sonar-study echo SONAR.lcmlog LASER.lcmlog [KEY=VALUE ...]\n"
                     "       hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]\n"
                     "       hl-sonar-study truth LASER.lcmlog\n"
+                    "       hl-sonar-study revisits LASER.lcmlog [GAP]\n"
                     "       hl-sonar-study views SONAR.lcmlog LASER.lcmlog N GAP "
                     "[odometry|truth] [SUPPORT]\n");
     return 2;
@@ -336,11 +345,12 @@ static int study_oracle(hl_slam_t *s, const hl_slam_params_t *sp, const run_log 
     return 0;
 }
 
-/* Scan @p k matched against scan @p j drawn at its true pose, from its own true pose:
- * the answer less the true pose (world frame, mm and degrees); false unless it scores
- * TRUTH_MIN_SCORE. */
+/* Scan @p k matched against scan @p j drawn at its true pose, from its own true pose,
+ * within @p reach_mm and @p turn_rad: the answer less the true pose (world frame, mm
+ * and degrees); false unless it scores TRUTH_MIN_SCORE. */
 #define TRUTH_MIN_SCORE 0.8
-static bool match_truth(hl_corr_t *c, const run_log *l, int j, int k, double err[3])
+static bool match_truth(hl_corr_t *c, const run_log *l, int j, int k, double reach_mm,
+                        double turn_rad, double err[3])
 {
     static hl_corr_point_t map[HL_CORR_MAX_POINTS], query[HL_CORR_MAX_POINTS];
     const hl_pose_t *gt = l->truth.data();
@@ -348,7 +358,7 @@ static bool match_truth(hl_corr_t *c, const run_log *l, int j, int k, double err
                                     HL_CORR_MAX_POINTS);
     uint32_t n_query = hl_corr_points(&l->scans[k], hl_pg_pose_t{ 0, 0, 0 }, query, 0,
                                       HL_CORR_MAX_POINTS);
-    hl_corr_params_t p = { 150, 3 * PI / 180, TRUTH_MIN_SCORE, 1, 0, 0 };
+    hl_corr_params_t p = { reach_mm, turn_rad, TRUTH_MIN_SCORE, 1, 0, 0 };
     hl_corr_result_t r;
     hl_pg_pose_t at = hl_pg_from_pose(gt[k]);
     if (!hl_corr_search(c, map, n_map, query, n_query, at, &p, &r) || !r.matched)
@@ -370,9 +380,10 @@ static int study_truth(const run_log *laser)
     int m = 0;
     for (int k = 1; k < laser->n; k++) {
         one[k].resize(3);
-        ok[k] = match_truth(c, laser, k - 1, k, one[k].data());
+        ok[k] = match_truth(c, laser, k - 1, k, 150, 3 * PI / 180, one[k].data());
         double two[3];
-        if (k < 2 || !ok[k] || !ok[k - 1] || !match_truth(c, laser, k - 2, k, two))
+        if (k < 2 || !ok[k] || !ok[k - 1] ||
+            !match_truth(c, laser, k - 2, k, 150, 3 * PI / 180, two))
             continue;
         /* Scan k-1 to k and k-2 to k-1, added, against k-2 to k at once: the steps are a
          * few centimetres, so their errors add in the world frame. */
@@ -391,17 +402,61 @@ static int study_truth(const run_log *laser)
     return 0;
 }
 
+/* The earlier scan, at least @p gap before scan @p k, whose true pose lies nearest k's,
+ * within 500 mm and 20 degrees; -1 if none. */
+static int revisited(const run_log *l, int k, int gap)
+{
+    const hl_pose_t *gt = l->truth.data();
+    int best = -1;
+    double best_d = 500;
+    for (int j = 0; j + gap <= k; j++) {
+        double d = hypot(gt[j].x_mm - gt[k].x_mm, gt[j].y_mm - gt[k].y_mm);
+        if (d < best_d && fabs(sdeg((hl_bam_t)(gt[j].theta - gt[k].theta))) < 20) {
+            best_d = d;
+            best = j;
+        }
+    }
+    return best;
+}
+
+static int study_revisits(const run_log *laser, int gap)
+{
+    hl_corr_t *c = hl_corr_create();
+    if (!c)
+        return 1;
+    std::vector<double> position;
+    double h2 = 0, p2 = 0;
+    for (int k = gap; k < laser->n; k++) {
+        int j = revisited(laser, k, gap);
+        double err[3];
+        if (j < 0 || !match_truth(c, laser, j, k, 300, 5 * PI / 180, err))
+            continue;
+        double d = hypot(err[0], err[1]);
+        position.push_back(d);
+        h2 += err[2] * err[2];
+        p2 += d * d;
+    }
+    size_t m = position.size();
+    std::sort(position.begin(), position.end());
+    printf("revisits pairs=%zu heading_rms_deg=%.3f position_rms_mm=%.1f position_p90_mm=%.1f\n",
+           m, m ? sqrt(h2 / m) : 0, m ? sqrt(p2 / m) : 0, m ? position[m * 9 / 10] : 0);
+    hl_corr_destroy(c);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc == 2 && strcmp(argv[1], "--help") == 0) {
         printf("usage: hl-sonar-study echo SONAR.lcmlog LASER.lcmlog [KEY=VALUE ...]\n"
                "       hl-sonar-study oracle SONAR.lcmlog NPREV [KEY=VALUE ...]\n"
                "       hl-sonar-study truth LASER.lcmlog\n"
+               "       hl-sonar-study revisits LASER.lcmlog [GAP]\n"
                "       hl-sonar-study views SONAR.lcmlog LASER.lcmlog N GAP [odometry|truth] [SUPPORT]\n"
                "The pseudo-sonar ring against the laser it is made from (echo; views: echo\n"
                "bearings from N earlier scans too, N 0..16, every GAP-th), one\n"
                "sounding against a map at the true poses (oracle; WINDOW=W: a multiscan of\n"
-               "the W scans before), or the ground truth against the laser (truth).\n"
+               "the W scans before), or the ground truth against the laser (truth) and\n"
+               "against itself where the robot comes back GAP scans or more later (revisits).\n"
                "Inputs: houghloc-import-carmen's logs of one building. See\n"
                "tools/lab/realeval/sonar_study.sh.\n");
         return 0;
@@ -422,6 +477,14 @@ int main(int argc, char **argv)
     if (argc == 3 && strcmp(argv[1], "truth") == 0) {
         run_log laser;
         return read_log(argv[2], &laser) ? 1 : study_truth(&laser);
+    }
+    if ((argc == 3 || argc == 4) && strcmp(argv[1], "revisits") == 0) {
+        char *end = NULL;
+        long gap = argc == 4 ? strtol(argv[3], &end, 10) : 300;
+        if ((end && *end) || gap < 1 || gap > 100000)
+            return usage();
+        run_log laser;
+        return read_log(argv[2], &laser) ? 1 : study_revisits(&laser, (int)gap);
     }
     if (argc < 4)
         return usage();

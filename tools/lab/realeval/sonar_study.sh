@@ -4,7 +4,8 @@
 # (default intel aces freiburg-079), hl-sonar-study's echo placement and normals against
 # the laser under four preparations, then the localizer against a map drawn at the true
 # poses under four settings and with multiscans of 2 and 4 scans, and how well the ground
-# truth itself agrees with the laser from one scan to the next. One line a figure,
+# truth itself agrees with the laser from one scan to the next and where the robot comes
+# back 300 scans or more later. One line a figure,
 # prefixed with the building and the variant. Environment: BUILD (default build), DATA
 # (default ../shared/data), EVAL_OUT (default BUILD/eval; the imports are shared with
 # make eval-real). A failing step stops with one line naming it, exit status 1.
@@ -48,4 +49,6 @@ multiscan-4 4
 VARIANTS
     line=$("$BIN/hl-sonar-study" truth "$laser") || die "$b: hl-sonar-study truth failed"
     echo "$b ground-truth $line"
+    line=$("$BIN/hl-sonar-study" revisits "$laser") || die "$b: hl-sonar-study revisits failed"
+    echo "$b ground-truth-revisits $line"
 done
