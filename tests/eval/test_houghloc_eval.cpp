@@ -133,18 +133,22 @@ void test_offset_on_half_the_poses(void **state)
     assert_near(s.ate.max, 0.25, 1e-12);
 }
 
+// 101 poses along +x, @p step metres apart.
+Trajectory steps_along_x(double step)
+{
+    std::vector<double> xs;
+    for (int i = 0; i <= 100; i++)
+        xs.push_back(step * i);
+    return line(xs);
+}
+
 // Straight line, 0.1 m steps in truth, the estimate 5 % long: pairs close every 10
 // estimated steps (10 x 0.105 >= 1 > 9 x 0.105), each with 1.05 m estimated against
 // 1.00 m true, so every RPE is 0.05 m (5 cm per metre).
 void test_rpe_straight_line_per_metre_error(void **state)
 {
     (void)state;
-    std::vector<double> xs_gt, xs_est;
-    for (int i = 0; i <= 100; i++) {
-        xs_gt.push_back(0.1 * i);
-        xs_est.push_back(0.105 * i);
-    }
-    Trajectory gt = line(xs_gt), est = line(xs_est);
+    Trajectory gt = steps_along_x(0.1), est = steps_along_x(0.105);
     IdPairs pairs = hleval::pairs_by_path(est, 1.0);
     assert_int_equal(pairs.size(), 10);
     for (std::size_t k = 0; k < pairs.size(); k++) {
@@ -158,6 +162,38 @@ void test_rpe_straight_line_per_metre_error(void **state)
     hleval::Scores s = hleval::score(gt, est);
     assert_int_equal(s.rpe.n, 10);
     assert_near(s.rpe.rmse, 0.05, 1e-9);
+}
+
+// The RPE's split: along a straight line the 5 % long estimate errs 0.05 m a metre along
+// the path and none across it; the same run turned 90 degrees (the estimate too) splits
+// the same way, and an estimate 0.02 m to the left of every true step errs across only.
+void test_rpe_split_along_and_across(void **state)
+{
+    (void)state;
+    Trajectory gt = steps_along_x(0.1), est = steps_along_x(0.105);
+    hleval::Scores s = hleval::score(gt, est);
+    assert_near(s.rpe_along.rmse, 0.05, 1e-9);
+    assert_near(s.rpe_across.rmse, 0.0, 1e-9);
+    Trajectory gt_up = gt, est_up = est;
+    for (std::size_t i = 0; i < gt.size(); i++) {
+        gt_up[i] = { gt[i].t, 0, gt[i].x, kPi / 2 };
+        est_up[i] = { est[i].t, 0, est[i].x, kPi / 2 };
+    }
+    IdPairs pairs = hleval::pairs_by_path(est_up, 1.0);
+    hleval::SplitErrors e = hleval::rpe_translation_split(gt_up, est_up, pairs);
+    assert_int_equal(e.along.size(), 10);
+    for (std::size_t k = 0; k < e.along.size(); k++) {
+        assert_near(e.along[k], 0.05, 1e-9);
+        assert_near(e.across[k], 0.0, 1e-9);
+    }
+    Trajectory left = gt;   /* each step's end 0.02 m to the left of where it started */
+    for (std::size_t i = 0; i < left.size(); i++)
+        left[i].y = 0.02 * (double)(i / 10);
+    IdPairs every = { { 0, 10 }, { 10, 20 } };
+    e = hleval::rpe_translation_split(gt, left, every);
+    assert_near(e.along[0], 0.0, 1e-12);
+    assert_near(e.across[0], 0.02, 1e-9);
+    assert_near(e.across[1], 0.02, 1e-9);
 }
 
 // The heading counts: the same positions with every heading 10 degrees off see each
@@ -307,6 +343,7 @@ int main(void)
         cmocka_unit_test(test_offset_on_half_the_poses),
         cmocka_unit_test(test_rpe_straight_line_per_metre_error),
         cmocka_unit_test(test_rpe_heading_error),
+        cmocka_unit_test(test_rpe_split_along_and_across),
         cmocka_unit_test(test_pairs_irregular_spacing),
         cmocka_unit_test(test_against_evo),
         cmocka_unit_test(test_single_pose_and_stats),

@@ -36,7 +36,8 @@ const char kUsage[] =
     "       the truth (evo_ape tum GT EST -a): RMSE and maximum;\n"
     "  RPE  translation error of the motion over segments of 1 m travelled, consecutive\n"
     "       segments picked on the estimate (evo_rpe tum GT EST -r trans_part --delta 1\n"
-    "       --delta_unit m -a): RMSE and mean;\n"
+    "       --delta_unit m -a): RMSE and mean, and the RMSE of its components along the\n"
+    "       true motion of each segment and across it;\n"
     "and counts the POSE statuses. The last line of the output is\n"
     "  ate_rmse_m=X rpe_trans_rmse_m=X rpe_trans_mean_m=X max_err_m=X scans=N rpe_pairs=N\n"
     "followed, when POSE is scored, by accepted=N rejected_wild=N odometry_only=N\n"
@@ -166,6 +167,8 @@ void print_scores(const Options &o, const Run &run, const hleval::Scores &s)
                     s.ate.max);
         std::printf("RPE %g m    translation rmse %.4f m  mean %.4f m  (%zu segments)\n", o.delta,
                     s.rpe.rmse, s.rpe.mean, s.rpe.n);
+        std::printf("           along the path rmse %.4f m, across it %.4f m\n",
+                    s.rpe_along.rmse, s.rpe_across.rmse);
     }
     std::printf("ate_rmse_m=%.6f rpe_trans_rmse_m=%.6f rpe_trans_mean_m=%.6f max_err_m=%.6f "
                 "scans=%zu rpe_pairs=%zu",

@@ -149,6 +149,26 @@ std::vector<double> rpe_translation_errors(const Trajectory &gt, const Trajector
     return e;
 }
 
+SplitErrors rpe_translation_split(const Trajectory &gt, const Trajectory &est,
+                                  const IdPairs &pairs)
+{
+    if (gt.size() != est.size())
+        throw std::invalid_argument("trajectories of different lengths");
+    SplitErrors e;
+    for (const auto &[i, j] : pairs) {
+        if (i >= gt.size() || j >= gt.size())
+            throw std::invalid_argument("pair index out of range");
+        Eigen::Vector2d q = to_frame(gt[i].theta) * (pos(gt[j]) - pos(gt[i]));
+        Eigen::Vector2d p = to_frame(est[i].theta) * (pos(est[j]) - pos(est[i]));
+        if (q.norm() < 1e-3)
+            continue;
+        Eigen::Vector2d u = q.normalized(), d = p - q;
+        e.along.push_back(d.dot(u));
+        e.across.push_back(u.x() * d.y() - u.y() * d.x());
+    }
+    return e;
+}
+
 Scores score(const Trajectory &gt, const Trajectory &est, double delta_m)
 {
     check_sizes(gt, est);
@@ -156,7 +176,11 @@ Scores score(const Trajectory &gt, const Trajectory &est, double delta_m)
     s.alignment = align_rigid(gt, est);
     Trajectory aligned = transformed(s.alignment, est);
     s.ate = stats_of(position_errors(gt, aligned));
-    s.rpe = stats_of(rpe_translation_errors(gt, aligned, pairs_by_path(aligned, delta_m)));
+    IdPairs pairs = pairs_by_path(aligned, delta_m);
+    s.rpe = stats_of(rpe_translation_errors(gt, aligned, pairs));
+    SplitErrors split = rpe_translation_split(gt, aligned, pairs);
+    s.rpe_along = stats_of(split.along);
+    s.rpe_across = stats_of(split.across);
     return s;
 }
 

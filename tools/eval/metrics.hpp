@@ -71,10 +71,20 @@ IdPairs pairs_by_path(const Trajectory &poses, double delta_m);
 std::vector<double> rpe_translation_errors(const Trajectory &gt, const Trajectory &est,
                                            const IdPairs &pairs);
 
+// The same errors' components along the true motion of each pair and across it
+// (signed; a pair whose true motion is under 1 mm has no direction and is left out): where
+// a sensor sees walls only across a corridor, its error stays along it.
+struct SplitErrors {
+    std::vector<double> along, across;
+};
+SplitErrors rpe_translation_split(const Trajectory &gt, const Trajectory &est,
+                                  const IdPairs &pairs);
+
 struct Scores {
     Rigid2 alignment;  // est -> gt
     Stats ate;         // position errors after the alignment
     Stats rpe;         // translation RPE over pairs_by_path(est, delta_m)
+    Stats rpe_along, rpe_across;    // its split (rpe_translation_split)
 };
 
 // Both metrics, as evo computes them with -a. evo picks RPE pairs on the estimate (its
