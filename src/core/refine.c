@@ -11,7 +11,7 @@
 #define TWO_PI 6.28318530717958647692
 #define MARGIN_MM 25            /* a reading's list serves while it moves less than this */
 #define LIST_MAX 128            /* a longer list is not kept: the reading searches the cells */
-#define POOL_PER_VECTOR 16      /* the lists' room: this many entries a map vector, ... */
+#define POOL_PER_VECTOR 8       /* the lists' room: this many entries a map vector, ... */
 #define POOL_MAX (HL_SCAN_MAX_READINGS * LIST_MAX)     /* ... at most */
 #define RINGS 32                /* a list's order: rings of reach_mm / RINGS */
 
