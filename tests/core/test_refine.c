@@ -1,6 +1,6 @@
 /* Tests for src/core/refine.c: polishing an offset pose in a synthetic room (position
  * only and with heading), refusals (empty map, no readings, too far, too few matches),
- * capacity, hostile maps and parameter checks. */
+ * capacity, hostile maps, a crowded map against the plain one, and parameter checks. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -149,6 +149,64 @@ static void test_hostile_maps(void **state)
     free_fixture(f);
 }
 
+/* Does vector i of map m have at least three neighbours (itself included) within the
+ * normal radius facing its way, so that its normal is its neighbours' line? */
+static bool shaped(const hl_vector_t *m, uint32_t n, uint32_t i)
+{
+    const double r2 = (double)HL_REFINE_NORMAL_RADIUS_MM * HL_REFINE_NORMAL_RADIUS_MM;
+    uint32_t near = 0;
+    for (uint32_t j = 0; j < n; j++) {
+        double dx = (double)m[j].x_mm - m[i].x_mm, dy = (double)m[j].y_mm - m[i].y_mm;
+        near += dx * dx + dy * dy <= r2 && abs(hl_bam_diff(m[i].normal, m[j].normal)) <= 10923;
+    }
+    return near >= 3;
+}
+
+/* A map crowded a hundredfold (every vector of a room's map 100 times over, so that
+ * each reading has hundreds of vectors around it, more than a list holds, and is matched
+ * from the cells as they lie) polishes to the very same pose as the map itself (matched
+ * from the lists): the same neighbours' lines (sums a hundred times larger, the same
+ * quotients), the same nearest points. Vectors with too few neighbours to shape a line
+ * are left out of both, as a hundred copies of one would shape one. */
+static void test_crowded_map_polishes_as_the_plain_one(void **state)
+{
+    (void)state;
+    enum { COPIES = 100 };
+    for (uint64_t seed = 1; seed <= 3; seed++) {
+        fixture_t *f = make_fixture(seed + 50);
+        uint32_t n = f->n;
+        for (bool dropped = true; dropped;) {
+            dropped = false;
+            for (uint32_t i = 0; i < n; i++)
+                if (!shaped(f->map, n, i)) {
+                    f->map[i--] = f->map[--n];
+                    dropped = true;
+                }
+        }
+        assert_true(n > 500);
+        hl_vector_t *crowd = malloc((size_t)n * COPIES * sizeof *crowd);
+        for (uint32_t i = 0; i < n * COPIES; i++)
+            crowd[i] = f->map[i / COPIES];
+        hl_refine_params_t p;
+        hl_refine_params_default(&p);
+        hl_refiner_t *big = hl_refine_create(&p, n * COPIES);
+        assert_non_null(big);
+        hl_pose_t starts[2] = { offset(f->truth, 80, -60, 0.0), offset(f->truth, -60, 80, 2.0) };
+        for (int k = 0; k < 2; k++) {
+            hl_pose_t plain, crowded;
+            hl_status_t a = hl_refine_run(f->r, f->map, n, &f->scan, starts[k], k == 1, &plain);
+            hl_status_t b = hl_refine_run(big, crowd, n * COPIES, &f->scan, starts[k], k == 1,
+                                          &crowded);
+            assert_int_equal(a, HL_OK);
+            assert_int_equal(b, a);
+            assert_memory_equal(&crowded, &plain, sizeof plain);
+        }
+        hl_refine_destroy(big);
+        free(crowd);
+        free_fixture(f);
+    }
+}
+
 static void test_params_and_inputs_validated(void **state)
 {
     (void)state;
@@ -196,6 +254,7 @@ int main(void)
         cmocka_unit_test(test_recovers_heading),
         cmocka_unit_test(test_refusals_keep_the_start),
         cmocka_unit_test(test_hostile_maps),
+        cmocka_unit_test(test_crowded_map_polishes_as_the_plain_one),
         cmocka_unit_test(test_params_and_inputs_validated),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
