@@ -47,7 +47,7 @@ typedef struct hl_nearest {
         double ax, ay;      /* ... within reach_mm of this world point (its anchor), */
         uint32_t first, count;  /* pool[first ...]; count > LIST_MAX: no list this run */
         uint32_t room;      /* entries pool[first ...] holds */
-        uint32_t run;       /* valid when run == the refiner's run */
+        uint32_t run;       /* valid when run == the matcher's run */
     } *lists;
     struct near_vector {    /* a map vector near an anchor */
         int32_t x, y;
