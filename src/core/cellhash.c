@@ -44,8 +44,7 @@ void hl_cellhash_build(hl_cellhash_t *h, const hl_vector_t *map, uint32_t n)
 {
     memset(h->start, 0, (h->buckets + 1) * sizeof *h->start);
     for (uint32_t i = 0; i < n; i++) {
-        h->bucket[i] = hl_cellhash_bucket(h, hl_cellhash_cell_mm(h, map[i].x_mm),
-                                          hl_cellhash_cell_mm(h, map[i].y_mm));
+        h->bucket[i] = hl_cellhash_bucket_of(h, map[i].x_mm, map[i].y_mm);
         h->start[h->bucket[i] + 1]++;
     }
     /* Prefix sums make start[b] the first entry of bucket b; shifted down by one it is

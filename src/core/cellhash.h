@@ -45,13 +45,6 @@ static inline int32_t hl_cellhash_cell(const hl_cellhash_t *h, double v)
     return (int32_t)floor(v / h->cell_mm);
 }
 
-/** The cell coordinate of the whole millimetre @p v: the same as hl_cellhash_cell's. */
-static inline int32_t hl_cellhash_cell_mm(const hl_cellhash_t *h, int32_t v)
-{
-    int32_t q = v / h->cell_mm;
-    return q * h->cell_mm > v ? q - 1 : q;
-}
-
 static inline uint32_t hl_cellhash_bucket(const hl_cellhash_t *h, int32_t cx, int32_t cy)
 {
     uint32_t k = (uint32_t)cx * 73856093u ^ (uint32_t)cy * 19349663u;

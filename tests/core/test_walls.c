@@ -18,6 +18,14 @@
 
 #define DEG (3.14159265358979323846 / 180)
 
+/* A scan with no readings (free it). */
+static hl_scan_t *empty_scan(void)
+{
+    hl_scan_t *s = malloc(sizeof *s);
+    hl_scan_clear(s);
+    return s;
+}
+
 /* A reading at @p bearing_deg whose surface normal points along @p normal_deg in the
  * robot's frame (its tilt: the normal's turn from the beam's reverse). */
 static void add_normal(hl_scan_t *s, double bearing_deg, double normal_deg)
@@ -35,8 +43,7 @@ static void add_normal(hl_scan_t *s, double bearing_deg, double normal_deg)
 static void test_scan_axis_of_a_turned_room(void **state)
 {
     (void)state;
-    hl_scan_t *s = malloc(sizeof *s);
-    hl_scan_clear(s);
+    hl_scan_t *s = empty_scan();
     for (int k = 0; k < 12; k++)
         add_normal(s, 30 * k, 10 + 90 * (k % 4));
     assert_int_equal(hl_scan_add(s, 0, 500, 0, false), HL_OK);
@@ -58,8 +65,7 @@ static void test_scan_axis_of_a_turned_room(void **state)
 static void test_clutter_lowers_r(void **state)
 {
     (void)state;
-    hl_scan_t *s = malloc(sizeof *s);
-    hl_scan_clear(s);
+    hl_scan_t *s = empty_scan();
     for (int k = 0; k < 36; k++)
         add_normal(s, 10 * k, 10 * k + 3);
     hl_walls_t w = hl_walls_of_scan(s);
@@ -97,8 +103,7 @@ static void test_map_axis(void **state)
 static void test_offset_within_the_window(void **state)
 {
     (void)state;
-    hl_scan_t *s = malloc(sizeof *s);
-    hl_scan_clear(s);
+    hl_scan_t *s = empty_scan();
     for (int k = 0; k < 8; k++)
         add_normal(s, 45 * k, 3 + 90 * (k % 4));
     for (int k = 0; k < 4; k++)

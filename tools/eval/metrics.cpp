@@ -129,40 +129,51 @@ IdPairs pairs_by_path(const Trajectory &poses, double delta_m)
     return pairs;
 }
 
-std::vector<double> rpe_translation_errors(const Trajectory &gt, const Trajectory &est,
-                                           const IdPairs &pairs)
+namespace {
+
+// The motion from pose i to pose j as seen from pose i, true (q) and estimated (p).
+struct PairMotion {
+    Eigen::Vector2d q, p;
+};
+
+std::vector<PairMotion> pair_motions(const Trajectory &gt, const Trajectory &est,
+                                     const IdPairs &pairs)
 {
     if (gt.size() != est.size())
         throw std::invalid_argument("trajectories of different lengths");
-    std::vector<double> e;
-    e.reserve(pairs.size());
+    std::vector<PairMotion> m;
+    m.reserve(pairs.size());
     for (const auto &[i, j] : pairs) {
         if (i >= gt.size() || j >= gt.size())
             throw std::invalid_argument("pair index out of range");
-        // E = Q_rel^-1 P_rel with Q_rel = gt_i^-1 gt_j, P_rel = est_i^-1 est_j; the
-        // translation of E is R(Q_rel)^T (t(P_rel) - t(Q_rel)), whose norm is that of
-        // t(P_rel) - t(Q_rel).
-        Eigen::Vector2d q = to_frame(gt[i].theta) * (pos(gt[j]) - pos(gt[i]));
-        Eigen::Vector2d p = to_frame(est[i].theta) * (pos(est[j]) - pos(est[i]));
-        e.push_back((p - q).norm());
+        m.push_back({ to_frame(gt[i].theta) * (pos(gt[j]) - pos(gt[i])),
+                      to_frame(est[i].theta) * (pos(est[j]) - pos(est[i])) });
     }
+    return m;
+}
+
+}  // namespace
+
+std::vector<double> rpe_translation_errors(const Trajectory &gt, const Trajectory &est,
+                                           const IdPairs &pairs)
+{
+    // E = Q_rel^-1 P_rel with Q_rel = gt_i^-1 gt_j, P_rel = est_i^-1 est_j; the
+    // translation of E is R(Q_rel)^T (t(P_rel) - t(Q_rel)), whose norm is that of
+    // t(P_rel) - t(Q_rel).
+    std::vector<double> e;
+    for (const PairMotion &m : pair_motions(gt, est, pairs))
+        e.push_back((m.p - m.q).norm());
     return e;
 }
 
 SplitErrors rpe_translation_split(const Trajectory &gt, const Trajectory &est,
                                   const IdPairs &pairs)
 {
-    if (gt.size() != est.size())
-        throw std::invalid_argument("trajectories of different lengths");
     SplitErrors e;
-    for (const auto &[i, j] : pairs) {
-        if (i >= gt.size() || j >= gt.size())
-            throw std::invalid_argument("pair index out of range");
-        Eigen::Vector2d q = to_frame(gt[i].theta) * (pos(gt[j]) - pos(gt[i]));
-        Eigen::Vector2d p = to_frame(est[i].theta) * (pos(est[j]) - pos(est[i]));
-        if (q.norm() < 1e-3)
+    for (const PairMotion &m : pair_motions(gt, est, pairs)) {
+        if (m.q.norm() < 1e-3)
             continue;
-        Eigen::Vector2d u = q.normalized(), d = p - q;
+        Eigen::Vector2d u = m.q.normalized(), d = m.p - m.q;
         e.along.push_back(d.dot(u));
         e.across.push_back(u.x() * d.y() - u.y() * d.x());
     }
