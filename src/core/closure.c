@@ -322,12 +322,11 @@ static uint32_t matches_taken(const hl_closure_t *c, uint32_t k)
     return n;
 }
 
-bool hl_closure_match_within(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found,
-                             double gate_mm, double gate_rad)
+bool hl_closure_gate(const hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found,
+                     double gate_mm, double gate_rad, hl_pg_pose_t *said)
 {
     uint32_t i = stamp - c->first, k = query - c->first;
-    if (i >= c->count || k >= c->count || i + HL_CLOSURE_GAP > k ||
-        c->n_edges >= c->max_edges || matches_taken(c, k) >= HL_CLOSURE_MAX_TAKEN)
+    if (i >= c->count || k >= c->count || i + HL_CLOSURE_GAP > k)
         return false;
     hl_pg_pose_t now = hl_pg_between(c->poses[i], c->poses[k]);
     /* found is where the submap, drawn at the stops' places in the map, has the query.
@@ -335,11 +334,20 @@ bool hl_closure_match_within(hl_closure_t *c, uint32_t stamp, uint32_t query, hl
      * last fit was not drawn; measuring from the fitted pose otherwise keeps the rounding
      * out of every earlier result (the goldens, the lab tours). */
     hl_pg_pose_t at = c->undrawn ? hl_pg_from_pose(c->placed[i]) : c->poses[i];
-    hl_pg_pose_t said = hl_pg_between(at, hl_pg_from_pose(found));
-    if (hypot(now.x - said.x, now.y - said.y) > gate_mm ||
-        fabs(remainder(now.theta - said.theta, 2 * PI)) > gate_rad)
+    *said = hl_pg_between(at, hl_pg_from_pose(found));
+    return hypot(now.x - said->x, now.y - said->y) <= gate_mm &&
+           fabs(remainder(now.theta - said->theta, 2 * PI)) <= gate_rad;
+}
+
+bool hl_closure_match_within(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found,
+                             double gate_mm, double gate_rad)
+{
+    hl_pg_pose_t said;
+    uint32_t k = query - c->first;
+    if (!hl_closure_gate(c, stamp, query, found, gate_mm, gate_rad, &said) ||
+        c->n_edges >= c->max_edges || matches_taken(c, k) >= HL_CLOSURE_MAX_TAKEN)
         return false;
-    c->edges[c->n_edges++] = (hl_pg_edge_t){ i, k, said, true };
+    c->edges[c->n_edges++] = (hl_pg_edge_t){ stamp - c->first, k, said, true };
     c->closed_path = fmax(c->closed_path, c->path[k]);
     return true;
 }

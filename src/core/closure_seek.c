@@ -97,6 +97,17 @@ uint32_t hl_closure_settle(hl_closure_t *c, uint32_t query)
     }
     if (size < HL_CLOSURE_CORR_AGREEING)
         return 0;
+    /* The group is taken whole or not at all: a group some of whose matches lie beyond
+     * the gate agrees on a place the fit does not allow. Taking the rest left one match
+     * of such a group on intel, 1.3 m wrong (a corridor's alias: its two partners just
+     * beyond the gate), which nothing right was there to outweigh. */
+    hl_pg_pose_t said;
+    for (uint32_t j = 0; j < n; j++) {
+        const struct pending *p = &c->pending[j];
+        if (agree(&c->pending[best], p) &&
+            !hl_closure_gate(c, p->stamp, query, p->found, p->gate_mm, p->gate_rad, &said))
+            return 0;
+    }
     uint32_t taken = 0;
     for (uint32_t j = 0; j < n; j++) {
         const struct pending *p = &c->pending[j];

@@ -118,19 +118,44 @@ static void test_a_stop_back_near_an_old_one_is_matched_and_pulled_back(void **s
     free(l);
 }
 
+/* The loop recorded with its last stop drifted 600 mm and 6 degrees, beyond the
+ * tracker's gate, each stop drawn into the map. */
+typedef struct far_loop {
+    loop_t *l;
+    hl_scan_t *scan;
+    hl_closure_t *c;
+    hl_map_t *map;
+    hl_pose_t drifted;
+} far_loop_t;
+
+static far_loop_t far_loop_make(void)
+{
+    far_loop_t f = { make_loop(), malloc(sizeof *f.scan), hl_closure_create(16, CAP, 1),
+                     hl_map_create(CAP, 1), { 0, 0, 0 } };
+    hl_pose_t truth = f.l->truth[6];
+    f.drifted = (hl_pose_t){ truth.x_mm + 600, truth.y_mm - 400, hl_bam_from_deg(6.0) };
+    record_loop(f.l, f.c, f.map, f.drifted, f.scan);
+    return f;
+}
+
+static void far_loop_free(far_loop_t *f)
+{
+    hl_map_destroy(f->map);
+    hl_closure_destroy(f->c);
+    free(f->scan);
+    free(f->l);
+}
+
 /* The correlative search finds a stop drifted beyond the tracker's gate (600 mm and 6
  * degrees): its region has grown with the 12 m driven since the record began. Its
  * matches are held until settled, and taken only when two agree. */
 static void test_a_correlative_search_finds_a_stop_drifted_far_and_two_must_agree(void **state)
 {
     (void)state;
-    loop_t *l = make_loop();
-    hl_scan_t *scan = malloc(sizeof *scan);
-    hl_closure_t *c = hl_closure_create(16, CAP, 1);
-    hl_map_t *map = hl_map_create(CAP, 1);
-    hl_pose_t truth = l->truth[6];
-    hl_pose_t drifted = { truth.x_mm + 600, truth.y_mm - 400, hl_bam_from_deg(6.0) };
-    record_loop(l, c, map, drifted, scan);
+    far_loop_t f = far_loop_make();
+    hl_closure_t *c = f.c;
+    hl_map_t *map = f.map;
+    hl_pose_t truth = f.l->truth[6], drifted = f.drifted;
     double mm, rad;
     hl_closure_search_region(c, 7, &mm, &rad);
     assert_true(mm > 800 && mm < 1000);                 /* 300 mm + a twentieth of ~12 m */
@@ -171,10 +196,37 @@ static void test_a_correlative_search_finds_a_stop_drifted_far_and_two_must_agre
     /* A match taken, though dropped: the region shrinks back to its start. */
     hl_closure_search_region(c, 7, &mm, &rad);
     assert_true(mm == HL_CLOSURE_SEARCH_MM);
-    hl_map_destroy(map);
-    hl_closure_destroy(c);
-    free(scan);
-    free(l);
+    far_loop_free(&f);
+}
+
+/* A group of matches that agree is taken whole or not at all: when one of them lies
+ * beyond its gate, the other is not taken either (one match left of such a group was a
+ * wrong loop on a real building). The second match is held after a match was taken,
+ * when the region, and with it the gate, has shrunk back to its start. */
+static void test_a_group_with_a_match_beyond_the_gate_is_not_taken(void **state)
+{
+    (void)state;
+    far_loop_t f = far_loop_make();
+    hl_closure_t *c = f.c;
+    hl_pose_t drifted = f.drifted;
+    hl_pose_t found[2];
+    assert_true(hl_closure_seek(c, 1, 7, 0, &found[0]));
+    assert_true(hl_closure_seek(c, 2, 7, 0, &found[1]));
+
+    hl_closure_pend(c, 1, 7, found[0]);     /* its gate the grown region's */
+    assert_true(hl_closure_match_within(c, 1, 7, found[0], 2000, 0.5));
+    double mm, rad;
+    hl_closure_search_region(c, 7, &mm, &rad);
+    assert_true(mm == HL_CLOSURE_SEARCH_MM);
+    hl_closure_pend(c, 2, 7, found[1]);     /* 720 mm and 6 degrees off: beyond its gate */
+    assert_int_equal(hl_closure_settle(c, 7), 0);
+
+    /* A group within its gates is taken, whatever lies beyond the gate outside it. */
+    hl_closure_pend(c, 1, 7, drifted);
+    hl_closure_pend(c, 2, 7, drifted);
+    hl_closure_pend(c, 2, 7, found[1]);
+    assert_int_equal(hl_closure_settle(c, 7), 2);
+    far_loop_free(&f);
 }
 
 /* Candidates are sought for a given stop: with keyframes the slam asks for the stop before
@@ -669,6 +721,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_a_stop_back_near_an_old_one_is_matched_and_pulled_back),
         cmocka_unit_test(test_a_correlative_search_finds_a_stop_drifted_far_and_two_must_agree),
+        cmocka_unit_test(test_a_group_with_a_match_beyond_the_gate_is_not_taken),
         cmocka_unit_test(test_candidates_are_those_of_the_stop_asked_for_and_matches_are_bounded),
         cmocka_unit_test(test_a_query_is_thinned_evenly),
         cmocka_unit_test(test_forgotten_stops_are_not_offered),

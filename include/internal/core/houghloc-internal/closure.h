@@ -212,9 +212,10 @@ void hl_closure_pend(hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t 
 
 /** The matches held for stop @p query (hl_closure_pend) taken (hl_closure_match_within,
  *  the region its gate) when HL_CLOSURE_CORR_AGREEING or more of them agree where the
- *  stop lies in the map: those of the largest group that agree. One place can look like
- *  another to one submap, seldom to several along the robot's earlier path. The rest are
- *  dropped. @return how many were taken. */
+ *  stop lies in the map: those of the largest group that agree, and only when every one
+ *  of them passes the gate. One place can look like another to one submap, seldom to
+ *  several along the robot's earlier path. The rest are dropped. @return how many were
+ *  taken. */
 uint32_t hl_closure_settle(hl_closure_t *c, uint32_t query);
 
 /**
