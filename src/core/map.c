@@ -2,6 +2,7 @@
  * in density and culled by evidence. */
 #include "houghloc-internal/map.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,6 +16,9 @@
 /* A new vector confirms an old one within confirm_mm whose normal agrees within this:
  * the tracking localizer's own normal gate. */
 #define CONFIRM_GATE_DEG 30.0
+#define ROUND_GATE (HL_BAM_PER_TURN / 16)  /* a round place's normals: a sixteenth of a
+                                              turn either side, the squares' eighth */
+#define PI 3.14159265358979323846
 
 struct hl_map {
     uint32_t capacity;
@@ -26,6 +30,7 @@ struct hl_map {
     uint32_t stamp;         /* ... vectors added now get this (hl_map_set_stamp) */
     uint32_t per_place;     /* the density bound; 0: none (and `places` unallocated) */
     hl_mapsq_t places;
+    int32_t round_mm;       /* round places (round_places): their radius; 0: squares */
     uint32_t choices;       /* the evidence cull's draws; 1: the paper's random cull (and
                                what follows unallocated) */
     int32_t confirm_mm;
@@ -72,7 +77,7 @@ const char *hl_map_params_error(const hl_map_params_t *p)
     return NULL;
 }
 
-static bool set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place);
+static bool set_density(hl_map_t *map, const hl_map_params_t *p);
 static bool set_evidence(hl_map_t *map, uint32_t choices, int32_t confirm_mm);
 static bool set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm);
 
@@ -94,7 +99,7 @@ hl_map_t *hl_map_create_with(const hl_map_params_t *p)
     map->capacity = p->capacity;
     map->choices = 1;
     hl_rng_seed(&map->rng, p->seed);
-    bool ok = p->per_place == 0 || set_density(map, p->square_mm, p->per_place);
+    bool ok = p->per_place == 0 || set_density(map, p);
     if (ok && p->cull_choices > 1)
         ok = p->cull_crowded ? set_crowding(map, p->cull_choices, p->crowd_square_mm)
                              : set_evidence(map, p->cull_choices, p->confirm_mm);
@@ -221,7 +226,7 @@ static uint32_t least_confirmed(hl_map_t *map)
 /* The crowding cull (create time, after the density bound). */
 static bool set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm)
 {
-    if (square_mm > 0 && !hl_mapsq_init(&map->crowd_sq, map->capacity, square_mm))
+    if (square_mm > 0 && !hl_mapsq_init(&map->crowd_sq, map->capacity, square_mm, true))
         return false;
     map->choices = choices;
     map->crowd = true;
@@ -234,6 +239,11 @@ static uint32_t crowding(const hl_map_t *map, uint32_t c)
 {
     if (map->crowd_sq.head)
         return hl_mapsq_count(&map->crowd_sq, &map->vectors[c]);
+    if (map->round_mm) {    /* round places: the disc of 3 x 3 of them, facing alike */
+        uint32_t near[HL_MAP_NEAR_MAX];
+        return hl_mapsq_near(&map->places, map->vectors, &map->vectors[c], 3 * map->round_mm,
+                             ROUND_GATE, near, HL_MAP_NEAR_MAX);
+    }
     int32_t side = map->places.square_mm;
     uint32_t n = 0;
     for (int dy = -1; dy <= 1; dy++)
@@ -268,11 +278,15 @@ static uint32_t most_crowded(hl_map_t *map)
 }
 
 /* The density bound's place index (create time). */
-static bool set_density(hl_map_t *map, int32_t square_mm, uint32_t per_place)
+static bool set_density(hl_map_t *map, const hl_map_params_t *p)
 {
-    if (!hl_mapsq_init(&map->places, map->capacity, square_mm))
+    /* Round places: the disc of the square's area (28 mm for 50 mm squares), found in
+     * squares of its diameter without sides, so that it reaches four at most. */
+    map->round_mm = p->round_places ? (int32_t)lround(p->square_mm / sqrt(PI)) : 0;
+    int32_t side = map->round_mm ? 2 * map->round_mm : p->square_mm;
+    if (!hl_mapsq_init(&map->places, map->capacity, side, !map->round_mm))
         return false;
-    map->per_place = per_place;
+    map->per_place = p->per_place;
     return true;
 }
 
@@ -285,6 +299,25 @@ static void replace(hl_map_t *map, uint32_t slot, const hl_vector_t *v)
     if (map->support)
         map->support[slot] = 0;
     index_link(map, slot);
+}
+
+/* The density bound: a full place for @p v drops one of its vectors or @p v, uniformly
+ * at random among them, as the paper's culling does over the whole map. @return whether
+ * the place was full (v taken or dropped). */
+static bool bound_place(hl_map_t *map, const hl_vector_t *v)
+{
+    uint32_t near[HL_MAP_NEAR_MAX], c;
+    if (map->round_mm)
+        c = hl_mapsq_near(&map->places, map->vectors, v, map->round_mm, ROUND_GATE, near,
+                          HL_MAP_NEAR_MAX);
+    else
+        c = hl_mapsq_count(&map->places, v);
+    if (c < map->per_place)
+        return false;
+    uint32_t victim = hl_rng_below(&map->rng, c + 1);
+    if (victim < c)
+        replace(map, map->round_mm ? near[victim] : hl_mapsq_nth(&map->places, v, victim), v);
+    return true;
 }
 
 bool hl_vector_in_range(const hl_vector_t *v)
@@ -301,17 +334,8 @@ hl_status_t hl_map_add(hl_map_t *map, const hl_vector_t *v)
     if (!hl_vector_in_range(v))
         return HL_ERR_RANGE;
     map->version = hl_count_next(map->version);
-    if (map->per_place) {
-        /* A full place: drop one of its vectors and the new one, uniformly at random,
-         * as the paper's culling does over the whole map. */
-        uint32_t c = hl_mapsq_count(&map->places, v);
-        if (c >= map->per_place) {
-            uint32_t victim = hl_rng_below(&map->rng, c + 1);
-            if (victim < c)
-                replace(map, hl_mapsq_nth(&map->places, v, victim), v);
-            return HL_OK;
-        }
-    }
+    if (map->per_place && bound_place(map, v))
+        return HL_OK;
     if (map->count < map->capacity) {
         map->vectors[map->count] = *v;
         map->stamps[map->count] = map->stamp;

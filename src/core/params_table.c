@@ -66,6 +66,10 @@ const hl_param_entry_t hl_param_table[] = {
         "one replaces one at random); 0: no bound (paper)"),
     INT("slam.map_square_mm", E, I32, map_square_mm, 10, 1000, "50",
         "the square of map_per_place"),
+    FLAG("slam.map_round_places", S, map_round_places, "true",
+         "map_per_place counts the vectors within a disc of the square's area about a new "
+         "one, facing within 22.5 degrees of it: the same in any start frame (false: the "
+         "map frame's squares, seen from one side)"),
     INT("slam.cull_choices", E, U32, cull_choices, 1, 64, "1",
         "a full map drops the least confirmed of this many vectors drawn at random (a new "
         "vector confirms old ones near it facing alike); 1: uniform (paper)"),
@@ -333,8 +337,8 @@ static const hl_param_setting_t sonar_continuous[] = {
       "a map that holds whole floors, so that the robot finds the walls it passed minutes "
       "ago ..." },
     { "slam.map_per_place", "1",
-      "... kept sparse: one vector of a 50 mm square seen from one side (a new one replaces "
-      "it at random)" },
+      "... kept sparse: one vector of a round place (the disc of a 50 mm square's area "
+      "about a new one, facing alike; a new one replaces it at random)" },
     { "slam.wall_gain", "0.1",
       "a ring's heading drifts a degree or so a scan between returns: a tenth of the way to "
       "walls square to the map's (a building's walls mostly are) each scan" },
@@ -358,8 +362,8 @@ static const hl_param_setting_t laser[] = {
     { "slam.map_capacity", "15000",
       "360 readings a scan: 1500 vectors hold a few seconds of them, 15,000 hold whole floors" },
     { "slam.map_per_place", "2",
-      "at most 2 vectors of any map_square_mm square seen from one side (a new one replaces "
-      "one of them at random)" },
+      "at most 2 vectors of any round place, the disc of a map_square_mm square's area "
+      "about a new one, facing alike (a new one replaces one of them at random)" },
     { "slam.map_square_mm", "50", "... in 50 mm squares" },
     { "slam.window_mm", "500",
       "scans several times a second: odometry is off by centimetres between two, and a "

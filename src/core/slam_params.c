@@ -70,6 +70,7 @@ void hl_slam_map_params(const hl_slam_params_t *p, hl_map_params_t *out)
     *out = (hl_map_params_t){
         .capacity = p->map_capacity, .seed = p->seed,
         .per_place = p->map_per_place, .square_mm = p->map_square_mm,
+        .round_places = p->map_round_places,
         .cull_choices = p->cull_choices, .confirm_mm = HL_MAP_CONFIRM_MM,
         .cull_crowded = p->cull_crowded, .crowd_square_mm = p->crowd_square_mm,
     };

@@ -327,6 +327,7 @@ static void test_module_defaults_are_the_tables(void **state)
     assert_int_equal(map.confirm_mm, from_slam.confirm_mm);
     assert_int_equal(map.cull_crowded, from_slam.cull_crowded);
     assert_int_equal(map.crowd_square_mm, from_slam.crowd_square_mm);
+    assert_int_equal(map.round_places, from_slam.round_places);
     assert_int_equal(loc.cell_mm, 24);
     assert_int_equal(map.capacity, 1500);
     assert_int_equal(map.confirm_mm, HL_MAP_CONFIRM_MM);

@@ -31,6 +31,7 @@ extern "C" {
 #define HL_MAP_MIN_SQUARE_MM 10
 #define HL_MAP_MAX_SQUARE_MM 1000
 #define HL_MAP_MAX_CHOICES 64
+#define HL_MAP_NEAR_MAX 64      /* a round place's vectors counted at most */
 /* The evidence cull's confirm distance (was slam.confirm_mm): 60-150 mm measured, 100
  * best (docs/design/expert-keys.md). */
 #define HL_MAP_CONFIRM_MM 100
@@ -42,7 +43,12 @@ extern "C" {
  *    square seen from one side (normals in one eighth of a turn). A new vector for a full
  *    place takes the place of one of its vectors, or is dropped, chosen uniformly at
  *    random among them and it; the capacity then spans more of a building instead of
- *    holding the same wall many times over (a laser re-sees every wall on every scan);
+ *    holding the same wall many times over (a laser re-sees every wall on every scan).
+ *    Round places (round_places): the place of a new vector is the disc of the square's
+ *    area about it (radius square_mm / sqrt(pi)), its normals within a sixteenth of a
+ *    turn of the new one's (at most HL_MAP_NEAR_MAX of them counted): a bound that lies
+ *    the same way in any frame the map is drawn in, where squares cut a wall differently
+ *    as the frame turns;
  *  - the evidence cull (cull_choices > 1): each scan added by hl_map_add_scan first
  *    confirms the map vectors it agrees with (a new vector within confirm_mm, normals
  *    within 30 degrees), and a full map drops the least confirmed of cull_choices
@@ -54,7 +60,8 @@ extern "C" {
  *    instead of the evidence cull): a full map drops, for each new vector, the most
  *    crowded of cull_choices vectors drawn at random: the one with the most vectors in
  *    its square of crowd_square_mm (0: its density-bound place and the 8 squares around
- *    it), seen from the same side. The capacity then spreads over every surface seen
+ *    it, or with round places the disc of three times their radius, at most
+ *    HL_MAP_NEAR_MAX), seen from the same side. The capacity then spreads over every surface seen
  *    rather than over how often each was seen, so a corridor driven once keeps its walls
  *    in a map of a whole building (a laser's: the global search needs every place). In
  *    the 3 x 3 places every wall held at the density bound is equally crowded, so ties
@@ -76,6 +83,10 @@ typedef struct hl_map_params {
     bool cull_crowded;          /* the crowding cull instead; default false */
     int32_t crowd_square_mm;    /* 0 (the default), or HL_MAP_MIN_SQUARE_MM ..
                                    HL_MAP_MAX_SQUARE_MM */
+    bool round_places;          /* the density bound's place is round: the vectors within
+                                   a disc of the square's area about the new one, normals
+                                   within a sixteenth of a turn of its (the default);
+                                   false: squares along the map frame's axes */
 } hl_map_params_t;
 
 /** Fills @p p with the defaults above: the paper's map of 1,500 vectors. */

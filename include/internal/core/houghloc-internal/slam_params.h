@@ -54,6 +54,7 @@ typedef struct hl_slam_params {
                                    many vectors of one map_square_mm square seen from one
                                    side; 0 = none (paper) */
     hl_mm_t map_square_mm;
+    bool map_round_places;      /* ... its places round (hl_map_params_t) */
     uint32_t cull_choices;      /* the map's evidence cull (hl_map_params_t): a full map
                                    drops the least confirmed of this many vectors drawn
                                    at random; 1 = uniform (paper) */
