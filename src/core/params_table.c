@@ -67,7 +67,7 @@ const hl_param_entry_t hl_param_table[] = {
         "(paper)"),
     INT("slam.map_square_mm", E, I32, map_square_mm, 10, 1000, "50",
         "the square whose area map_per_place's place has"),
-    FLAG("slam.map_round_places", S, map_round_places, "true",
+    FLAG("slam.map_round_places", E, map_round_places, "true",
          "map_per_place counts the vectors within a disc of the square's area about a new "
          "one, facing within 22.5 degrees of it: the same in any start frame (false: the "
          "map frame's squares, seen from one side)"),

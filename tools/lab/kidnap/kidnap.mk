@@ -48,6 +48,9 @@ KIDNAP_TOUR_SEEDS  ?= 1 2 3 4 5 6 7 8
 #   slam.map_per_place=3 slam.map_square_mm=100  at most 3 vectors of a 100 mm square seen
 #                                                from one side: a wall seen at every stop
 #                                                must not crowd out the rest
+#   slam.map_round_places=false                  ... the squares the lab's rows were
+#                                                measured with (round places are measured on
+#                                                the real buildings' tracking, not here)
 #   slam.refine_heading=false                    refinement fits position only; the heading
 #                                                is the Hough peak's
 #   slam.close_loops=true                        each stop back near an earlier one is
@@ -57,7 +60,8 @@ KIDNAP_TOUR_SEEDS  ?= 1 2 3 4 5 6 7 8
 #   slam.long_drive_mm=2000                      after a drive of 2 m or more, also try the
 #                                                drive turned by +-6 and +-12 degrees
 KIDNAP_TOUR_SET    ?= slam.lost_after=0 slam.search_every=0 slam.cull_choices=16 \
-                      slam.map_per_place=3 slam.map_square_mm=100 slam.refine_heading=false \
+                      slam.map_per_place=3 slam.map_square_mm=100 slam.map_round_places=false \
+                      slam.refine_heading=false \
                       slam.close_loops=true slam.square_walls=true slam.long_drive_mm=2000
 # As tools/lab/realeval/realeval.mk (read after this file) sets them: the same defaults.
 DATA      ?= ../shared/data

@@ -13,7 +13,7 @@
 # as hl-kidnap judges one: success within 0.5 m and 5 degrees. The readings are
 # recovered from the score and explained_pct (a whole number, so the share is exact);
 # the errors are the file's, to their one decimal, so an answer that becomes found at
-# 5.0 degrees counts as a success. Defaults: reloc.h's (0.6, 0 for off, 35). At them it
+# 5.0 degrees counts as a success. Defaults: the parameter table's (0.7, 0 for off, 35). At them it
 # gives the row the file came from. Prints one line:
 #   rescore max_ratio=R max_edge_ratio=E min_explained_pct=P trials=N success_pct=S ambiguous_pct=A wrong_pct=W
 # Exit status 1 with one line on stderr on an unreadable or foreign file or a line that is
@@ -28,7 +28,7 @@ number() { # NAME VALUE LOW HIGH: VALUE a decimal number in LOW..HIGH, or bad us
     awk -v v="$2" -v lo="$3" -v hi="$4" 'BEGIN { exit !(v + 0 >= lo && v + 0 <= hi) }' ||
         { echo "rescore.sh: $1 $2 is outside $3..$4" >&2; exit 2; }
 }
-ratio=0.6 edge=0 explained=35
+ratio=0.7 edge=0 explained=35
 while [ $# -gt 1 ]; do
     case $1 in
     --max-ratio) number "$1" "$2" 0.000001 1; ratio=$2 ;;
