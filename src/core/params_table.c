@@ -62,15 +62,13 @@ const hl_param_entry_t hl_param_table[] = {
         "vectors kept, the one bound on the map (the localizer is made for as many); new "
         "ones beyond it are culled at random (paper: 1500)"),
     INT("slam.map_per_place", E, U32, map_per_place, 0, 1000, "0",
-        "at most this many vectors of one place, the disc of a map_square_mm square's area "
-        "about a new vector, facing alike (a new one replaces one at random); 0: no bound "
-        "(paper)"),
+        "at most this many vectors of one place (map_round_places) seen from one side (a "
+        "new one replaces one at random); 0: no bound (paper)"),
     INT("slam.map_square_mm", E, I32, map_square_mm, 10, 1000, "50",
         "the square whose area map_per_place's place has"),
     FLAG("slam.map_round_places", E, map_round_places, "true",
-         "map_per_place counts the vectors within a disc of the square's area about a new "
-         "one, facing within 22.5 degrees of it: the same in any start frame (false: the "
-         "map frame's squares, seen from one side)"),
+         "map_per_place's place is the disc of the square's area about a new vector, facing "
+         "within 22.5 degrees (false: the map frame's square, seen from one side)"),
     INT("slam.cull_choices", E, U32, cull_choices, 1, 64, "1",
         "a full map drops the least confirmed of this many vectors drawn at random (a new "
         "vector confirms old ones near it facing alike); 1: uniform (paper)"),
