@@ -58,14 +58,14 @@ struct hl_closure {
                                frame before it, the fit's poses after it */
 };
 
-/* The record's scan of the stop @p i stops after the oldest recorded (its stamp is
- * first + i; the scans are kept by stamp, round the record). */
 /* Whether stop @p query found at @p found in stop @p stamp's submap lies within @p gate_mm
  * and @p gate_rad of where the fit has it from that stop (both recorded, at least
  * HL_CLOSURE_GAP apart); *@p said the pose it gives the query from the stop. closure.c. */
 bool hl_closure_gate(const hl_closure_t *c, uint32_t stamp, uint32_t query, hl_pose_t found,
                      double gate_mm, double gate_rad, hl_pg_pose_t *said);
 
+/* The record's scan of the stop @p i stops after the oldest recorded (its stamp is
+ * first + i; the scans are kept by stamp, round the record). */
 static inline hl_scan_t *scan_of(const hl_closure_t *c, uint32_t i)
 {
     return &c->scans[(c->first + i) % c->cap];

@@ -139,18 +139,11 @@ uint32_t hl_mapsq_near(const hl_mapsq_t *q, const hl_vector_t *v, const hl_vecto
     uint32_t x0, x1, y0, y1, n = 0;
     square_span(q, x->x_mm, radius, &x0, &x1);
     square_span(q, x->y_mm, radius, &y0, &y1);
-    /* the sides the gate reaches, in an index with sides */
-    uint32_t s0 = q->sides ? (hl_bam_t)(x->normal - gate) >> SECTOR_SHIFT : 0;
-    uint32_t s1 = q->sides ? (hl_bam_t)(x->normal + gate) >> SECTOR_SHIFT : 0;
     const int64_t r2 = (int64_t)radius * radius;
     for (uint32_t sx = x0; sx <= x1; sx++)
         for (uint32_t sy = y0; sy <= y1; sy++)
-            for (uint32_t side = s0;; side = (side + 1) & 7u) {
-                uint64_t place = (uint64_t)sx << X_SHIFT | (uint64_t)sy << Y_SHIFT | side;
-                near_in_place(q, v, x, place, r2, gate, out, &n, max);
-                if (side == s1)
-                    break;
-            }
+            near_in_place(q, v, x, (uint64_t)sx << X_SHIFT | (uint64_t)sy << Y_SHIFT, r2,
+                          gate, out, &n, max);
     /* ascending slots: "the r-th vector of the place" depends only on the vectors array */
     for (uint32_t i = 1; i < n; i++) {
         uint32_t t = out[i], j = i;

@@ -3,11 +3,11 @@
  * index behind the map's density bound (map.h, hl_map_params_t).
  *
  * A "place" is a square of square_mm and an eighth of a turn of normals (the side the
- * surface was seen from), or the square alone in an index made without sides. Slots are chained per hash bucket in ascending slot order, so
- * that "the r-th vector of this place" depends only on the vectors array: a map saved
- * and restored chooses exactly as the one that kept running. Buckets are a power of
- * two, at least twice the capacity, so chains are short. Memory comes from
- * hl_mapsq_init only.
+ * surface was seen from), or the square alone in an index made without sides. Slots are
+ * chained per hash bucket in ascending slot order, so that "the r-th vector of this
+ * place" depends only on the vectors array: a map saved and restored chooses exactly as
+ * the one that kept running. Buckets are a power of two, at least twice the capacity, so
+ * chains are short. Memory comes from hl_mapsq_init only.
  */
 #ifndef HOUGHLOC_CORE_MAPSQ_H
 #define HOUGHLOC_CORE_MAPSQ_H
@@ -44,8 +44,8 @@ void hl_mapsq_unlink(hl_mapsq_t *q, uint32_t slot);
 uint32_t hl_mapsq_count(const hl_mapsq_t *q, const hl_vector_t *x);
 /** The slots (ascending, at most @p max) of the indexed vectors of @p v within @p radius
  *  of @p x whose normals lie within @p gate of its: the place of a round density bound,
- *  the same in any frame. In an index without sides whose squares are at least 2 radius
- *  wide, the four squares at most that the disc reaches. @return how many. */
+ *  the same in any frame. Only in an index made without sides (the normals are tested
+ *  here); squares at least 2 radius wide make it four squares at most. @return how many. */
 uint32_t hl_mapsq_near(const hl_mapsq_t *q, const hl_vector_t *v, const hl_vector_t *x,
                        int32_t radius, int32_t gate, uint32_t *out, uint32_t max);
 /** The slot of the @p r-th (from 0, in slot order) vector of the place of @p x;
