@@ -11,6 +11,7 @@
 #include "houghloc/rng.h"
 #include "houghloc-internal/slam_params.h"
 #include "houghloc/count.h"
+#include "mapdisc.h"
 #include "mapsq.h"
 
 /* A new vector confirms an old one within confirm_mm whose normal agrees within this:
@@ -28,9 +29,10 @@ struct hl_map {
     hl_vector_t *vectors;   /* [capacity] */
     uint32_t *stamps;       /* [capacity] the stamp each vector was added under */
     uint32_t stamp;         /* ... vectors added now get this (hl_map_set_stamp) */
-    uint32_t per_place;     /* the density bound; 0: none (and `places` unallocated) */
-    hl_mapsq_t places;
+    uint32_t per_place;     /* the density bound; 0: none (and its index unallocated) */
     int32_t round_mm;       /* round places (round_places): their radius; 0: squares */
+    hl_mapdisc_t discs;     /* ... the round places' index */
+    hl_mapsq_t places;      /* ... or the squares' */
     uint32_t choices;       /* the evidence cull's draws; 1: the paper's random cull (and
                                what follows unallocated) */
     int32_t confirm_mm;
@@ -123,6 +125,7 @@ void hl_map_destroy(hl_map_t *map)
 {
     if (!map)
         return;
+    hl_mapdisc_free(&map->discs);
     hl_mapsq_free(&map->places);
     hl_mapsq_free(&map->crowd_sq);
     hl_cellhash_free(&map->near);
@@ -136,7 +139,9 @@ void hl_map_destroy(hl_map_t *map)
  * write to a slot; these keep both in step. */
 static void index_unlink(hl_map_t *map, uint32_t slot)
 {
-    if (map->per_place)
+    if (map->round_mm)
+        hl_mapdisc_unlink(&map->discs, slot);
+    else if (map->per_place)
         hl_mapsq_unlink(&map->places, slot);
     if (map->crowd_sq.head)
         hl_mapsq_unlink(&map->crowd_sq, slot);
@@ -144,7 +149,9 @@ static void index_unlink(hl_map_t *map, uint32_t slot)
 
 static void index_link(hl_map_t *map, uint32_t slot)
 {
-    if (map->per_place)
+    if (map->round_mm)
+        hl_mapdisc_link(&map->discs, map->vectors, slot);
+    else if (map->per_place)
         hl_mapsq_link(&map->places, map->vectors, slot);
     if (map->crowd_sq.head)
         hl_mapsq_link(&map->crowd_sq, map->vectors, slot);
@@ -152,7 +159,9 @@ static void index_link(hl_map_t *map, uint32_t slot)
 
 static void index_rebuild(hl_map_t *map)
 {
-    if (map->per_place)
+    if (map->round_mm)
+        hl_mapdisc_rebuild(&map->discs, map->vectors, map->count);
+    else if (map->per_place)
         hl_mapsq_rebuild(&map->places, map->vectors, map->count);
     if (map->crowd_sq.head)
         hl_mapsq_rebuild(&map->crowd_sq, map->vectors, map->count);
@@ -226,7 +235,7 @@ static uint32_t least_confirmed(hl_map_t *map)
 /* The crowding cull (create time, after the density bound). */
 static bool set_crowding(hl_map_t *map, uint32_t choices, int32_t square_mm)
 {
-    if (square_mm > 0 && !hl_mapsq_init(&map->crowd_sq, map->capacity, square_mm, true))
+    if (square_mm > 0 && !hl_mapsq_init(&map->crowd_sq, map->capacity, square_mm))
         return false;
     map->choices = choices;
     map->crowd = true;
@@ -241,8 +250,8 @@ static uint32_t crowding(const hl_map_t *map, uint32_t c)
         return hl_mapsq_count(&map->crowd_sq, &map->vectors[c]);
     if (map->round_mm) {    /* round places: the disc of 3 x 3 of them, facing alike */
         uint32_t near[HL_MAP_NEAR_MAX];
-        return hl_mapsq_near(&map->places, map->vectors, &map->vectors[c], 3 * map->round_mm,
-                             ROUND_GATE, near, HL_MAP_NEAR_MAX);
+        return hl_mapdisc_near(&map->discs, &map->vectors[c], 3 * map->round_mm, ROUND_GATE,
+                               near, HL_MAP_NEAR_MAX);
     }
     int32_t side = map->places.square_mm;
     uint32_t n = 0;
@@ -283,8 +292,8 @@ static bool set_density(hl_map_t *map, const hl_map_params_t *p)
     /* Round places: the disc of the square's area (28 mm for 50 mm squares), found in
      * squares of its diameter without sides, so that it reaches four at most. */
     map->round_mm = p->round_places ? (int32_t)lround(p->square_mm / sqrt(PI)) : 0;
-    int32_t side = map->round_mm ? 2 * map->round_mm : p->square_mm;
-    if (!hl_mapsq_init(&map->places, map->capacity, side, !map->round_mm))
+    if (map->round_mm ? !hl_mapdisc_init(&map->discs, map->capacity, 2 * map->round_mm)
+                      : !hl_mapsq_init(&map->places, map->capacity, p->square_mm))
         return false;
     map->per_place = p->per_place;
     return true;
@@ -308,8 +317,7 @@ static bool bound_place(hl_map_t *map, const hl_vector_t *v)
 {
     uint32_t near[HL_MAP_NEAR_MAX], c;
     if (map->round_mm)
-        c = hl_mapsq_near(&map->places, map->vectors, v, map->round_mm, ROUND_GATE, near,
-                          HL_MAP_NEAR_MAX);
+        c = hl_mapdisc_near(&map->discs, v, map->round_mm, ROUND_GATE, near, HL_MAP_NEAR_MAX);
     else
         c = hl_mapsq_count(&map->places, v);
     if (c < map->per_place)
@@ -479,6 +487,7 @@ const uint32_t *hl_map_stamps(const hl_map_t *map)
 size_t hl_map_mem_bytes(const hl_map_t *map)
 {
     return sizeof *map + (size_t)map->capacity * (sizeof *map->vectors + sizeof *map->stamps) +
+           hl_mapdisc_mem_bytes(&map->discs, map->capacity) +
            hl_mapsq_mem_bytes(&map->places, map->capacity) +
            hl_mapsq_mem_bytes(&map->crowd_sq, map->capacity) +
            (map->support ? (size_t)map->capacity * sizeof *map->support +

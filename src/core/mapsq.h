@@ -3,7 +3,7 @@
  * index behind the map's density bound (map.h, hl_map_params_t).
  *
  * A "place" is a square of square_mm and an eighth of a turn of normals (the side the
- * surface was seen from), or the square alone in an index made without sides. Slots are
+ * surface was seen from). Slots are
  * chained per hash bucket in ascending slot order, so that "the r-th vector of this
  * place" depends only on the vectors array: a map saved and restored chooses exactly as
  * the one that kept running. Buckets are a power of two, at least twice the capacity, so
@@ -22,7 +22,6 @@
 typedef struct hl_mapsq {
     int32_t square_mm;
     hl_floordiv_t square;   /* division by square_mm */
-    bool sides;             /* a place is a square and a side (false: the square alone) */
     uint32_t mask;          /* buckets - 1 */
     uint32_t *head;         /* [buckets] first slot of each chain, or UINT32_MAX */
     uint32_t *next;         /* [capacity] next slot in the chain, or UINT32_MAX */
@@ -30,7 +29,7 @@ typedef struct hl_mapsq {
 } hl_mapsq_t;
 
 /** @return false when memory is short (hl_mapsq_free releases what was allocated). */
-bool hl_mapsq_init(hl_mapsq_t *q, uint32_t capacity, int32_t square_mm, bool sides);
+bool hl_mapsq_init(hl_mapsq_t *q, uint32_t capacity, int32_t square_mm);
 void hl_mapsq_free(hl_mapsq_t *q);
 size_t hl_mapsq_mem_bytes(const hl_mapsq_t *q, uint32_t capacity);
 
@@ -42,12 +41,6 @@ void hl_mapsq_link(hl_mapsq_t *q, const hl_vector_t *v, uint32_t slot);
 void hl_mapsq_unlink(hl_mapsq_t *q, uint32_t slot);
 /** How many indexed slots hold a vector of the place of @p x. */
 uint32_t hl_mapsq_count(const hl_mapsq_t *q, const hl_vector_t *x);
-/** The slots (ascending, at most @p max) of the indexed vectors of @p v within @p radius
- *  of @p x whose normals lie within @p gate of its: the place of a round density bound,
- *  the same in any frame. Only in an index made without sides (the normals are tested
- *  here); squares at least 2 radius wide make it four squares at most. @return how many. */
-uint32_t hl_mapsq_near(const hl_mapsq_t *q, const hl_vector_t *v, const hl_vector_t *x,
-                       int32_t radius, int32_t gate, uint32_t *out, uint32_t max);
 /** The slot of the @p r-th (from 0, in slot order) vector of the place of @p x;
  *  r < hl_mapsq_count. */
 uint32_t hl_mapsq_nth(const hl_mapsq_t *q, const hl_vector_t *x, uint32_t r);

@@ -507,6 +507,60 @@ static void test_round_places_turn_with_the_frame_and_restore_exactly(void **sta
     hl_map_destroy(c);
 }
 
+/* The density bound with round places as map.h defines it, by a search of every vector
+ * (the map's index finds them by squares): the lowest slots (at most HL_MAP_NEAR_MAX)
+ * within @p radius of @p x, normals within a sixteenth of a turn, drop one of them or x
+ * at random; else x joins the map, or the paper's random cull makes room for it. */
+static void add_by_search(hl_vector_t *v, uint32_t *n, uint32_t capacity, hl_rng_t *rng,
+                          const hl_vector_t *x, int32_t radius, uint32_t per_place)
+{
+    uint32_t near[HL_MAP_NEAR_MAX], c = 0;
+    for (uint32_t s = 0; s < *n && c < HL_MAP_NEAR_MAX; s++) {
+        int64_t dx = v[s].x_mm - x->x_mm, dy = v[s].y_mm - x->y_mm;
+        int32_t dn = hl_bam_diff(v[s].normal, x->normal);
+        if (dx * dx + dy * dy <= (int64_t)radius * radius && abs(dn) <= HL_BAM_PER_TURN / 16)
+            near[c++] = s;
+    }
+    uint32_t victim;
+    if (c >= per_place) {
+        if ((victim = hl_rng_below(rng, c + 1)) < c)
+            v[near[victim]] = *x;
+    } else if (*n < capacity) {
+        v[(*n)++] = *x;
+    } else if ((victim = hl_rng_below(rng, capacity + 1)) < capacity) {
+        v[victim] = *x;
+    }
+}
+
+/* The map's round places choose exactly as that search: 20,000 vectors on a 2 m floor,
+ * facing four ways give or take 30 degrees, into 400 slots (chains of unlike squares
+ * share a bucket, places fill, the full map culls), compared every 500. */
+static void test_round_places_choose_as_a_search_of_every_vector(void **state)
+{
+    (void)state;
+    enum { CAPACITY = 400, PER_PLACE = 2 };
+    hl_map_t *m = round_map(CAPACITY, 9, 50, PER_PLACE);
+    hl_vector_t want[CAPACITY];
+    uint32_t n = 0;
+    hl_rng_t culls, draws;
+    hl_rng_seed(&culls, 9);     /* as the map seeds its own */
+    hl_rng_seed(&draws, 4);
+    for (int i = 0; i < 20000; i++) {
+        hl_bam_t facing = (hl_bam_t)(hl_rng_below(&draws, 4) * HL_BAM_QUARTER_TURN +
+                                     hl_rng_below(&draws, 10923) - 5461);
+        hl_vector_t x = { (hl_mm_t)hl_rng_below(&draws, 2000) - 1000,
+                          (hl_mm_t)hl_rng_below(&draws, 2000) - 1000, facing, 1000 };
+        assert_int_equal(hl_map_add(m, &x), HL_OK);
+        add_by_search(want, &n, CAPACITY, &culls, &x, 28, PER_PLACE);
+        if (i % 500 == 499) {
+            assert_int_equal(hl_map_count(m), n);
+            assert_memory_equal(hl_map_vectors(m), want, n * sizeof want[0]);
+        }
+    }
+    assert_int_equal(n, CAPACITY);
+    hl_map_destroy(m);
+}
+
 /* Too many vectors, or one out of range anywhere in the list: refused, nothing changes
  * (vectors, count, version, culling state). */
 static void test_restore_refuses_and_changes_nothing(void **state)
@@ -729,6 +783,7 @@ int main(void)
         cmocka_unit_test(test_density_squares_split_at_edges),
         cmocka_unit_test(test_round_places_count_by_distance_and_facing),
         cmocka_unit_test(test_round_places_turn_with_the_frame_and_restore_exactly),
+        cmocka_unit_test(test_round_places_choose_as_a_search_of_every_vector),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
