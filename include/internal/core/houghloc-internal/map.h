@@ -31,7 +31,8 @@ extern "C" {
 #define HL_MAP_MIN_SQUARE_MM 10
 #define HL_MAP_MAX_SQUARE_MM 1000
 #define HL_MAP_MAX_CHOICES 64
-#define HL_MAP_NEAR_MAX 64      /* a round place's vectors counted at most */
+#define HL_MAP_NEAR_MAX 64      /* a round place's vectors counted at most: the lowest
+                                   slots */
 /* The evidence cull's confirm distance (was slam.confirm_mm): 60-150 mm measured, 100
  * best (docs/design/expert-keys.md). */
 #define HL_MAP_CONFIRM_MM 100
@@ -46,9 +47,10 @@ extern "C" {
  *    holding the same wall many times over (a laser re-sees every wall on every scan).
  *    Round places (round_places): the place of a new vector is the disc of the square's
  *    area about it (radius square_mm / sqrt(pi)), its normals within a sixteenth of a
- *    turn of the new one's (at most HL_MAP_NEAR_MAX of them counted): a bound that lies
- *    the same way in any frame the map is drawn in, where squares cut a wall differently
- *    as the frame turns;
+ *    turn of the new one's (at most HL_MAP_NEAR_MAX of them counted, the lowest slots,
+ *    so that the choice depends on the vectors alone): a bound that lies the same way in
+ *    any frame the map is drawn in, where squares cut a wall differently as the frame
+ *    turns;
  *  - the evidence cull (cull_choices > 1): each scan added by hl_map_add_scan first
  *    confirms the map vectors it agrees with (a new vector within confirm_mm, normals
  *    within 30 degrees), and a full map drops the least confirmed of cull_choices
