@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "placehash.h"
+
 #define NONE UINT32_MAX
 #define WALKS 16    /* squares a search may reach: a disc of 3 radii, 4 x 4 of them */
 
@@ -12,9 +14,7 @@ bool hl_mapdisc_init(hl_mapdisc_t *d, uint32_t capacity, int32_t square_mm)
     memset(d, 0, sizeof *d);
     if (!hl_floordiv_init(&d->square, square_mm))
         return false;
-    uint32_t buckets = 1;
-    while (buckets < 2 * capacity)
-        buckets <<= 1;
+    uint32_t buckets = hl_place_buckets(capacity);
     d->mask = buckets - 1;
     d->head = malloc((size_t)buckets * sizeof *d->head);
     d->link = malloc((size_t)capacity * sizeof *d->link);
@@ -42,8 +42,7 @@ size_t hl_mapdisc_mem_bytes(const hl_mapdisc_t *d, uint32_t capacity)
  * is searched too, and searches each chain once. */
 static uint32_t bucket_of(const hl_mapdisc_t *d, uint32_t sx, uint32_t sy)
 {
-    uint64_t place = (uint64_t)sx << 24 | sy;
-    return (uint32_t)((place * 0x9E3779B97F4A7C15u) >> 32) & d->mask;
+    return hl_place_bucket((uint64_t)sx << 24 | sy, d->mask);
 }
 
 static uint32_t bucket_at(const hl_mapdisc_t *d, hl_mm_t x_mm, hl_mm_t y_mm)

@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "placehash.h"
+
 #define NONE UINT32_MAX
 #define SECTOR_SHIFT 13     /* an eighth of a turn of normals */
 #define X_SHIFT 27          /* a place's number: x square, y square (24 bits each), side */
@@ -15,9 +17,7 @@ bool hl_mapsq_init(hl_mapsq_t *q, uint32_t capacity, int32_t square_mm)
     if (!hl_floordiv_init(&q->square, square_mm))
         return false;
     q->square_mm = square_mm;
-    uint32_t buckets = 1;
-    while (buckets < 2 * capacity)
-        buckets <<= 1;
+    uint32_t buckets = hl_place_buckets(capacity);
     q->mask = buckets - 1;
     q->head = malloc((size_t)buckets * sizeof *q->head);
     q->next = malloc((size_t)capacity * sizeof *q->next);
@@ -55,7 +55,7 @@ static uint64_t place_of(const hl_mapsq_t *q, const hl_vector_t *a)
 
 static uint32_t bucket_of(const hl_mapsq_t *q, uint64_t place)
 {
-    return (uint32_t)((place * 0x9E3779B97F4A7C15u) >> 32) & q->mask;
+    return hl_place_bucket(place, q->mask);
 }
 
 void hl_mapsq_rebuild(hl_mapsq_t *q, const hl_vector_t *v, uint32_t n)
