@@ -27,6 +27,13 @@
  * share of runs whose answer is found and within 0.5 m and 5 degrees of the truth:
  *
  *   bench w6_reloc_lab median_us=<n> p90_us=<n> correct_pct=<n> mem_bytes=<n>
+ *
+ * The seventh times the map itself: a laser's scans along a walk of 500 steps of 100 mm
+ * (360 readings each, about 180,000 vectors) drawn into a map of 15,000 vectors with
+ * round places, 2 a place, as the laser profile's map is made and as a loop closure's
+ * redraw draws it again, tens of thousands of vectors a scan; at most 20 runs:
+ *
+ *   bench w7_map_round median_us=<n> p90_us=<n> ns_per_vector=<n> vectors=<n> mem_bytes=<n>
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -37,6 +44,7 @@
 
 #include "houghloc-internal/echo.h"
 #include "houghloc-internal/localize.h"
+#include "houghloc-internal/map.h"
 #include "houghloc-internal/refine.h"
 #include "houghloc-internal/reloc.h"
 #include "ref_localize.h"
@@ -55,6 +63,7 @@ typedef struct workload {
     int max_ref_runs;       /* the reference is slow: cap its runs */
     bool echo_refine;       /* w4: what improved mode adds, not a search (run_echo_refine) */
     bool reloc;             /* w6: the global search, heading unknown (run_reloc) */
+    bool map;               /* w7: the map's round places (run_map_round) */
 } workload_t;
 
 
@@ -246,10 +255,62 @@ static int run_reloc(int runs)
     return 0;
 }
 
+#define MAP_STEPS 500
+#define MAP_MAX_RUNS 20
+
+static int run_map_round(int runs)
+{
+    static sr_room_t room;
+    static hl_scan_t scan;
+    sr_room_make(&room, 0, 0, 20000, 15000, 60, 7);
+    hl_vector_t *v = malloc((size_t)MAP_STEPS * 360 * sizeof *v);
+    double *t = malloc((size_t)runs * sizeof *t);
+    if (!v || !t) {
+        fprintf(stderr, "bench: out of memory\n");
+        return 1;
+    }
+    uint32_t n = 0;
+    hl_pose_t at = sr_free_pose(&room, 500);
+    for (int step = 0; step < MAP_STEPS; step++) {
+        sr_sound(&room, at, 360, 8000, 10, &scan);
+        for (uint32_t k = 0; k < scan.count; k++)
+            n += hl_vector_from_reading(at, &scan.readings[k], &v[n]);
+        at = sr_walk(&room, at, 100, 400);
+    }
+    hl_map_params_t p;
+    hl_map_params_default(&p);
+    p.capacity = 15000;
+    p.per_place = 2;
+    p.round_places = true;
+    if (runs > MAP_MAX_RUNS)
+        runs = MAP_MAX_RUNS;
+    size_t mem = 0;
+    for (int i = 0; i < runs; i++) {
+        hl_map_t *map = hl_map_create_with(&p);
+        if (!map) {
+            fprintf(stderr, "bench: cannot create the map\n");
+            return 1;
+        }
+        double t0 = now_us();
+        for (uint32_t k = 0; k < n; k++)
+            hl_map_add(map, &v[k]);
+        t[i] = now_us() - t0;
+        mem = hl_map_mem_bytes(map);
+        hl_map_destroy(map);
+    }
+    double median = quantile(t, runs, 0.5);
+    printf("bench w7_map_round median_us=%.0f p90_us=%.0f ns_per_vector=%.0f vectors=%u "
+           "mem_bytes=%zu\n", median, quantile(t, runs, 0.9), 1000 * median / n, n, mem);
+    fflush(stdout);
+    free(v);
+    free(t);
+    return 0;
+}
+
 static const char usage[] =
     "usage: hl-bench [RUNS [WORKLOAD]]\n"
     "Times the localizer on synthetic rooms, one line per workload (RUNS 1..100000,\n"
-    "default 200; WORKLOAD w1 .. w6 or its full name, default all).\n";
+    "default 200; WORKLOAD w1 .. w7 or its full name, default all).\n";
 
 int main(int argc, char **argv)
 {
@@ -274,12 +335,13 @@ int main(int argc, char **argv)
         runs = (int)v;
     }
     const workload_t w[] = {
-        { "w1_global_xy", 1500, 0, false, 128, 0, 200, false, false },
-        { "w2_local_xyt", 1500, 1000, true, 128, 0, 200, false, false },
-        { "w3_map15k", 15000, 1000, true, 128, 48, 20, false, false },
-        { "w4_echo_refine", 0, 0, false, 0, 0, 0, true, false },
-        { "w5_laser15k", 15000, 1000, true, 360, 48, 5, false, false },
-        { "w6_reloc_lab", 1500, 0, true, 128, 0, 0, false, true },
+        { "w1_global_xy", 1500, 0, false, 128, 0, 200, false, false, false },
+        { "w2_local_xyt", 1500, 1000, true, 128, 0, 200, false, false, false },
+        { "w3_map15k", 15000, 1000, true, 128, 48, 20, false, false, false },
+        { "w4_echo_refine", 0, 0, false, 0, 0, 0, true, false, false },
+        { "w5_laser15k", 15000, 1000, true, 360, 48, 5, false, false, false },
+        { "w6_reloc_lab", 1500, 0, true, 128, 0, 0, false, true, false },
+        { "w7_map_round", 0, 0, false, 0, 0, 0, false, false, true },
     };
     bool any = false;
     for (size_t i = 0; i < sizeof w / sizeof w[0]; i++) {
@@ -289,12 +351,13 @@ int main(int argc, char **argv)
         any = true;
         int bad = w[i].echo_refine ? run_echo_refine(runs)
                   : w[i].reloc     ? run_reloc(runs)
+                  : w[i].map       ? run_map_round(runs)
                                    : run_workload(&w[i], runs, runs);
         if (bad)
             return 1;
     }
     if (!any) {
-        fprintf(stderr, "hl-bench: no workload '%s' (w1 .. w6)\n", only);
+        fprintf(stderr, "hl-bench: no workload '%s' (w1 .. w7)\n", only);
         return 2;
     }
     return 0;

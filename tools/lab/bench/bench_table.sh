@@ -80,7 +80,8 @@ below): $verdict the budget of 4.
 | workload | median | p90 | reference |
 |---|---|---|---|
 EOF
-for w in w1_global_xy w2_local_xyt w3_map15k w4_echo_refine w5_laser15k w6_reloc_lab; do
+for w in w1_global_xy w2_local_xyt w3_map15k w4_echo_refine w5_laser15k w6_reloc_lab \
+         w7_map_round; do
     m=$(field "$loc" $w median_us)
     [ -n "$m" ] || continue
     ref=$(field "$loc" $w ref_median_us)

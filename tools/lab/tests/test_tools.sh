@@ -66,6 +66,7 @@ check "seeds.sh summarises two seeds" grep -q "^orientation, 2 seeds: mean |bias
 check "hl-bench prints three parseable lines" test "$(grep -cE '^bench w[123]_[a-z0-9_]+ median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+ group_mm=[0-9]+$' "$tmp/bench")" -eq 3
 check "hl-bench times echo and refinement" grep -qE '^bench w4_echo_refine median_us=[0-9]+ p90_us=[0-9]+ echo_median_us=[0-9]+ refine_median_us=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench"
 check "hl-bench times a laser scan against 15,000 vectors" grep -qE '^bench w5_laser15k median_us=[0-9]+ p90_us=[0-9]+ ref_median_us=[0-9]+ votes=[0-9]+ mem_bytes=[0-9]+ group_mm=48$' "$tmp/bench"
+check "hl-bench times the map's round places" grep -qE '^bench w7_map_round median_us=[0-9]+ p90_us=[0-9]+ ns_per_vector=[0-9]+ vectors=[0-9]+ mem_bytes=[0-9]+$' "$tmp/bench"
 check "hl-bench's dense workloads vote in 48 mm groups, the others alone" sh -c '
     grep -q "^bench w3_map15k .* group_mm=48$" "$1" && grep -q "^bench w2_local_xyt .* group_mm=0$" "$1"' - "$tmp/bench"
 "$BIN/hl-bench" 2 w2 >"$tmp/bench_one"
