@@ -28,11 +28,13 @@ hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t 
     c->wall_axis = malloc((size_t)stops * sizeof *c->wall_axis);
     c->wall_sigma = malloc((size_t)stops * sizeof *c->wall_sigma);
     c->path = malloc((size_t)stops * sizeof *c->path);
+    c->to_draw = malloc((size_t)stops * sizeof *c->to_draw);
     c->headings = malloc((size_t)stops * sizeof *c->headings);
     c->edges = malloc((size_t)c->max_edges * sizeof *c->edges);
     c->graph = hl_posegraph_create(stops, c->max_edges);
     c->map_capacity = map_capacity;
     c->kept = malloc((size_t)map_capacity * sizeof *c->kept);
+    c->kept_stamps = malloc((size_t)map_capacity * sizeof *c->kept_stamps);
     c->sub = hl_map_create(map_capacity, seed);
     c->query = malloc(sizeof *c->query);
     c->corr = hl_corr_create();
@@ -40,7 +42,8 @@ hl_closure_t *hl_closure_create(uint32_t stops, uint32_t map_capacity, uint64_t 
     c->query_points = malloc(HL_CORR_MAX_POINTS * sizeof *c->query_points);
     hl_rng_seed(&c->sub_rng, seed);
     if (!c->scans || !c->poses || !c->placed || !c->rng_before || !c->wall_axis ||
-        !c->wall_sigma || !c->path || !c->headings || !c->edges || !c->graph || !c->kept || !c->sub ||
+        !c->wall_sigma || !c->path || !c->to_draw || !c->headings || !c->edges ||
+        !c->graph || !c->kept || !c->kept_stamps || !c->sub ||
         !c->query || !c->corr || !c->sub_points || !c->query_points) {
         hl_closure_destroy(c);
         return NULL;
@@ -60,9 +63,11 @@ void hl_closure_destroy(hl_closure_t *c)
     free(c->wall_axis);
     free(c->wall_sigma);
     free(c->path);
+    free(c->to_draw);
     free(c->headings);
     free(c->edges);
     free(c->kept);
+    free(c->kept_stamps);
     hl_corr_destroy(c->corr);
     free(c->sub_points);
     free(c->query_points);
@@ -77,8 +82,10 @@ size_t hl_closure_mem_bytes(const hl_closure_t *c)
     return sizeof *c +
            (size_t)c->cap * (sizeof *c->scans + sizeof *c->poses + sizeof *c->placed +
                              sizeof *c->rng_before + sizeof *c->wall_axis +
-                             sizeof *c->wall_sigma + sizeof *c->headings) +
-           (size_t)c->max_edges * sizeof *c->edges + (size_t)c->map_capacity * sizeof *c->kept +
+                             sizeof *c->wall_sigma + sizeof *c->headings +
+                             sizeof *c->to_draw) +
+           (size_t)c->max_edges * sizeof *c->edges +
+           (size_t)c->map_capacity * (sizeof *c->kept + sizeof *c->kept_stamps) +
            hl_posegraph_mem_bytes(c->cap, c->max_edges) + hl_map_mem_bytes(c->sub) +
            sizeof *c->query + (size_t)c->cap * sizeof *c->path + hl_corr_mem_bytes(c->corr) +
            2 * HL_CORR_MAX_POINTS * sizeof *c->sub_points;
@@ -93,6 +100,11 @@ void hl_closure_square_walls(hl_closure_t *c, double axis_rad)
 void hl_closure_redraw_beyond(hl_closure_t *c, double mm)
 {
     c->redraw_mm = mm;
+}
+
+void hl_closure_redraw_stops_beyond(hl_closure_t *c, double mm)
+{
+    c->redraw_stop_mm = mm;
 }
 
 bool hl_closure_weigh_matches(hl_closure_t *c, double weight)
@@ -128,6 +140,7 @@ static void forget_oldest(hl_closure_t *c)
     memmove(c->wall_axis, c->wall_axis + 1, (c->count - 1) * sizeof *c->wall_axis);
     memmove(c->wall_sigma, c->wall_sigma + 1, (c->count - 1) * sizeof *c->wall_sigma);
     memmove(c->path, c->path + 1, (c->count - 1) * sizeof *c->path);
+    memmove(c->to_draw, c->to_draw + 1, (c->count - 1) * sizeof *c->to_draw);
     uint32_t kept = 0;
     for (uint32_t k = 0; k < c->n_edges; k++) {
         hl_pg_edge_t e = c->edges[k];
@@ -173,6 +186,7 @@ void hl_closure_record(hl_closure_t *c, const hl_scan_t *placed, hl_pose_t pose,
                                              : hl_pg_from_pose(pose);
     c->placed[i] = pose;
     c->rng_before[i] = rng_before;
+    c->to_draw[i] = true;   /* recorded during a redraw: drawn with it, at its fitted pose */
     c->wall_sigma[i] = 0;
     c->wall_axis[i] = c->square_walls ? walls_seen(placed, &c->wall_sigma[i]) : 0;
     c->path[i] = i > 0 ? c->path[i - 1] + hypot(c->poses[i].x - c->poses[i - 1].x,

@@ -35,6 +35,7 @@ struct hl_closure {
     uint32_t n_edges, max_edges;
     hl_posegraph_t *graph;
     hl_vector_t *kept;      /* [map_capacity] scratch: the vectors a fit does not redraw */
+    uint32_t *kept_stamps;  /* [map_capacity] ... and their stamps */
     uint32_t map_capacity;
     hl_map_t *sub;          /* the map a match is sought in */
     hl_scan_t *query;       /* the scan a match is sought for, thinned (hl_closure_query) */
@@ -54,6 +55,10 @@ struct hl_closure {
                                            stops recorded meanwhile go through */
     hl_rng_t sub_rng;       /* ... started afresh each time */
     double redraw_mm;       /* a fit is drawn only when it moves a stop this far (0: always) */
+    double redraw_stop_mm;  /* ... and then only the stops it moved this far (0: all) */
+    bool selective;         /* the redraw under way draws only some stops */
+    bool *to_draw;          /* [cap] by stamp - first: the redraw under way draws the stop
+                               again (else its vectors stay where they lie) */
     bool undrawn;           /* the last fit was not drawn: the map (and the slam) are in the
                                frame before it, the fit's poses after it */
 };

@@ -479,6 +479,11 @@ void hl_map_set_stamp(hl_map_t *map, uint32_t stamp)
     map->stamp = stamp;
 }
 
+void hl_map_restore_stamps(hl_map_t *map, const uint32_t *stamps, uint32_t n)
+{
+    memcpy(map->stamps, stamps, (size_t)(n < map->count ? n : map->count) * sizeof *stamps);
+}
+
 const uint32_t *hl_map_stamps(const hl_map_t *map)
 {
     return map->stamps;

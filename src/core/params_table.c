@@ -123,6 +123,9 @@ const hl_param_entry_t hl_param_table[] = {
     INT("slam.closure_redraw_mm", E, I32, closure_redraw_mm, 0, 1000, "0",
         "... with closure_redraw_readings, draw a fit only when it moves some stop more than "
         "this from where its vectors lie (0: every fit)"),
+    INT("slam.closure_redraw_stop_mm", E, I32, closure_redraw_stop_mm, 0, 1000, "0",
+        "... and draw again only the stops it moved more than this, the others' vectors "
+        "staying as they lie (0: every stop)"),
     INT("slam.closure_redraw_readings", E, U32, closure_redraw_readings, 0, 100000000, "0",
         "... after a fit, draw the map again aside, about this many readings a scan, and "
         "put it in place when done (0: at once, in the scan that fitted)"),
@@ -381,6 +384,9 @@ static const hl_param_setting_t laser[] = {
     { "slam.closure_match_readings", "512",
       "... a keyframe matched with 512 of its readings (up to 1,024 joined), which keeps a "
       "scan's matches within 50 ms" },
+    { "slam.closure_redraw_stop_mm", "2",
+      "... and a fit that moves few keyframes (most move a few recent ones) draws again "
+      "only those moved over 2 mm: a scan's median 7 -> 4.5 ms on freiburg-079" },
     { "reloc.coarse_cell_mm", "200",
       "maps of whole buildings (up to 56 x 84 m): the global search's coarse cell doubled, "
       "a quarter of the cells" },

@@ -69,8 +69,10 @@ hl_slam_t *hl_slam_create_with(const hl_slam_params_t *p)
                                 hl_bam_to_rad(hl_bam_from_deg(HL_SLAM_WALL_AXIS_DEG)));
     if (s->closure)     /* cannot fail: the params were checked */
         hl_closure_weigh_matches(s->closure, p->closure_match_weight);
-    if (s->closure && s->shadow)
+    if (s->closure && s->shadow) {
         hl_closure_redraw_beyond(s->closure, p->closure_redraw_mm);
+        hl_closure_redraw_stops_beyond(s->closure, p->closure_redraw_stop_mm);
+    }
     return s;
 }
 

@@ -45,6 +45,8 @@ const char *hl_slam_params_error(const hl_slam_params_t *p)
         return "closure_match_readings must be in 0..1024";
     if (p->closure_redraw_mm < 0 || p->closure_redraw_mm > 1000)
         return "closure_redraw_mm must be in 0..1000";
+    if (p->closure_redraw_stop_mm < 0 || p->closure_redraw_stop_mm > 1000)
+        return "closure_redraw_stop_mm must be in 0..1000";
     if (p->keyframe_mm < 0 || p->keyframe_mm > 100000)
         return "keyframe_mm must be in 0..100000";
     if (p->square_walls && !p->close_loops)

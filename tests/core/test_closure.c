@@ -602,6 +602,83 @@ static void test_a_stop_recorded_during_a_spread_redraw_is_carried(void **state)
     assert_true(its > 50);
 }
 
+/* The vectors of stop @p stamp among @p n (vectors @p v, stamps @p stamps), in slot
+ * order, into @p out: how many. */
+static uint32_t vectors_of(const hl_vector_t *v, const uint32_t *stamps, uint32_t n,
+                           uint32_t stamp, hl_vector_t *out)
+{
+    uint32_t k = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (stamps[i] == stamp)
+            out[k++] = v[i];
+    return k;
+}
+
+/* slam.closure_redraw_stop_mm: a spread fit that moves few stops (a sixteenth of them at
+ * most) beyond the bound draws again those and the newest; the others keep their poses
+ * and their vectors as they lay. Here the loop's fit (which moves most stops, and so
+ * draws them all), nine stops recorded on from there, and a second fit, which moves no
+ * earlier one. */
+static void test_a_fit_draws_again_only_the_stops_it_moved(void **state)
+{
+    (void)state;
+    enum { BIG = 4000, STOPS = 16 };    /* room for every stop's vectors: no cull */
+    loop_t *l = make_loop();
+    hl_scan_t *scan = malloc(sizeof *scan);
+    hl_closure_t *c = hl_closure_create(32, BIG, 1);
+    hl_map_t *map = hl_map_create(BIG, 1), *shadow = hl_map_create(BIG, 1);
+    drifted_loop(l, c, map, scan);
+    hl_closure_redraw_stops_beyond(c, 30);
+    hl_closure_fit_spread(c, map, shadow);
+    while (!hl_closure_redraw_step(c, map, shadow, 100000))
+        ;
+    hl_pose_t on = hl_closure_newest(c);
+    for (int k = 7; k < STOPS; k++) {
+        on.x_mm += 100;
+        record_stop_at(l, c, map, on, scan);
+    }
+    /* A vector of stop 3 that no redraw of it would give: kept only with the stop. */
+    hl_vector_t odd = { 5000, 7000, hl_bam_from_deg(90.0), 1234 };
+    hl_map_set_stamp(map, 3);
+    assert_int_equal(hl_map_add(map, &odd), HL_OK);
+    hl_map_set_stamp(map, hl_closure_newest_stamp(c));
+
+    uint32_t n_old = hl_map_count(map), *stamps = malloc(BIG * sizeof *stamps);
+    hl_vector_t *old = malloc(BIG * sizeof *old), *was = malloc(BIG * sizeof *was);
+    hl_vector_t *is = malloc(BIG * sizeof *is);
+    memcpy(old, hl_map_vectors(map), n_old * sizeof *old);
+    memcpy(stamps, hl_map_stamps(map), n_old * sizeof *stamps);
+    hl_pose_t before[STOPS];
+    for (uint32_t k = 0; k < STOPS; k++)
+        before[k] = hl_closure_pose(c, 1 + k);
+    uint64_t version = hl_map_version(map);
+    hl_closure_fit_spread(c, map, shadow);
+    while (!hl_closure_redraw_step(c, map, shadow, 100000))
+        ;
+    assert_true(hl_map_version(map) != version);
+    for (uint32_t k = 0; k + 1 < STOPS; k++) {     /* all but the newest kept as they lay */
+        hl_pose_t now = hl_closure_pose(c, 1 + k);
+        assert_memory_equal(&now, &before[k], sizeof now);
+        uint32_t n_was = vectors_of(old, stamps, n_old, 1 + k, was);
+        uint32_t n_is = vectors_of(hl_map_vectors(map), hl_map_stamps(map), hl_map_count(map),
+                                   1 + k, is);
+        assert_true(n_is > 50);
+        assert_int_equal(n_is, n_was);
+        assert_memory_equal(is, was, n_is * sizeof *is);
+    }
+    assert_true(vectors_of(hl_map_vectors(map), hl_map_stamps(map), hl_map_count(map), STOPS,
+                           is) > 50);          /* the newest, drawn again */
+    hl_map_destroy(shadow);
+    hl_map_destroy(map);
+    hl_closure_destroy(c);
+    free(stamps);
+    free(old);
+    free(was);
+    free(is);
+    free(scan);
+    free(l);
+}
+
 static void test_square_walls_turn_a_turned_map_back(void **state)
 {
     (void)state;
@@ -729,6 +806,7 @@ int main(void)
         cmocka_unit_test(test_a_redraw_spread_over_scans_gives_the_same_map),
         cmocka_unit_test_setup_teardown(test_a_fit_that_moves_the_map_little_is_not_drawn,
                                         spread_setup, spread_teardown),
+        cmocka_unit_test(test_a_fit_draws_again_only_the_stops_it_moved),
         cmocka_unit_test_setup_teardown(test_a_stop_recorded_during_a_spread_redraw_is_carried,
                                         spread_setup, spread_teardown),
         cmocka_unit_test(test_square_walls_turn_a_turned_map_back),

@@ -155,6 +155,9 @@ void hl_map_swap(hl_map_t *a, hl_map_t *b);
  */
 /** Vectors added from now on get @p stamp. */
 void hl_map_set_stamp(hl_map_t *map, uint32_t stamp);
+/** The first @p n vectors (at most the count) get @p stamps: those they had before a
+ *  restore. */
+void hl_map_restore_stamps(hl_map_t *map, const uint32_t *stamps, uint32_t n);
 /** Each vector's stamp, in the order of hl_map_vectors. */
 const uint32_t *hl_map_stamps(const hl_map_t *map);
 
