@@ -18,7 +18,8 @@ bool hl_mapdisc_init(hl_mapdisc_t *d, uint32_t capacity, int32_t square_mm)
     d->mask = buckets - 1;
     d->head = malloc((size_t)buckets * sizeof *d->head);
     d->link = malloc((size_t)capacity * sizeof *d->link);
-    if (!d->head || !d->link)
+    d->prev = malloc((size_t)capacity * sizeof *d->prev);
+    if (!d->head || !d->link || !d->prev)
         return false;
     memset(d->head, 0xff, (size_t)buckets * sizeof *d->head);
     return true;
@@ -28,12 +29,14 @@ void hl_mapdisc_free(hl_mapdisc_t *d)
 {
     free(d->head);
     free(d->link);
+    free(d->prev);
     memset(d, 0, sizeof *d);
 }
 
 size_t hl_mapdisc_mem_bytes(const hl_mapdisc_t *d, uint32_t capacity)
 {
-    return d->head ? ((size_t)d->mask + 1) * sizeof *d->head + capacity * sizeof *d->link
+    return d->head ? ((size_t)d->mask + 1) * sizeof *d->head +
+                         capacity * (sizeof *d->link + sizeof *d->prev)
                    : 0;
 }
 
@@ -66,17 +69,22 @@ void hl_mapdisc_link(hl_mapdisc_t *d, const hl_vector_t *v, uint32_t slot)
     l->normal = v[slot].normal;
     uint32_t *head = &d->head[bucket_at(d, l->x_mm, l->y_mm)];
     l->next = *head;
+    if (*head != NONE)
+        d->prev[*head] = slot;
+    d->prev[slot] = NONE;
     *head = slot;
 }
 
 void hl_mapdisc_unlink(hl_mapdisc_t *d, uint32_t slot)
 {
     const hl_mapdisc_link_t *l = &d->link[slot];
-    uint32_t *at = &d->head[bucket_at(d, l->x_mm, l->y_mm)];
-    while (*at != NONE && *at != slot)
-        at = &d->link[*at].next;
-    if (*at == slot)
-        *at = l->next;
+    uint32_t before = d->prev[slot];
+    if (before == NONE)
+        d->head[bucket_at(d, l->x_mm, l->y_mm)] = l->next;
+    else
+        d->link[before].next = l->next;
+    if (l->next != NONE)
+        d->prev[l->next] = before;
 }
 
 /* Keeps @p s among the lowest @p max slots found, ascending in out[0 .. *n). */

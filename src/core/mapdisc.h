@@ -31,6 +31,8 @@ typedef struct hl_mapdisc {
     uint32_t mask;          /* buckets - 1 */
     uint32_t *head;         /* [buckets] first slot of each chain, or UINT32_MAX */
     hl_mapdisc_link_t *link;    /* [capacity] */
+    uint32_t *prev;         /* [capacity] the slot before each in its chain, or UINT32_MAX
+                               at the head: a slot leaves its chain without a walk */
 } hl_mapdisc_t;
 
 /** Squares @p square_mm wide. @return false when memory is short (hl_mapdisc_free
