@@ -9,6 +9,72 @@
 #define PI 3.14159265358979323846
 #define REDRAW_LEVER_MM 5000.0  /* a turn of a stop counts as its move of a wall this far */
 
+/* Whether the fit moved stop @p i farther than @p mm from where its vectors lie, or
+ * turned it enough to move a wall 5 m away that far. */
+static bool stop_moved(const hl_closure_t *c, uint32_t i, double mm)
+{
+    hl_pg_pose_t at = hl_pg_from_pose(c->placed[i]);
+    double turn = fabs(remainder(c->poses[i].theta - at.theta, 2 * PI));
+    return hypot(c->poses[i].x - at.x, c->poses[i].y - at.y) > mm ||
+           turn * REDRAW_LEVER_MM > mm;
+}
+
+/* Whether the fit moved some stop beyond redraw_mm. */
+static bool moved_beyond(const hl_closure_t *c)
+{
+    for (uint32_t i = 0; i < c->count; i++)
+        if (stop_moved(c, i, c->redraw_mm))
+            return true;
+    return false;
+}
+
+/* Which stops the redraw draws again: with redraw_stop_mm, when the fit moved a
+ * sixteenth of them or fewer beyond it, those and the newest (its scan has grown since
+ * it was drawn); else every one. Most fits move a few recent stops; a closed loop moves
+ * most. Drawing again only the moved ones at every fit, the culls of one redraw after
+ * another favour the stops drawn most often: on five real buildings with an eighth as
+ * the share intel's ATE from the origin rose 0.17 -> 0.22 m, drawing only the moved ones
+ * always freiburg-101's 0.044 -> 0.051 (docs/design/loop-closure.md). */
+#define SELECTIVE_SHARE 16
+
+static bool choose_stops(hl_closure_t *c)
+{
+    uint32_t moved = 0;
+    for (uint32_t i = 0; i < c->count; i++) {
+        c->to_draw[i] = i + 1 == c->count ||
+                        (c->redraw_stop_mm > 0 && stop_moved(c, i, c->redraw_stop_mm));
+        moved += c->to_draw[i];
+    }
+    bool some = c->redraw_stop_mm > 0 && moved * SELECTIVE_SHARE <= c->count;
+    for (uint32_t i = 0; !some && i < c->count; i++)
+        c->to_draw[i] = true;
+    return some;
+}
+
+/* Starts drawing @p map again into @p into (the map itself, or a shadow): the stops to
+ * draw chosen (before their placed poses change), and @p into holding the vectors of the
+ * stops no longer recorded and of those not drawn again, with their stamps; the culling
+ * generator as it was before the oldest stop was drawn, or, drawing only some, where
+ * the map's is. */
+static void start_drawing(hl_closure_t *c, const hl_map_t *map, hl_map_t *into)
+{
+    bool some = choose_stops(c);
+    const hl_vector_t *v = hl_map_vectors(map);
+    const uint32_t *stamps = hl_map_stamps(map);
+    uint32_t n = 0, count = hl_map_count(map);
+    for (uint32_t i = 0; i < count && n < c->map_capacity; i++) {
+        uint32_t k = stamps[i] - c->first;    /* wraps below first */
+        if (k >= c->count || !c->to_draw[k]) {
+            c->kept_stamps[n] = stamps[i];
+            c->kept[n++] = v[i];
+        }
+    }
+    /* Cannot fail: n fits the map, and its own vectors are in range. */
+    hl_map_restore(into, c->kept, n, hl_count_next(hl_map_version(map)),
+                   some ? hl_map_rng(map) : c->rng_before[0]);
+    hl_map_restore_stamps(into, c->kept_stamps, n);
+}
+
 /* The map drawn again: the vectors of stops no longer recorded where they are, then every
  * recorded stop's scan at its fitted pose, in order, through the map's own density bound
  * and cull, with the culling generator as it was before the oldest was drawn: the map the
@@ -19,15 +85,11 @@
  * made every fit cull other vectors (tours 1-24, 289 mm against 237). docs/results/relocalization.md. */
 static void redraw(hl_closure_t *c, hl_map_t *map)
 {
-    const hl_vector_t *v = hl_map_vectors(map);
-    const uint32_t *stamps = hl_map_stamps(map);
-    uint32_t n = 0, count = hl_map_count(map);
-    for (uint32_t i = 0; i < count && n < c->map_capacity; i++)
-        if (stamps[i] - c->first >= c->count)     /* wraps below first */
-            c->kept[n++] = v[i];
-    /* Cannot fail: n fits the map, and its own vectors are in range. */
-    hl_map_restore(map, c->kept, n, hl_count_next(hl_map_version(map)), c->rng_before[0]);
+    start_drawing(c, map, map);
     for (uint32_t i = 0; i < c->count; i++) {
+        if (!c->to_draw[i])
+            continue;
+        c->placed[i] = hl_pg_to_pose(c->poses[i]);
         hl_map_set_stamp(map, c->first + i);
         hl_map_add_scan(map, scan_of(c, i), c->placed[i], NULL);
     }
@@ -62,51 +124,8 @@ uint32_t hl_closure_fit(hl_closure_t *c, hl_map_t *map)
     c->fit_before = c->poses[c->count - 1];
     uint32_t dropped = fit_poses(c);
     c->fit_after = c->poses[c->count - 1];
-    for (uint32_t i = 0; i < c->count; i++)
-        c->placed[i] = hl_pg_to_pose(c->poses[i]);
     redraw(c, map);
     return dropped;
-}
-
-/* Whether the fit moved stop @p i farther than @p mm from where its vectors lie, or
- * turned it enough to move a wall 5 m away that far. */
-static bool stop_moved(const hl_closure_t *c, uint32_t i, double mm)
-{
-    hl_pg_pose_t at = hl_pg_from_pose(c->placed[i]);
-    double turn = fabs(remainder(c->poses[i].theta - at.theta, 2 * PI));
-    return hypot(c->poses[i].x - at.x, c->poses[i].y - at.y) > mm ||
-           turn * REDRAW_LEVER_MM > mm;
-}
-
-/* Whether the fit moved some stop beyond redraw_mm. */
-static bool moved_beyond(const hl_closure_t *c)
-{
-    for (uint32_t i = 0; i < c->count; i++)
-        if (stop_moved(c, i, c->redraw_mm))
-            return true;
-    return false;
-}
-
-/* Which stops the redraw draws again: with redraw_stop_mm, when the fit moved a
- * sixteenth of them or fewer beyond it, those and the newest (its scan has grown since
- * it was drawn); else every one. Most fits move a few recent stops; a closed loop moves
- * most. Drawing again only the moved ones at every fit, the culls of one redraw after
- * another favour the stops drawn most often: on five real buildings with an eighth as
- * the share intel's ATE from the origin rose 0.17 -> 0.22 m, drawing only the moved ones
- * always freiburg-101's 0.044 -> 0.051 (docs/design/loop-closure.md). */
-#define SELECTIVE_SHARE 16
-
-static void choose_stops(hl_closure_t *c)
-{
-    uint32_t moved = 0;
-    for (uint32_t i = 0; i < c->count; i++) {
-        c->to_draw[i] = i + 1 == c->count ||
-                        (c->redraw_stop_mm > 0 && stop_moved(c, i, c->redraw_stop_mm));
-        moved += c->to_draw[i];
-    }
-    c->selective = c->redraw_stop_mm > 0 && moved * SELECTIVE_SHARE <= c->count;
-    for (uint32_t i = 0; !c->selective && i < c->count; i++)
-        c->to_draw[i] = true;
 }
 
 uint32_t hl_closure_fit_spread(hl_closure_t *c, const hl_map_t *map, hl_map_t *shadow)
@@ -121,23 +140,7 @@ uint32_t hl_closure_fit_spread(hl_closure_t *c, const hl_map_t *map, hl_map_t *s
     c->undrawn = c->redraw_mm > 0 && !moved_beyond(c);
     if (c->undrawn)
         return dropped;
-    /* The shadow starts as the redraw does: the vectors of stops no longer recorded, and
-     * the culling generator before the oldest recorded stop was drawn; or, drawing only
-     * the stops the fit moved, every vector of the others, and the generator where it is. */
-    choose_stops(c);
-    const hl_vector_t *v = hl_map_vectors(map);
-    const uint32_t *stamps = hl_map_stamps(map);
-    uint32_t n = 0, count = hl_map_count(map);
-    for (uint32_t i = 0; i < count && n < c->map_capacity; i++) {
-        uint32_t k = stamps[i] - c->first;    /* wraps below first */
-        if (k >= c->count || !c->to_draw[k]) {
-            c->kept_stamps[n] = stamps[i];
-            c->kept[n++] = v[i];
-        }
-    }
-    hl_map_restore(shadow, c->kept, n, hl_count_next(hl_map_version(map)),
-                   c->selective ? hl_map_rng(map) : c->rng_before[0]);
-    hl_map_restore_stamps(shadow, c->kept_stamps, n);
+    start_drawing(c, map, shadow);
     c->next_drawn = c->first;
     c->redrawing = true;
     return dropped;

@@ -56,7 +56,6 @@ struct hl_closure {
     hl_rng_t sub_rng;       /* ... started afresh each time */
     double redraw_mm;       /* a fit is drawn only when it moves a stop this far (0: always) */
     double redraw_stop_mm;  /* ... and then only the stops it moved this far (0: all) */
-    bool selective;         /* the redraw under way draws only some stops */
     bool *to_draw;          /* [cap] by stamp - first: the redraw under way draws the stop
                                again (else its vectors stay where they lie) */
     bool undrawn;           /* the last fit was not drawn: the map (and the slam) are in the

@@ -48,7 +48,9 @@ void hl_mapdisc_link(hl_mapdisc_t *d, const hl_vector_t *v, uint32_t slot);
 /** Removes slot @p slot from the index. */
 void hl_mapdisc_unlink(hl_mapdisc_t *d, uint32_t slot);
 /** The lowest slots (ascending, at most @p max) of the indexed vectors within @p radius of
- *  @p x whose normals lie within @p gate of its. @return how many. */
+ *  @p x whose normals lie within @p gate of its; @p radius below two squares (a disc of
+ *  it reaches 4 x 4 squares at most: the density bound's radius is half a square, the
+ *  crowding cull's one and a half). @return how many. */
 uint32_t hl_mapdisc_near(const hl_mapdisc_t *d, const hl_vector_t *x, int32_t radius,
                          int32_t gate, uint32_t *out, uint32_t max);
 

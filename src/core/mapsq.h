@@ -3,11 +3,11 @@
  * index behind the map's density bound (map.h, hl_map_params_t).
  *
  * A "place" is a square of square_mm and an eighth of a turn of normals (the side the
- * surface was seen from). Slots are
- * chained per hash bucket in ascending slot order, so that "the r-th vector of this
- * place" depends only on the vectors array: a map saved and restored chooses exactly as
- * the one that kept running. Buckets are a power of two, at least twice the capacity, so
- * chains are short. Memory comes from hl_mapsq_init only.
+ * surface was seen from). Slots are chained per hash bucket in ascending slot order, so
+ * that "the r-th vector of this place" depends only on the vectors array: a map saved
+ * and restored chooses exactly as the one that kept running. Buckets are a power of
+ * two, at least twice the capacity (placehash.h), so chains are short. Memory comes from
+ * hl_mapsq_init only.
  */
 #ifndef HOUGHLOC_CORE_MAPSQ_H
 #define HOUGHLOC_CORE_MAPSQ_H

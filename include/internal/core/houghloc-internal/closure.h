@@ -243,12 +243,13 @@ uint32_t hl_closure_fit_spread(hl_closure_t *c, const hl_map_t *map, hl_map_t *s
  *  create): every fit is drawn. */
 void hl_closure_redraw_beyond(hl_closure_t *c, double mm);
 
-/** A spread fit draws again only the stops it moved more than @p mm from where their
- *  vectors lie (or turned enough to move a wall 5 m away that far), and the newest; the
- *  others' vectors stay in the map as they are, and the culling generator goes on from
- *  where the map's is. 0 (from create): every stop, with the generator as it was before
- *  the oldest was drawn (the map the slam would hold had the stops always been where
- *  the fit puts them). */
+/** A fit that moves a sixteenth of the stops or fewer more than @p mm from where their
+ *  vectors lie (or turns them enough to move a wall 5 m away that far) draws again only
+ *  those and the newest; the others' vectors stay in the map as they are, and the
+ *  culling generator goes on from where the map's is. Any other fit, and every fit with
+ *  0 (from create), draws every stop, with the generator as it was before the oldest
+ *  was drawn (the map the slam would hold had the stops always been where the fit puts
+ *  them). */
 void hl_closure_redraw_stops_beyond(hl_closure_t *c, double mm);
 
 /** Whether a spread redraw is under way (no new fit, no matching meanwhile). */

@@ -63,9 +63,10 @@ extern "C" {
  *    crowded of cull_choices vectors drawn at random: the one with the most vectors in
  *    its square of crowd_square_mm (0: its density-bound place and the 8 squares around
  *    it, or with round places the disc of three times their radius, at most
- *    HL_MAP_NEAR_MAX), seen from the same side. The capacity then spreads over every surface seen
- *    rather than over how often each was seen, so a corridor driven once keeps its walls
- *    in a map of a whole building (a laser's: the global search needs every place). In
+ *    HL_MAP_NEAR_MAX), seen from the same side. The capacity then spreads over every
+ *    surface seen rather than over how often each was seen, so a corridor driven once
+ *    keeps its walls in a map of a whole building (a laser's: the global search needs
+ *    every place). In
  *    the 3 x 3 places every wall held at the density bound is equally crowded, so ties
  *    go at random and a place seen once still thins out as fast as one seen always; a
  *    square a few places wide tells a thinned wall from a full one.

@@ -105,8 +105,9 @@ typedef struct hl_slam_params {
     hl_mm_t closure_redraw_mm;  /* ... with closure_redraw_readings, a fit is drawn only when
                                    it moves some stop more than this from where its vectors
                                    lie (or turns it as much at 5 m); 0: every fit */
-    hl_mm_t closure_redraw_stop_mm; /* ... and then draws again only the stops it moved
-                                   more than this (or turned as much at 5 m), the others'
+    hl_mm_t closure_redraw_stop_mm; /* ... and a fit that moves a sixteenth of the stops
+                                   or fewer more than this (or turns them as much at 5 m)
+                                   draws again only those and the newest, the others'
                                    vectors staying as they lie; 0: every stop */
     uint32_t closure_redraw_readings; /* ... after a fit, draw the map again aside, about
                                    this many readings a scan, and put it in place when
