@@ -72,7 +72,7 @@ check "summary: 10 lines, 3 FLASER, 1 PARAM, 6 skipped (comments, empty, ODOM, u
 check "summary: 3 scans, 3 odometry, 3 ground truth" \
     grep -q "scans=3 odometry=3 ground_truth=3 skipped_by_selection=0 input=laser select=every" "$tmp/a.sum"
 check "summary: 5 beams, 180 degrees by default, maximum 81.83 m is no return" \
-    grep -q "beams_per_scan=5 fov_deg=180.0000 (default) max_range_m=81.830 (1 beams, no return)" "$tmp/a.sum"
+    grep -q "beams_per_scan=5 fov_deg=180.0000 (default) step_deg=45.0000 (spread over the field of view) max_range_m=81.830 (1 beams, no return)" "$tmp/a.sum"
 check "summary: 2 no-return beams, 2 beyond 32.767 m counted" \
     grep -q "valid=11 no_return=2 beyond_32.767m=2 " "$tmp/a.sum"
 check "hl-eval reads the import (one STATUS-less log)" sh -c '"$1" extract "$2" SONAR "$3" && test -s "$3"' - \
@@ -223,6 +223,46 @@ printf 'PARAM laser_front_laser_resolution 0.5 h 0\nFLASER 360 %s 0 0 0 0 0 0 1.
     "$(awk 'BEGIN { for (i = 0; i < 360; i++) printf "1 " }')" >"$tmp/r2.log"
 "$IMP" "$tmp/r2.log" "$tmp/r2.lcmlog" 2>"$tmp/r2.sum"
 check "resolution 0.5 with 360 beams fits 180 degrees (freiburg)" grep -q "fov_deg=180.0000 (default)" "$tmp/r2.sum"
+
+# ---- where the beams point (CARMEN's reader of FLASER lines) ---------------------------
+# 180 beams without a PARAM: the SICK's 1 degree from -90, the last at +89 (the 181st
+# dropped); with --fov-deg 180 spread evenly, the last at +90. 360 beams: 0.5 degrees,
+# the last at +89.5. BAM: 65536 a turn, so 89 deg = 16202, 89.5 deg = 16293.
+beams() { # beams N FILE: a FLASER line of N beams, 1 m each
+    awk -v n="$1" 'BEGIN { printf "FLASER %d", n; for (i = 0; i < n; i++) printf " 1";
+                           print " 0 0 0 0 0 0 1.0 h 1.0" }' >"$2"
+}
+bearing_of() { # bearing_of LCMLOG I: the bearing of reading I
+    "$IMP" --dump "$1" | sed -n "s/^  reading $2 bearing=\([0-9]*\) .*/\1/p"
+}
+beams 180 "$tmp/b180.log"
+"$IMP" "$tmp/b180.log" "$tmp/b180.lcmlog" 2>"$tmp/b180.sum"
+check "180 beams: the first at -90 deg" test "$(bearing_of "$tmp/b180.lcmlog" 0)" = 49152
+check "180 beams: beam 90 at 0 deg" test "$(bearing_of "$tmp/b180.lcmlog" 90)" = 0
+check "180 beams: the last at +89 deg" test "$(bearing_of "$tmp/b180.lcmlog" 179)" = 16202
+check "180 beams: summary names the SICK's step" \
+    grep -q "fov_deg=180.0000 (default) step_deg=1.0000 (the SICK's for the beam count)" "$tmp/b180.sum"
+"$IMP" --fov-deg 180 "$tmp/b180.log" "$tmp/b180s.lcmlog" 2>"$tmp/b180s.sum"
+check "180 beams, --fov-deg 180: the last at +90 deg" test "$(bearing_of "$tmp/b180s.lcmlog" 179)" = 16384
+check "180 beams, --fov-deg 180: summary says spread" \
+    grep -q "step_deg=1.0056 (spread over --fov-deg)" "$tmp/b180s.sum"
+beams 360 "$tmp/b360.log"
+"$IMP" "$tmp/b360.log" "$tmp/b360.lcmlog" 2>/dev/null
+check "360 beams: the last at +89.5 deg" test "$(bearing_of "$tmp/b360.lcmlog" 359)" = 16293
+{ printf 'PARAM laser_front_laser_resolution 0.5 h 0\n'; cat "$tmp/b360.log"; } >"$tmp/b360r.log"
+"$IMP" "$tmp/b360r.log" "$tmp/b360r.lcmlog" 2>"$tmp/b360r.sum"
+check "360 beams, resolution PARAM 0.5: the last at +89.5 deg" \
+    test "$(bearing_of "$tmp/b360r.lcmlog" 359)" = 16293
+check "360 beams, resolution PARAM 0.5: summary says PARAM" grep -q "step_deg=0.5000 (PARAM)" "$tmp/b360r.sum"
+beams 7 "$tmp/b7.log"
+"$IMP" "$tmp/b7.log" "$tmp/b7.lcmlog" 2>"$tmp/b7.sum"
+check "7 beams: no SICK step, spread over 180 deg (the last at +90)" \
+    test "$(bearing_of "$tmp/b7.lcmlog" 6)" = 16384
+check "7 beams: summary says spread" grep -q "step_deg=30.0000 (spread over the field of view)" "$tmp/b7.sum"
+{ printf 'PARAM laser_front_laser_fov 90 h 0\n'; cat "$tmp/b180.log"; } >"$tmp/b180f.log"
+"$IMP" "$tmp/b180f.log" "$tmp/b180f.lcmlog" 2>/dev/null
+check "180 beams over a 90-degree PARAM: spread, the last at +45 deg" \
+    test "$(bearing_of "$tmp/b180f.lcmlog" 179)" = 8192
 
 # ---- no-return values ----------------------------------------------------------------
 # 49.9 m and above is no return; 49.89 m is a return beyond 32.767 m.

@@ -24,6 +24,7 @@ typedef struct importer {
     /* learnt by pass 1 */
     double fov_deg;
     const char *fov_from;
+    carmen_beams_t beams;           /* where the beams point, from the above */
     long fov_line;                  /* line of the fov PARAM, 0 when none */
     double res_deg;                 /* laser_front_laser_resolution (degrees), 0 when none */
     double max_m;                   /* largest range, and how many beams have it */
@@ -123,7 +124,7 @@ static int write_scan(importer_t *im, const carmen_flaser_t *f, int64_t utime,
     m->utime = utime;
     m->seq = im->seq;
     m->odometry = to_pose(f->pose.x, f->pose.y, f->pose.theta);
-    hl_status_t st = carmen_make_scan(f, im->fov_deg, im->o->input, &im->ranges, &m->scan,
+    hl_status_t st = carmen_make_scan(f, &im->beams, im->o->input, &im->ranges, &m->scan,
                                       &im->counts);
     char why[HL_BUS_WHY_LEN] = "";
     if (st == HL_OK)
@@ -300,15 +301,18 @@ static int decide(importer_t *im)
         return fail_file(im, "%s: no FLASER line", im->o->in);
     im->fov_from = im->o->fov_deg > 0 ? "--fov-deg" : im->fov_line ? "PARAM" : "default";
     im->fov_deg = im->o->fov_deg > 0 ? im->o->fov_deg : im->fov_line ? im->fov_deg : 180.0;
-    /* Without a field of view, a resolution PARAM that does not fit 180 degrees means
-     * another one: refuse rather than guess which. */
+    /* A resolution PARAM that does not fit the field of view (n - 1 or n steps, the last
+     * beam dropped) means another field of view: refuse rather than guess which. */
     double res = im->res_deg, n = im->beams_max;
-    if (res > 0 && im->fov_from[0] == 'd' &&
+    bool spread = im->o->fov_deg > 0;
+    if (res > 0 && !spread &&
         (im->beams_min != im->beams_max ||
-         (fabs((n - 1) * res - 180.0) > res / 2 && fabs(n * res - 180.0) > res / 2)))
+         (fabs((n - 1) * res - im->fov_deg) > res / 2 && fabs(n * res - im->fov_deg) > res / 2)))
         return fail_file(im, "%s: PARAM laser_front_laser_resolution %g degrees does not fit "
-                         "%d to %d beams over 180 degrees: give the field of view with --fov-deg",
-                         im->o->in, res, im->beams_min, im->beams_max);
+                         "%d to %d beams over %g degrees: give the field of view with --fov-deg",
+                         im->o->in, res, im->beams_min, im->beams_max, im->fov_deg);
+    im->beams = (carmen_beams_t){ .fov_deg = im->fov_deg, .res_deg = spread ? 0 : res,
+                                  .spread = spread };
     if (im->o->input == CARMEN_INPUT_SONAR && carmen_sonar_readings(im->fov_deg) < 1)
         return fail_file(im, "%s: a field of view of %.3f degrees is narrower than one sonar "
                          "reading (%.4f degrees)", im->o->in, im->fov_deg, CARMEN_SONAR_STEP_DEG);
@@ -327,6 +331,18 @@ static int decide(importer_t *im)
     return 0;
 }
 
+/* What set the step between beams (carmen_scan.h). */
+static const char *beam_step_from(const importer_t *im)
+{
+    if (im->beams.spread)
+        return "spread over --fov-deg";
+    if (im->beams.res_deg > 0)
+        return "PARAM";
+    bool sick = im->beams_min == im->beams_max &&
+                carmen_sick_step_deg(im->beams_max, im->fov_deg) > 0;
+    return sick ? "the SICK's for the beam count" : "spread over the field of view";
+}
+
 static void print_summary(const importer_t *im, FILE *s)
 {
     const carmen_options_t *o = im->o;
@@ -343,8 +359,14 @@ static void print_summary(const importer_t *im, FILE *s)
     fprintf(s, PROG ": laser: beams_per_scan=%d", im->beams_min);
     if (im->beams_max != im->beams_min)
         fprintf(s, "..%d", im->beams_max);
-    fprintf(s, " fov_deg=%.4f (%s) max_range_m=%.3f (%ld beams, %s)\n", im->fov_deg,
-            im->fov_from, im->max_m, im->max_count,
+    fprintf(s, " fov_deg=%.4f (%s) step_deg=", im->fov_deg, im->fov_from);
+    if (im->beams_min == im->beams_max)
+        fprintf(s, "%.4f", carmen_beam_deg(&im->beams, 1, im->beams_max) -
+                               carmen_beam_deg(&im->beams, 0, im->beams_max));
+    else
+        fputs("by_beams", s);
+    fprintf(s, " (%s) max_range_m=%.3f (%ld beams, %s)\n", beam_step_from(im),
+            im->max_m, im->max_count,
             im->ranges.has_sentinel ? "the no-return value"
             : im->max_m >= im->ranges.no_return_m ? "no return" : "a return");
     fprintf(s, PROG ": beams of the scans written: valid=%ld no_return=%ld "

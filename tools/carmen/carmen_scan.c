@@ -24,15 +24,29 @@ int carmen_sonar_readings(double fov_deg)
     return (int)floor(fov_deg / CARMEN_SONAR_STEP_DEG + 1e-3);
 }
 
-static double beam_deg(int i, int n, double fov_deg)
+double carmen_sick_step_deg(int n, double fov_deg)
 {
-    return -fov_deg / 2.0 + (double)i * fov_deg / (double)(n - 1);
+    double step = n == 180 || n == 181 ? 1.0 : n == 360 || n == 361 ? 0.5
+                : n == 400 || n == 401 ? 0.25 : 0.0;
+    double span = (n - 1) * step;
+    /* n - 1 steps fill it, or n with the last beam dropped; a thousandth of a step for
+     * a PARAM given in radians */
+    bool fits = fabs(span - fov_deg) <= step * 1e-3 || fabs(span + step - fov_deg) <= step * 1e-3;
+    return fits ? step : 0.0;
 }
 
-hl_status_t carmen_make_scan(const carmen_flaser_t *f, double fov_deg, carmen_input_t mode,
+double carmen_beam_deg(const carmen_beams_t *g, int i, int n)
+{
+    double step = g->spread ? 0.0 : g->res_deg > 0 ? g->res_deg : carmen_sick_step_deg(n, g->fov_deg);
+    if (step == 0.0)
+        step = g->fov_deg / (double)(n - 1);
+    return -g->fov_deg / 2.0 + (double)i * step;
+}
+
+hl_status_t carmen_make_scan(const carmen_flaser_t *f, const carmen_beams_t *g, carmen_input_t mode,
                              const carmen_ranges_t *cfg, hl_scan_t *out, carmen_counts_t *counts)
 {
-    if (!f || !cfg || !out || f->nbeams < 2)
+    if (!f || !g || !cfg || !out || f->nbeams < 2)
         return HL_ERR_ARG;
     carmen_counts_t c = { 0 };
     /* the classes of every beam, once: mm[i] >= 0 for a valid beam, -1 otherwise */
@@ -50,11 +64,11 @@ hl_status_t carmen_make_scan(const carmen_flaser_t *f, double fov_deg, carmen_in
         if (f->nbeams > HL_SCAN_MAX_READINGS)
             return HL_ERR_CAPACITY;
         for (int i = 0; i < f->nbeams; i++) {
-            hl_bam_t bearing = hl_bam_from_deg(beam_deg(i, f->nbeams, fov_deg));
+            hl_bam_t bearing = hl_bam_from_deg(carmen_beam_deg(g, i, f->nbeams));
             hl_scan_add(out, bearing, mm[i] >= 0 ? mm[i] : 0, -1, mm[i] >= 0);
         }
     } else {
-        int n = carmen_sonar_readings(fov_deg);
+        int n = carmen_sonar_readings(g->fov_deg);
         if (n > 128)    /* transducer numbers are 0..127 */
             return HL_ERR_CAPACITY;
         for (int j = 0; j < n; j++) {
@@ -63,7 +77,7 @@ hl_status_t carmen_make_scan(const carmen_flaser_t *f, double fov_deg, carmen_in
             double centre = (j - (n - 1) / 2.0) * CARMEN_SONAR_STEP_DEG;
             int32_t nearest = -1;
             for (int i = 0; i < f->nbeams; i++) {
-                if (mm[i] < 0 || fabs(beam_deg(i, f->nbeams, fov_deg) - centre) >
+                if (mm[i] < 0 || fabs(carmen_beam_deg(g, i, f->nbeams) - centre) >
                                      CARMEN_SONAR_HALF_CONE_DEG + 1e-9)
                     continue;
                 if (nearest < 0 || mm[i] < nearest)

@@ -2,10 +2,17 @@
  * carmen_scan.h - one FLASER line's beams as a houghloc scan: every beam a reading
  * (laser), or a pseudo-sonar ring (sonar). Private to tools/carmen.
  *
- * Beams: n beams over the field of view F, beam i (0-based) at bearing
- * -F/2 + i * F / (n - 1) in the robot frame (the first at -F/2, the last at +F/2, as
- * CARMEN's FLASER readers and CSM take it). The log's pose fields are the laser's pose,
- * so the readings' origin is the laser and no mounting offset is applied.
+ * Beams (carmen_beams_t): the first at -F/2 in the robot frame, F the field of view, and
+ * the next ones a step apart. A FLASER line does not say its step; CARMEN's own reader
+ * of it (carmen_string_to_robot_laser_message_orig, carmen_laser_guess_angle_increment)
+ * takes the SICK's: 1 degree for 180 or 181 beams, 0.5 for 360 or 361, 0.25 for 400 or
+ * 401, the 180- and 360-beam scans ending a step short of +F/2 ("last beam ignored").
+ * The step is the log's laser_front_laser_resolution PARAM when it has one, else that
+ * SICK step when it fits F (n - 1 or n steps), else F / (n - 1); with --fov-deg the n
+ * beams are spread evenly across it, the last at +F/2. Spreading 180 beams evenly over
+ * 180 degrees instead stretches a scan by half a degree at its edges (44 mm at 5 m),
+ * which bends every wall the robot sees from the side. The log's pose fields are the
+ * laser's pose, so the readings' origin is the laser and no mounting offset is applied.
  *
  * Each beam's range r (metres) is one of:
  *   no return  r >= no_return_m (49.9 m: the 50, 81.83, 81.91 m values of the logs), or
@@ -63,17 +70,31 @@ typedef struct carmen_counts {
 /** Classifies range @p r_m (finite, >= 0); @p mm gets its millimetres when valid. */
 carmen_beam_t carmen_classify(const carmen_ranges_t *cfg, double r_m, int32_t *mm);
 
+/** Where a log's beams point (decided once per log, see carmen_import). */
+typedef struct carmen_beams {
+    double fov_deg;             /* F: the first beam at -F/2 */
+    double res_deg;             /* the step between beams; 0: by the scan's beam count */
+    bool spread;                /* n beams evenly across F (--fov-deg), res_deg unused */
+} carmen_beams_t;
+
+/** The SICK's step for @p n beams (CARMEN's guess) when n or n - 1 of them fill
+ *  @p fov_deg, else 0. */
+double carmen_sick_step_deg(int n, double fov_deg);
+
+/** Bearing of beam @p i of @p n (n >= 2), in degrees from the robot's heading. */
+double carmen_beam_deg(const carmen_beams_t *g, int i, int n);
+
 /** Readings of the pseudo-sonar ring over @p fov_deg: floor(fov / 2.8125), 0 when the
  *  field of view is narrower than one step. */
 int carmen_sonar_readings(double fov_deg);
 
 /**
- * Fills @p out with the readings of @p f (nbeams >= 2) over @p fov_deg (0 < fov <= 360)
- * in mode @p mode, adding to @p counts (may be NULL).
+ * Fills @p out with the readings of @p f (nbeams >= 2), its beams pointing as @p g says
+ * (0 < fov <= 360), in mode @p mode, adding to @p counts (may be NULL).
  * @return HL_OK; HL_ERR_CAPACITY when the laser has more than HL_SCAN_MAX_READINGS
  *         beams, or the ring would (fov > 360); HL_ERR_ARG on NULL.
  */
-hl_status_t carmen_make_scan(const carmen_flaser_t *f, double fov_deg, carmen_input_t mode,
+hl_status_t carmen_make_scan(const carmen_flaser_t *f, const carmen_beams_t *g, carmen_input_t mode,
                              const carmen_ranges_t *cfg, hl_scan_t *out, carmen_counts_t *counts);
 
 #endif
