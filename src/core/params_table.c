@@ -363,9 +363,10 @@ static const hl_param_setting_t sonar_continuous[] = {
 static const hl_param_setting_t laser[] = {
     { "slam.map_capacity", "15000",
       "360 readings a scan: 1500 vectors hold a few seconds of them, 15,000 hold whole floors" },
-    { "slam.map_per_place", "2",
-      "at most 2 vectors of any round place, the disc of a map_square_mm square's area "
-      "about a new one, facing alike (a new one replaces one of them at random)" },
+    { "slam.map_per_place", "1",
+      "at most 1 vector of a round place (the disc of a map_square_mm square's area about a "
+      "new one, facing alike; a new one replaces it at random): with 2, intel slipped at "
+      "some seeds" },
     { "slam.map_square_mm", "50", "... in 50 mm squares" },
     { "slam.window_mm", "500",
       "scans several times a second: odometry is off by centimetres between two, and a "

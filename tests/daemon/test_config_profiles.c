@@ -127,7 +127,7 @@ static void test_laser_keys(void **state)
     load_ok(f, &f->a, NULL, "slam.profile=laser", NULL);
     const hl_config_t *c = &f->a;
     assert_string_equal(get(c, "slam.map_capacity"), "15000");
-    assert_string_equal(get(c, "slam.map_per_place"), "2");
+    assert_string_equal(get(c, "slam.map_per_place"), "1");
     assert_string_equal(get(c, "slam.window_mm"), "500");
     assert_string_equal(get(c, "slam.echo_bearings"), "false");
     assert_string_equal(get(c, "slam.fit_normals"), "true");
