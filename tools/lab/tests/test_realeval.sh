@@ -259,7 +259,7 @@ check "laser.conf in improved mode: echo bearings off, fitted normals keeping th
     grep -q "^profile = laser$" "$1" && grep -q "^echo_bearings = false$" "$1" &&
     grep -q "^fit_normals = true$" "$1" && grep -q "^keep_unfitted = true$" "$1" &&
     grep -q "^guarded = true$" "$1" && grep -q "^map_capacity = 15000$" "$1" &&
-    grep -q "^map_per_place = 2$" "$1"' - "$tmp/laser.improved"
+    grep -q "^map_per_place = 1$" "$1"' - "$tmp/laser.improved"
 "$BIN/houghlocd" --config tools/lab/realeval/sonar.conf --print-config=all >"$tmp/sonar.improved" 2>&1
 check "sonar.conf in improved mode: echo bearings on" sh -c '
     grep -q "^profile = sonar-continuous$" "$1" && grep -q "^echo_bearings = true$" "$1"' - "$tmp/sonar.improved"
