@@ -331,18 +331,6 @@ static int decide(importer_t *im)
     return 0;
 }
 
-/* What set the step between beams (carmen_scan.h). */
-static const char *beam_step_from(const importer_t *im)
-{
-    if (im->beams.spread)
-        return "spread over --fov-deg";
-    if (im->beams.res_deg > 0)
-        return "PARAM";
-    bool sick = im->beams_min == im->beams_max &&
-                carmen_sick_step_deg(im->beams_max, im->fov_deg) > 0;
-    return sick ? "the SICK's for the beam count" : "spread over the field of view";
-}
-
 static void print_summary(const importer_t *im, FILE *s)
 {
     const carmen_options_t *o = im->o;
@@ -359,13 +347,15 @@ static void print_summary(const importer_t *im, FILE *s)
     fprintf(s, PROG ": laser: beams_per_scan=%d", im->beams_min);
     if (im->beams_max != im->beams_min)
         fprintf(s, "..%d", im->beams_max);
+    bool one_count = im->beams_min == im->beams_max;
+    const char *step_from;
+    double step = carmen_beam_step_deg(&im->beams, one_count ? im->beams_max : 0, &step_from);
     fprintf(s, " fov_deg=%.4f (%s) step_deg=", im->fov_deg, im->fov_from);
-    if (im->beams_min == im->beams_max)
-        fprintf(s, "%.4f", carmen_beam_deg(&im->beams, 1, im->beams_max) -
-                               carmen_beam_deg(&im->beams, 0, im->beams_max));
+    if (one_count)
+        fprintf(s, "%.4f", step);
     else
         fputs("by_beams", s);
-    fprintf(s, " (%s) max_range_m=%.3f (%ld beams, %s)\n", beam_step_from(im),
+    fprintf(s, " (%s) max_range_m=%.3f (%ld beams, %s)\n", step_from,
             im->max_m, im->max_count,
             im->ranges.has_sentinel ? "the no-return value"
             : im->max_m >= im->ranges.no_return_m ? "no return" : "a return");

@@ -35,12 +35,19 @@ double carmen_sick_step_deg(int n, double fov_deg)
     return fits ? step : 0.0;
 }
 
-double carmen_beam_deg(const carmen_beams_t *g, int i, int n)
+double carmen_beam_step_deg(const carmen_beams_t *g, int n, const char **from)
 {
-    double step = g->spread ? 0.0 : g->res_deg > 0 ? g->res_deg : carmen_sick_step_deg(n, g->fov_deg);
-    if (step == 0.0)
-        step = g->fov_deg / (double)(n - 1);
-    return -g->fov_deg / 2.0 + (double)i * step;
+    const char *why = "spread over the field of view";
+    double step = 0.0;
+    if (g->spread)
+        why = "spread over --fov-deg";
+    else if (g->res_deg > 0)
+        step = g->res_deg, why = "PARAM";
+    else if ((step = carmen_sick_step_deg(n, g->fov_deg)) > 0)
+        why = "the SICK's for the beam count";
+    if (from)
+        *from = why;
+    return step > 0 ? step : g->fov_deg / (double)(n - 1);
 }
 
 hl_status_t carmen_make_scan(const carmen_flaser_t *f, const carmen_beams_t *g, carmen_input_t mode,
@@ -59,12 +66,14 @@ hl_status_t carmen_make_scan(const carmen_flaser_t *f, const carmen_beams_t *g, 
         c.no_return += b == CARMEN_BEAM_NO_RETURN;
         c.beyond += b == CARMEN_BEAM_BEYOND;
     }
+    /* beam i at first + i * step degrees */
+    double first = -g->fov_deg / 2.0, step = carmen_beam_step_deg(g, f->nbeams, NULL);
     hl_scan_clear(out);
     if (mode == CARMEN_INPUT_LASER) {
         if (f->nbeams > HL_SCAN_MAX_READINGS)
             return HL_ERR_CAPACITY;
         for (int i = 0; i < f->nbeams; i++) {
-            hl_bam_t bearing = hl_bam_from_deg(carmen_beam_deg(g, i, f->nbeams));
+            hl_bam_t bearing = hl_bam_from_deg(first + i * step);
             hl_scan_add(out, bearing, mm[i] >= 0 ? mm[i] : 0, -1, mm[i] >= 0);
         }
     } else {
@@ -77,7 +86,7 @@ hl_status_t carmen_make_scan(const carmen_flaser_t *f, const carmen_beams_t *g, 
             double centre = (j - (n - 1) / 2.0) * CARMEN_SONAR_STEP_DEG;
             int32_t nearest = -1;
             for (int i = 0; i < f->nbeams; i++) {
-                if (mm[i] < 0 || fabs(carmen_beam_deg(g, i, f->nbeams) - centre) >
+                if (mm[i] < 0 || fabs(first + i * step - centre) >
                                      CARMEN_SONAR_HALF_CONE_DEG + 1e-9)
                     continue;
                 if (nearest < 0 || mm[i] < nearest)

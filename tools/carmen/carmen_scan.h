@@ -81,8 +81,10 @@ typedef struct carmen_beams {
  *  @p fov_deg, else 0. */
 double carmen_sick_step_deg(int n, double fov_deg);
 
-/** Bearing of beam @p i of @p n (n >= 2), in degrees from the robot's heading. */
-double carmen_beam_deg(const carmen_beams_t *g, int i, int n);
+/** Degrees between beams of a scan of @p n beams (n >= 2; 0 for a log of mixed counts,
+ *  whose step is then not one), the first at -fov/2; @p from (may be NULL) gets what
+ *  set it, as the import's summary names it. */
+double carmen_beam_step_deg(const carmen_beams_t *g, int n, const char **from);
 
 /** Readings of the pseudo-sonar ring over @p fov_deg: floor(fov / 2.8125), 0 when the
  *  field of view is narrower than one step. */
